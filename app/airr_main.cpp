@@ -1,0 +1,26 @@
+// `airr`: the command-line face of AIRR Studio.
+#include <cstdio>
+#include <exception>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"airr: simulate aerial imaging by retroreflection (AIRR)"};
+  app.require_subcommand(1);
+  add_render_command(app);
+  add_bench_command(app);
+  add_make_assets_command(app);
+#ifdef AIRR_HAVE_ANALYSIS
+  add_mtf_command(app);
+  add_compare_command(app);
+#endif
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

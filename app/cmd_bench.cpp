@@ -1,0 +1,123 @@
+// airr bench: tracer rays/s, raw Embree rtcIntersect1 rays/s on the same geometry and ray count,
+// their ratio, and the render session's latency from an edit to its first new image.
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <limits>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "airr/optics/random.hpp"
+#include "airr/optics/scene_json.hpp"
+#include "airr/render/render_session.hpp"
+#include "airr/render/tracer.hpp"
+#include "asset_paths.hpp"
+#include "commands.hpp"
+
+namespace {
+
+using clock_type = std::chrono::steady_clock;
+double since(clock_type::time_point t0) { return std::chrono::duration<double>(clock_type::now() - t0).count(); }
+
+// Camera rays through jittered pixel positions, intersected only.
+double raw_embree_seconds(const airr::tracer_scene& ts, std::uint64_t ray_count, double& checksum) {
+  const int w = ts.camera.width, h = ts.camera.height;
+  const std::uint64_t per_pixel = std::max<std::uint64_t>(1, ray_count / (std::uint64_t(w) * h));
+  std::atomic<double> sum{0};
+  const auto t0 = clock_type::now();
+  tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), [&](const tbb::blocked_range<int>& r) {
+    double local = 0;
+    for (int y = r.begin(); y < r.end(); ++y) {
+      for (int x = 0; x < w; ++x) {
+        for (std::uint64_t i = 0; i < per_pixel; ++i) {
+          airr::pcg32 rng = airr::sample_rng(std::uint64_t(y) * w + x, i, 7);
+          const glm::dvec3 d = airr::camera_direction(ts.camera, x + rng.next_double(), y + rng.next_double());
+          RTCRayHit rh{};
+          rh.ray.org_x = float(ts.camera.position.x);
+          rh.ray.org_y = float(ts.camera.position.y);
+          rh.ray.org_z = float(ts.camera.position.z);
+          rh.ray.dir_x = float(d.x);
+          rh.ray.dir_y = float(d.y);
+          rh.ray.dir_z = float(d.z);
+          rh.ray.tfar = std::numeric_limits<float>::infinity();
+          rh.ray.mask = 0xffffffffu;
+          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+          RTCIntersectContext ctx;
+          rtcInitIntersectContext(&ctx);
+          rtcIntersect1(ts.embree->get(), &ctx, &rh);
+          if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) local += rh.ray.tfar;
+        }
+      }
+    }
+    double cur = sum.load();
+    while (!sum.compare_exchange_weak(cur, cur + local)) {
+    }
+  });
+  checksum = sum;
+  return since(t0);
+}
+
+}  // namespace
+
+void add_bench_command(CLI::App& app) {
+  struct options {
+    std::string scene_path = default_scene_path();
+    std::uint64_t spp = 16;
+    int edits = 20;
+  };
+  auto opt = std::make_shared<options>();
+  auto* cmd = app.add_subcommand("bench", "Measure tracer and Embree ray throughput and edit-to-image latency");
+  cmd->add_option("scene", opt->scene_path, "Scene JSON file")->capture_default_str();
+  cmd->add_option("--spp", opt->spp, "Samples per pixel for the throughput runs")->check(CLI::Range(1, 4096));
+  cmd->add_option("--edits", opt->edits, "Edits for the latency measurement")->check(CLI::Range(1, 10000));
+  cmd->callback([opt] {
+    const airr::scene s = airr::load_scene(opt->scene_path);
+    airr::embree_device device;
+    airr::tracer_scene ts;
+    airr::build_tracer_scene(ts, device, s);
+    const int w = ts.camera.width, h = ts.camera.height;
+
+    // Tracer throughput.
+    std::vector<double> sums(std::size_t(w) * h * 3, 0.0);
+    std::atomic<std::uint64_t> rays{0};
+    const std::atomic<bool> never{false};
+    auto t0 = clock_type::now();
+    tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), [&](const tbb::blocked_range<int>& r) {
+      std::uint64_t local = 0;
+      airr::trace_rows(ts, r.begin(), r.end(), 0, opt->spp, sums, never, local);
+      rays += local;
+    });
+    const double tracer_s = since(t0);
+    const double tracer_rate = double(rays) / tracer_s;
+
+    double checksum = 0;
+    const double raw_s = raw_embree_seconds(ts, rays, checksum);
+    const std::uint64_t raw_rays = std::max<std::uint64_t>(1, rays / (std::uint64_t(w) * h)) * std::uint64_t(w) * h;
+    const double raw_rate = double(raw_rays) / raw_s;
+
+    // Edit latency: alternate the tilt and wait for the first image of each new generation.
+    airr::render_session session(s);
+    session.wait_for(0, 1);
+    std::vector<double> latencies;
+    airr::scene edited = s;
+    for (int i = 0; i < opt->edits; ++i) {
+      edited.retroreflector.tilt_deg = (i % 2) ? s.retroreflector.tilt_deg : s.retroreflector.tilt_deg + 5.0;
+      const auto e0 = clock_type::now();
+      const std::uint64_t gen = session.edit(edited);
+      session.wait_for(gen, 1);
+      latencies.push_back(1e3 * since(e0));
+    }
+    session.stop();
+    std::sort(latencies.begin(), latencies.end());
+
+    std::printf("scene: %s (%dx%d, %llu spp)\n", opt->scene_path.c_str(), w, h, static_cast<unsigned long long>(opt->spp));
+    std::printf("tracer:        %12.0f rays/s  (%llu rays in %.3f s)\n", tracer_rate,
+                static_cast<unsigned long long>(rays.load()), tracer_s);
+    std::printf("raw embree:    %12.0f rays/s  (%llu rays in %.3f s, checksum %.1f)\n", raw_rate,
+                static_cast<unsigned long long>(raw_rays), raw_s, checksum);
+    std::printf("ratio:         %12.3f  (tracer / raw rtcIntersect1)\n", tracer_rate / raw_rate);
+    std::printf("edit latency:  median %.1f ms, min %.1f ms, max %.1f ms over %zu edits (to the first 1-spp image)\n",
+                latencies[latencies.size() / 2], latencies.front(), latencies.back(), latencies.size());
+  });
+}

@@ -1,0 +1,30 @@
+// airr make-assets [--dir DIR]: regenerates the glTF models and test charts shipped in assets/.
+#include <filesystem>
+
+#include "airr/optics/mesh_gltf.hpp"
+#include "airr/optics/scene_json.hpp"
+#include "asset_paths.hpp"
+#include "commands.hpp"
+#include "test_charts.hpp"
+
+void add_make_assets_command(CLI::App& app) {
+  auto dir = std::make_shared<std::string>(asset_dir());
+  auto* cmd = app.add_subcommand("make-assets", "Regenerate the panel model, test charts and default scene in assets/");
+  cmd->add_option("--dir", *dir, "Assets directory")->capture_default_str();
+  cmd->callback([dir] {
+    namespace fs = std::filesystem;
+    fs::create_directories(fs::path(*dir) / "models");
+    fs::create_directories(fs::path(*dir) / "charts");
+    const std::string panel = *dir + "/models/panel.gltf";
+    airr::save_gltf_mesh(airr::make_unit_panel(), panel);
+    const airr::image_metadata meta{{"airr:generator", "airr make-assets"}};
+    airr::write_image(*dir + "/charts/test_chart.png", airr::make_test_chart(), meta);
+    airr::write_image(*dir + "/charts/slanted_edge.png", airr::make_slanted_edge_chart(), meta);
+    fs::create_directories(fs::path(*dir) / "scenes");
+    airr::scene s;  // the canonical layout of the paper: D = 150 mm, tilt 0
+    s.source.image = "../charts/test_chart.png";
+    airr::save_scene(s, *dir + "/scenes/default.json");
+    std::fprintf(stderr, "wrote %s, charts/test_chart.png, charts/slanted_edge.png, scenes/default.json in %s\n",
+                 panel.c_str(), dir->c_str());
+  });
+}

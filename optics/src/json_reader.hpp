@@ -1,0 +1,88 @@
+#pragma once
+// Strict reading of one JSON object: typed fields, unknown keys reported with their dotted path.
+#include <cmath>
+#include <set>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "airr/optics/error.hpp"
+
+namespace airr::detail {
+
+class json_reader {
+ public:
+  json_reader(const nlohmann::json& j, std::string origin, std::string path)
+      : j_(j), origin_(std::move(origin)), path_(std::move(path)) {
+    if (!j_.is_object()) fail(path_.empty() ? "top level" : path_, "must be a JSON object");
+  }
+
+  [[noreturn]] void fail(const std::string& field, const std::string& problem) const {
+    throw input_error(origin_ + ": " + field + ": " + problem);
+  }
+  std::string field(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+
+  bool has(const std::string& key) {
+    seen_.insert(key);
+    return j_.contains(key);
+  }
+
+  void number(const std::string& key, double& out) {
+    if (!has(key)) return;
+    const auto& v = j_.at(key);
+    if (!v.is_number()) fail(field(key), "must be a number");
+    out = v.get<double>();
+    if (!std::isfinite(out)) fail(field(key), "must be finite");
+  }
+  template <class Int>
+  void integer(const std::string& key, Int& out) {
+    if (!has(key)) return;
+    const auto& v = j_.at(key);
+    if (!v.is_number_integer()) fail(field(key), "must be an integer");
+    if (v.is_number_unsigned()) {
+      out = static_cast<Int>(v.get<std::uint64_t>());
+    } else {
+      out = static_cast<Int>(v.get<std::int64_t>());
+    }
+  }
+  void string(const std::string& key, std::string& out) {
+    if (!has(key)) return;
+    const auto& v = j_.at(key);
+    if (!v.is_string()) fail(field(key), "must be a string");
+    out = v.get<std::string>();
+  }
+  template <std::size_t N>
+  void numbers(const std::string& key, std::array<double, N>& out) {
+    if (!has(key)) return;
+    const auto& v = j_.at(key);
+    if (!v.is_array() || v.size() != N) fail(field(key), "must be an array of " + std::to_string(N) + " numbers");
+    for (std::size_t i = 0; i < N; ++i) {
+      if (!v[i].is_number()) fail(field(key), "must be an array of " + std::to_string(N) + " numbers");
+      out[i] = v[i].get<double>();
+      if (!std::isfinite(out[i])) fail(field(key), "must be finite");
+    }
+  }
+  json_reader child(const std::string& key) {
+    seen_.insert(key);
+    return json_reader(j_.at(key), origin_, field(key));
+  }
+  const nlohmann::json& raw(const std::string& key) {
+    seen_.insert(key);
+    return j_.at(key);
+  }
+
+  // Every key of the object must have been read.
+  void finish() const {
+    for (const auto& [key, value] : j_.items()) {
+      if (!seen_.count(key)) fail(field(key), "unknown key");
+    }
+  }
+
+ private:
+  const nlohmann::json& j_;
+  std::string origin_;
+  std::string path_;
+  std::set<std::string> seen_;
+};
+
+}  // namespace airr::detail

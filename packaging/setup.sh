@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Installs everything AIRR Studio needs to build, test and run, from Debian 12 packages.
+# Idempotent: packages already present are left alone; safe to run repeatedly as root.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config git
+  libembree-dev libtbb-dev libglm-dev
+  libopenimageio-dev openimageio-tools libtinygltf-dev nlohmann-json3-dev libcli11-dev
+  libopencv-dev
+  libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri xvfb xauth
+  libgtest-dev libgmock-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages already installed" >&2
+  exit 0
+fi
+
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+echo "setup: installing ${missing[*]}" >&2
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >&2

@@ -1,0 +1,64 @@
+#pragma once
+// Embree objects behind RAII: the device, one prototype scene per mesh file, and the top-level
+// scene holding one instance per part, whose transforms change without rebuilding anything else.
+#include <array>
+#include <map>
+#include <memory>
+#include <string>
+
+#include <embree3/rtcore.h>
+#include <glm/glm.hpp>
+
+#include "airr/optics/mesh_gltf.hpp"
+
+namespace airr {
+
+class embree_device {
+ public:
+  embree_device();
+  ~embree_device();
+  embree_device(const embree_device&) = delete;
+  embree_device& operator=(const embree_device&) = delete;
+  RTCDevice get() const { return device_; }
+
+ private:
+  RTCDevice device_ = nullptr;
+};
+
+// A committed scene of one triangle mesh.
+class embree_mesh_scene {
+ public:
+  embree_mesh_scene(const embree_device& device, const triangle_mesh& mesh);
+  ~embree_mesh_scene();
+  embree_mesh_scene(const embree_mesh_scene&) = delete;
+  embree_mesh_scene& operator=(const embree_mesh_scene&) = delete;
+  RTCScene get() const { return scene_; }
+
+ private:
+  RTCScene scene_ = nullptr;
+};
+
+// The parts of an AIRR layout; the instance id of a hit says which one.
+enum part_id : unsigned { part_source = 0, part_half_mirror = 1, part_retroreflector = 2, part_count = 3 };
+
+class embree_layout_scene {
+ public:
+  // Mesh files per part; the same file is built once and instanced.
+  embree_layout_scene(const embree_device& device, const std::array<std::string, part_count>& mesh_paths);
+  ~embree_layout_scene();
+  embree_layout_scene(const embree_layout_scene&) = delete;
+  embree_layout_scene& operator=(const embree_layout_scene&) = delete;
+
+  // Moves the parts: updates the instance transforms and recommits the top level only.
+  void set_transforms(const std::array<glm::dmat4, part_count>& transforms);
+  RTCScene get() const { return top_; }
+  const std::array<std::string, part_count>& mesh_paths() const { return paths_; }
+
+ private:
+  std::array<std::string, part_count> paths_;
+  std::map<std::string, std::unique_ptr<embree_mesh_scene>> prototypes_;
+  std::array<RTCGeometry, part_count> instances_{};
+  RTCScene top_ = nullptr;
+};
+
+}  // namespace airr

@@ -1,0 +1,81 @@
+#pragma once
+// A progressive render in the background: waves of growing samples per pixel on TBB, cancelled
+// and restarted on every edit, publishing whole-wave snapshots that any thread may read.
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+#include <vector>
+
+#include "airr/optics/scene.hpp"
+#include "airr/render/embree_scene.hpp"
+#include "airr/render/tracer.hpp"
+
+namespace airr {
+
+struct session_params {
+  int threads = 0;                  // 0: all cores
+  std::uint64_t target_spp = 1 << 20;  // stop after this many samples per pixel
+  std::uint64_t max_wave_spp = 64;  // waves grow 1, 2, 4 ... up to this
+};
+
+// An immutable picture of the accumulation after a whole wave.
+struct render_snapshot {
+  std::uint64_t generation = 0;  // increases with every edit
+  std::uint64_t spp = 0;
+  int width = 0;
+  int height = 0;
+  double mm_per_pixel = 0;
+  std::shared_ptr<const std::vector<float>> rgb;  // mean radiance, 3 floats per pixel
+  std::uint64_t rays = 0;   // intersection queries so far in this generation
+  double seconds = 0;       // time spent so far in this generation
+  std::string error;        // set when the last edit could not be applied
+
+  image_rgb image() const;
+};
+
+class render_session {
+ public:
+  // Builds the scene synchronously (throws input_error on bad files), then starts the worker.
+  render_session(const scene& s, session_params p = {});
+  ~render_session();
+  render_session(const render_session&) = delete;
+  render_session& operator=(const render_session&) = delete;
+
+  // Replaces the layout: cancels the wave in progress, resets accumulation, restarts.
+  // Returns the generation whose snapshots show the new layout.
+  std::uint64_t edit(const scene& s);
+  void set_paused(bool paused);
+  void set_target_spp(std::uint64_t spp);
+
+  render_snapshot snapshot() const;
+  // Blocks until generation `gen` has at least `spp` samples (or the target is reached).
+  render_snapshot wait_for(std::uint64_t gen, std::uint64_t spp) const;
+  // Stops the worker; further snapshots stay as they are.
+  void stop();
+
+ private:
+  void run();
+  bool render_wave(std::uint64_t first, std::uint64_t count, std::vector<double>& sums, std::uint64_t& rays);
+  void publish(std::uint64_t gen, std::uint64_t spp, const std::vector<double>& sums, std::uint64_t rays, double seconds);
+
+  session_params params_;
+  embree_device device_;
+  tracer_scene scene_;  // touched only by the worker once running
+
+  mutable std::mutex mutex_;
+  mutable std::condition_variable changed_;
+  std::optional<scene> pending_;  // the latest edit not yet applied
+  std::uint64_t generation_ = 0;  // of the latest edit
+  bool paused_ = false;
+  bool stopping_ = false;
+  std::uint64_t target_spp_;
+  render_snapshot snapshot_;
+  std::atomic<bool> cancel_{false};
+  std::thread worker_;
+};
+
+}  // namespace airr

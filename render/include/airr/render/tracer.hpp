@@ -1,0 +1,44 @@
+#pragma once
+// Backward path tracing through an AIRR layout: camera -> half mirror -> retroreflector ->
+// half mirror -> source, with every other branch followed as ordinary light transport.
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "airr/optics/layout.hpp"
+#include "airr/optics/retro_model.hpp"
+#include "airr/optics/scene.hpp"
+#include "airr/render/embree_scene.hpp"
+#include "airr/render/image.hpp"
+
+namespace airr {
+
+// Everything a render needs, built from a scene; cheap to update when only parts move.
+struct tracer_scene {
+  scene layout;
+  std::array<part_frame, part_count> frames;
+  pinhole_camera camera;
+  std::shared_ptr<const image_rgb> texture;  // null: uniform white source
+  std::string texture_path;
+  std::unique_ptr<retro_model> retro;
+  std::unique_ptr<embree_layout_scene> embree;
+};
+
+// Builds (or, given the previous state, updates in place: meshes and textures are reused when
+// their files did not change, and moved parts only get new instance transforms).
+void build_tracer_scene(tracer_scene& ts, const embree_device& device, const scene& s);
+
+// Radiance along one camera sample of pixel (px, py); `rays` counts intersection queries.
+glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index, std::uint64_t& rays);
+
+// Accumulates samples [first, first + count) of every pixel in rows [y0, y1) into `sums`
+// (double RGB per pixel, added in sample order so that splitting into waves changes nothing).
+// Stops early (returns false) when `cancel` becomes true.
+bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
+                std::vector<double>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays);
+
+}  // namespace airr

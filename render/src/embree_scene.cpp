@@ -1,0 +1,76 @@
+#include "airr/render/embree_scene.hpp"
+
+#include <cstdio>
+#include <cstring>
+#include <stdexcept>
+
+#include <glm/gtc/type_ptr.hpp>
+
+namespace airr {
+
+static void embree_error(void*, RTCError code, const char* message) {
+  std::fprintf(stderr, "embree error %d: %s\n", int(code), message ? message : "");
+}
+
+embree_device::embree_device() {
+  device_ = rtcNewDevice(nullptr);
+  if (!device_) throw std::runtime_error("cannot create the Embree device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+  rtcSetDeviceErrorFunction(device_, embree_error, nullptr);
+}
+
+embree_device::~embree_device() { rtcReleaseDevice(device_); }
+
+embree_mesh_scene::embree_mesh_scene(const embree_device& device, const triangle_mesh& mesh) {
+  scene_ = rtcNewScene(device.get());
+  RTCGeometry geom = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                        3 * sizeof(float), mesh.positions.size()));
+  std::memcpy(v, mesh.positions.data(), mesh.positions.size() * sizeof(glm::vec3));
+  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                             3 * sizeof(unsigned), mesh.indices.size() / 3));
+  std::memcpy(idx, mesh.indices.data(), mesh.indices.size() * sizeof(unsigned));
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(scene_, geom);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(scene_);
+}
+
+embree_mesh_scene::~embree_mesh_scene() { rtcReleaseScene(scene_); }
+
+embree_layout_scene::embree_layout_scene(const embree_device& device,
+                                         const std::array<std::string, part_count>& mesh_paths)
+    : paths_(mesh_paths) {
+  for (const auto& path : paths_) {
+    if (!prototypes_.count(path)) {
+      prototypes_[path] = std::make_unique<embree_mesh_scene>(device, load_gltf_mesh(path));
+    }
+  }
+  top_ = rtcNewScene(device.get());
+  for (unsigned i = 0; i < part_count; ++i) {
+    instances_[i] = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
+    rtcSetGeometryInstancedScene(instances_[i], prototypes_.at(paths_[i])->get());
+    rtcSetGeometryTimeStepCount(instances_[i], 1);
+    const glm::mat4 identity(1.0f);
+    rtcSetGeometryTransform(instances_[i], 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, glm::value_ptr(identity));
+    rtcCommitGeometry(instances_[i]);
+    rtcAttachGeometryByID(top_, instances_[i], i);
+  }
+  rtcCommitScene(top_);
+}
+
+embree_layout_scene::~embree_layout_scene() {
+  for (auto g : instances_) rtcReleaseGeometry(g);
+  rtcReleaseScene(top_);
+  prototypes_.clear();
+}
+
+void embree_layout_scene::set_transforms(const std::array<glm::dmat4, part_count>& transforms) {
+  for (unsigned i = 0; i < part_count; ++i) {
+    const glm::mat4 m(transforms[i]);
+    rtcSetGeometryTransform(instances_[i], 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, glm::value_ptr(m));
+    rtcCommitGeometry(instances_[i]);
+  }
+  rtcCommitScene(top_);
+}
+
+}  // namespace airr

@@ -1,0 +1,171 @@
+#include "airr/render/render_session.hpp"
+
+#include <chrono>
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include "airr/optics/error.hpp"
+
+namespace airr {
+
+image_rgb render_snapshot::image() const {
+  image_rgb img;
+  img.width = width;
+  img.height = height;
+  if (rgb) img.rgb = *rgb;
+  else img.rgb.assign(std::size_t(width) * height * 3, 0.0f);
+  return img;
+}
+
+render_session::render_session(const scene& s, session_params p) : params_(p), target_spp_(p.target_spp) {
+  build_tracer_scene(scene_, device_, s);
+  snapshot_.width = scene_.camera.width;
+  snapshot_.height = scene_.camera.height;
+  snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
+  worker_ = std::thread([this] { run(); });
+}
+
+render_session::~render_session() { stop(); }
+
+void render_session::stop() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+    cancel_ = true;
+  }
+  changed_.notify_all();
+  if (worker_.joinable()) worker_.join();
+}
+
+std::uint64_t render_session::edit(const scene& s) {
+  std::lock_guard lock(mutex_);
+  pending_ = s;
+  cancel_ = true;
+  changed_.notify_all();
+  return ++generation_;
+}
+
+void render_session::set_paused(bool paused) {
+  std::lock_guard lock(mutex_);
+  paused_ = paused;
+  if (paused) cancel_ = true;  // the unfinished wave is redone on resume
+  changed_.notify_all();
+}
+
+void render_session::set_target_spp(std::uint64_t spp) {
+  std::lock_guard lock(mutex_);
+  target_spp_ = spp;
+  changed_.notify_all();
+}
+
+render_snapshot render_session::snapshot() const {
+  std::lock_guard lock(mutex_);
+  return snapshot_;
+}
+
+render_snapshot render_session::wait_for(std::uint64_t gen, std::uint64_t spp) const {
+  std::unique_lock lock(mutex_);
+  changed_.wait(lock, [&] {
+    return stopping_ || (snapshot_.generation == gen &&
+                         (snapshot_.spp >= spp || snapshot_.spp >= target_spp_ || !snapshot_.error.empty()));
+  });
+  return snapshot_;
+}
+
+bool render_session::render_wave(std::uint64_t first, std::uint64_t count, std::vector<double>& sums,
+                                 std::uint64_t& rays) {
+  const int h = scene_.camera.height;
+  std::atomic<std::uint64_t> total_rays{0};
+  std::atomic<bool> complete{true};
+  auto body = [&](const tbb::blocked_range<int>& r) {
+    std::uint64_t local = 0;
+    if (!trace_rows(scene_, r.begin(), r.end(), first, count, sums, cancel_, local)) complete = false;
+    total_rays += local;
+  };
+  if (params_.threads > 0) {
+    tbb::task_arena arena(params_.threads);
+    arena.execute([&] { tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), body); });
+  } else {
+    tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), body);
+  }
+  rays += total_rays;
+  return complete && !cancel_;
+}
+
+void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::vector<double>& sums,
+                             std::uint64_t rays, double seconds) {
+  auto rgb = std::make_shared<std::vector<float>>(sums.size());
+  const double inv = spp ? 1.0 / double(spp) : 0.0;
+  for (std::size_t i = 0; i < sums.size(); ++i) (*rgb)[i] = float(sums[i] * inv);
+  std::lock_guard lock(mutex_);
+  if (gen != generation_) return;  // an edit arrived meanwhile: this result is stale
+  snapshot_.generation = gen;
+  snapshot_.spp = spp;
+  snapshot_.width = scene_.camera.width;
+  snapshot_.height = scene_.camera.height;
+  snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
+  snapshot_.rgb = std::move(rgb);
+  snapshot_.rays = rays;
+  snapshot_.seconds = seconds;
+  snapshot_.error.clear();
+  changed_.notify_all();
+}
+
+void render_session::run() {
+  using clock = std::chrono::steady_clock;
+  std::vector<double> sums, wave;
+  std::uint64_t gen = 0, spp = 0, rays = 0, next_wave = 1;
+  double seconds = 0;
+  sums.assign(std::size_t(scene_.camera.width) * scene_.camera.height * 3, 0.0);
+
+  while (true) {
+    std::uint64_t count = 0;
+    {
+      std::unique_lock lock(mutex_);
+      changed_.wait(lock, [&] { return stopping_ || pending_ || (!paused_ && spp < target_spp_); });
+      if (stopping_) return;
+      if (pending_) {
+        const scene s = std::move(*pending_);
+        pending_.reset();
+        gen = generation_;
+        cancel_ = false;
+        lock.unlock();
+        std::string error;
+        try {
+          build_tracer_scene(scene_, device_, s);
+        } catch (const std::exception& e) {
+          error = e.what();
+        }
+        sums.assign(std::size_t(scene_.camera.width) * scene_.camera.height * 3, 0.0);
+        spp = rays = 0;
+        seconds = 0;
+        next_wave = 1;
+        lock.lock();
+        if (!error.empty()) {
+          // Keep the last good layout in the tracer and say why the edit was refused.
+          snapshot_.generation = gen;
+          snapshot_.error = error;
+          changed_.notify_all();
+        }
+        continue;
+      }
+      cancel_ = false;
+      count = std::min({next_wave, params_.max_wave_spp, target_spp_ - spp});
+    }
+    const auto t0 = clock::now();
+    wave = sums;  // a cancelled wave leaves the accumulation untouched
+    std::uint64_t wave_rays = 0;
+    const bool done = render_wave(spp, count, wave, wave_rays);
+    if (!done) continue;
+    sums.swap(wave);
+    spp += count;
+    rays += wave_rays;
+    seconds += std::chrono::duration<double>(clock::now() - t0).count();
+    next_wave *= 2;
+    publish(gen, spp, sums, rays, seconds);
+  }
+}
+
+}  // namespace airr

@@ -1,0 +1,157 @@
+#include "airr/render/tracer.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "airr/optics/random.hpp"
+#include "airr/optics/scene_json.hpp"
+
+namespace airr {
+
+// Surfaces are infinitely thin; new rays start this far along to skip the surface they leave.
+static constexpr float ray_epsilon_mm = 1e-3f;
+
+void build_tracer_scene(tracer_scene& ts, const embree_device& device, const scene& s) {
+  const std::array<std::string, part_count> meshes = {resolve_scene_path(s, s.source.mesh),
+                                                      resolve_scene_path(s, s.half_mirror.mesh),
+                                                      resolve_scene_path(s, s.retroreflector.mesh)};
+  if (!ts.embree || ts.embree->mesh_paths() != meshes) {
+    ts.embree.reset();
+    ts.embree = std::make_unique<embree_layout_scene>(device, meshes);
+  }
+  const std::string tex = resolve_scene_path(s, s.source.image);
+  if (tex != ts.texture_path || (!tex.empty() && !ts.texture)) {
+    ts.texture = tex.empty() ? nullptr : std::make_shared<const image_rgb>(load_image_linear(tex));
+    ts.texture_path = tex;
+  }
+  ts.layout = s;
+  ts.frames = {source_frame(s), half_mirror_frame(s), retroreflector_frame(s)};
+  ts.camera = make_camera(s);
+  ts.retro = make_retro_model(s.retroreflector.model);
+  ts.embree->set_transforms({part_transform(ts.frames[0]), part_transform(ts.frames[1]), part_transform(ts.frames[2])});
+}
+
+// Bilinear lookup; local (x, y) in mm from the source centre, image top towards +v.
+static glm::vec3 source_radiance(const tracer_scene& ts, const glm::dvec2& local) {
+  const float intensity = float(ts.layout.source.intensity);
+  if (!ts.texture) return glm::vec3(intensity);
+  const image_rgb& img = *ts.texture;
+  const part_frame& f = ts.frames[part_source];
+  const double s = (local.x / f.width + 0.5) * img.width - 0.5;
+  const double t = (0.5 - local.y / f.height) * img.height - 0.5;
+  const int x0 = int(std::floor(s)), y0 = int(std::floor(t));
+  const float fx = float(s - x0), fy = float(t - y0);
+  auto texel = [&](int x, int y) {
+    x = std::clamp(x, 0, img.width - 1);
+    y = std::clamp(y, 0, img.height - 1);
+    const float* p = img.at(x, y);
+    return glm::vec3(p[0], p[1], p[2]);
+  };
+  const glm::vec3 top = glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx);
+  const glm::vec3 bottom = glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx);
+  return glm::mix(top, bottom, fy) * intensity;
+}
+
+// Paths split into both half-mirror branches this many times (weights R and T, no noise);
+// after that one branch is chosen at random with weight R + T.
+static constexpr int max_half_mirror_splits = 3;
+
+namespace {
+struct path_state {
+  glm::dvec3 origin;
+  glm::dvec3 dir;
+  glm::vec3 throughput;
+  int depth;
+};
+}  // namespace
+
+glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index, std::uint64_t& rays) {
+  const pinhole_camera& cam = ts.camera;
+  pcg32 rng = sample_rng(std::uint64_t(py) * cam.width + px, sample_index, ts.layout.seed);
+  const double jx = rng.next_double(), jy = rng.next_double();
+  const auto& hm = ts.layout.half_mirror;
+  const double hm_total = hm.reflectance + hm.transmittance;
+
+  path_state stack[max_half_mirror_splits + 1];
+  int pending = 0, splits_left = max_half_mirror_splits;
+  stack[pending++] = {cam.position, camera_direction(cam, px + jx, py + jy), glm::vec3(1.0f), 0};
+  glm::vec3 radiance(0.0f);
+
+  while (pending > 0) {
+    path_state p = stack[--pending];
+    for (; p.depth < ts.layout.render.max_depth; ++p.depth) {
+      RTCRayHit rh{};
+      rh.ray.org_x = float(p.origin.x);
+      rh.ray.org_y = float(p.origin.y);
+      rh.ray.org_z = float(p.origin.z);
+      rh.ray.dir_x = float(p.dir.x);
+      rh.ray.dir_y = float(p.dir.y);
+      rh.ray.dir_z = float(p.dir.z);
+      rh.ray.tnear = p.depth == 0 ? 0.0f : ray_epsilon_mm;
+      rh.ray.tfar = std::numeric_limits<float>::infinity();
+      rh.ray.mask = 0xffffffffu;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      RTCIntersectContext ctx;
+      rtcInitIntersectContext(&ctx);
+      rtcIntersect1(ts.embree->get(), &ctx, &rh);
+      ++rays;
+      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+
+      const unsigned part = rh.hit.instID[0];
+      const part_frame& f = ts.frames[part];
+      const glm::dvec3 hit = p.origin + p.dir * double(rh.ray.tfar);
+      const double cos_n = glm::dot(p.dir, f.n);
+
+      if (part == part_source) {
+        if (cos_n < 0) radiance += p.throughput * source_radiance(ts, part_local(f, hit));
+        break;  // the display absorbs what it does not emit; its back emits nothing
+      }
+      if (part == part_half_mirror) {
+        if (hm_total <= 0) break;
+        const glm::dvec3 reflected = p.dir - 2.0 * cos_n * f.n;
+        p.origin = hit;
+        if (splits_left > 0) {
+          --splits_left;
+          stack[pending++] = {hit, reflected, p.throughput * float(hm.reflectance), p.depth + 1};
+          p.throughput *= float(hm.transmittance);
+        } else {
+          if (rng.next_double() * hm_total < hm.reflectance) p.dir = reflected;
+          p.throughput *= float(hm_total);
+        }
+        continue;
+      }
+      // Retroreflector: only its front face retroreflects.
+      if (cos_n >= 0) break;
+      const glm::dvec3 wi(-glm::dot(p.dir, f.u), -glm::dot(p.dir, f.v), -cos_n);
+      retro_randoms r;
+      for (auto& u : r.u) u = rng.next_double();
+      const retro_sample rs = ts.retro->sample(wi, r);
+      if (!(rs.weight > 0)) break;
+      p.dir = glm::normalize(rs.wo.x * f.u + rs.wo.y * f.v + rs.wo.z * f.n);
+      p.origin = hit + rs.shift_mm.x * f.u + rs.shift_mm.y * f.v;
+      p.throughput *= float(rs.weight);
+    }
+  }
+  return radiance;
+}
+
+bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
+                std::vector<double>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays) {
+  const int w = ts.camera.width;
+  for (int y = y0; y < y1; ++y) {
+    if (cancel.load(std::memory_order_relaxed)) return false;
+    for (int x = 0; x < w; ++x) {
+      double* acc = sums.data() + 3 * (std::size_t(y) * w + x);
+      for (std::uint64_t i = first; i < first + count; ++i) {
+        const glm::vec3 L = trace_sample(ts, x, y, i, rays);
+        acc[0] += L.x;
+        acc[1] += L.y;
+        acc[2] += L.z;
+      }
+    }
+  }
+  return true;
+}
+
+}  // namespace airr

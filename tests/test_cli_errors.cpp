@@ -1,0 +1,131 @@
+// The airr command line on bad input: non-zero exit and one line naming the file and the field.
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "airr/optics/scene_json.hpp"
+#include "airr/render/image.hpp"
+#include "asset_paths.hpp"
+#include "test_helpers.hpp"
+
+using namespace airr;
+
+namespace {
+
+int line_count(const std::string& s) {
+  int n = 0;
+  for (char c : s) n += c == '\n';
+  return n;
+}
+
+void expect_one_line_error(const test::command_result& r, const std::vector<std::string>& must_contain) {
+  EXPECT_NE(r.exit_code, 0) << r.out;
+  EXPECT_EQ(line_count(r.out), 1) << r.out;
+  EXPECT_EQ(r.out.rfind("error: ", 0), 0u) << r.out;
+  for (const auto& m : must_contain) EXPECT_NE(r.out.find(m), std::string::npos) << "missing '" << m << "' in: " << r.out;
+}
+
+std::string scene_file(const test::temp_dir& dir, const std::function<void(nlohmann::json&)>& edit) {
+  nlohmann::json j = scene_to_json(test::uniform_source_scene(20));
+  edit(j);
+  const std::string path = dir.file("scene.json");
+  std::ofstream(path) << j.dump(2);
+  return path;
+}
+
+}  // namespace
+
+TEST(CliErrors, MalformedJson) {
+  test::temp_dir dir;
+  const std::string path = dir.file("bad.json");
+  std::ofstream(path) << "{\"source\": ";
+  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png")), {path, "malformed JSON"});
+}
+
+TEST(CliErrors, UnknownKey) {
+  test::temp_dir dir;
+  const auto path = scene_file(dir, [](nlohmann::json& j) { j["camera"]["zoom"] = 2; });
+  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png")), {path, "camera.zoom", "unknown key"});
+}
+
+TEST(CliErrors, MissingGltf) {
+  test::temp_dir dir;
+  const auto path = scene_file(dir, [](nlohmann::json& j) { j["retroreflector"]["mesh"] = "gone.gltf"; });
+  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png")),
+                        {path, "retroreflector.mesh", "gone.gltf"});
+}
+
+TEST(CliErrors, MalformedGltf) {
+  test::temp_dir dir;
+  std::ofstream(dir.file("broken.gltf")) << "{\"asset\": ";
+  const auto path = scene_file(dir, [](nlohmann::json& j) { j["source"]["mesh"] = "broken.gltf"; });
+  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png")), {"broken.gltf", "malformed glTF"});
+}
+
+TEST(CliErrors, MissingImage) {
+  test::temp_dir dir;
+  const auto path = scene_file(dir, [](nlohmann::json& j) { j["source"]["image"] = "absent.png"; });
+  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png")), {path, "source.image", "absent.png"});
+}
+
+TEST(CliErrors, UnreadableImage) {
+  test::temp_dir dir;
+  std::ofstream(dir.file("fake.png")) << "not a png at all";
+  const auto path = scene_file(dir, [](nlohmann::json& j) { j["source"]["image"] = "fake.png"; });
+  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png")), {"fake.png"});
+}
+
+TEST(CliErrors, NanSize) {
+  test::temp_dir dir;
+  const auto path = scene_file(dir, [](nlohmann::json&) {});
+  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png") + " --set source.width_mm=nan"),
+                        {"source.width_mm", "finite"});
+}
+
+TEST(CliErrors, NegativeSize) {
+  test::temp_dir dir;
+  const auto path = scene_file(dir, [](nlohmann::json& j) { j["half_mirror"]["height_mm"] = -300; });
+  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png")), {path, "half_mirror.height_mm", "positive"});
+}
+
+TEST(CliErrors, ResolutionAboveCap) {
+  test::temp_dir dir;
+  const auto path = scene_file(dir, [](nlohmann::json&) {});
+  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png") + " --set camera.height=1000000"),
+                        {"camera.height", "must be in"});
+}
+
+TEST(CliErrors, MissingSceneFile) {
+  test::temp_dir dir;
+  expect_one_line_error(test::run_cli("render " + dir.file("nope.json") + " -o " + dir.file("o.png")),
+                        {"nope.json", "not found"});
+}
+
+TEST(CliRender, WritesImageWithMetadata) {
+  test::temp_dir dir;
+  const auto path = scene_file(dir, [](nlohmann::json& j) {
+    j["camera"]["width"] = 48;
+    j["camera"]["height"] = 40;
+  });
+  for (const std::string ext : {".exr", ".png"}) {
+    const std::string out = dir.file("render" + ext);
+    const auto r = test::run_cli("render " + path + " -o " + out + " --spp 4 --seed 9 --set retroreflector.tilt_deg=10");
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    const image_metadata meta = read_image_metadata(out);
+    EXPECT_EQ(meta.at("airr:spp"), "4");
+    EXPECT_EQ(meta.at("airr:seed"), "9");
+    const scene layout = scene_from_json(nlohmann::json::parse(meta.at("airr:layout")), out);
+    EXPECT_EQ(layout.retroreflector.tilt_deg, 10);
+    EXPECT_EQ(layout.camera.width, 48);
+    EXPECT_NEAR(std::stod(meta.at("airr:mm_per_pixel")), 2 * 300 * std::tan(7 * M_PI / 180) / 40, 1e-12);
+    const image_rgb img = load_image_linear(out);
+    EXPECT_EQ(img.width, 48);
+    EXPECT_EQ(img.height, 40);
+  }
+}
+
+TEST(CliRender, DefaultSceneRenders) {
+  test::temp_dir dir;
+  const auto r = test::run_cli("render " + default_scene_path() + " -o " + dir.file("d.exr") + " --spp 1 --set camera.width=32 --set camera.height=32");
+  EXPECT_EQ(r.exit_code, 0) << r.out;
+}

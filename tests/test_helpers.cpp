@@ -1,0 +1,67 @@
+#include "test_helpers.hpp"
+
+#include <array>
+#include <cstdio>
+#include <random>
+#include <sys/wait.h>
+
+#include "asset_paths.hpp"
+
+namespace airr::test {
+
+temp_dir::temp_dir() {
+  std::random_device rd;
+  path = std::filesystem::temp_directory_path() / ("airr-test-" + std::to_string(rd()) + std::to_string(rd()));
+  std::filesystem::create_directories(path);
+}
+temp_dir::~temp_dir() {
+  std::error_code ec;
+  std::filesystem::remove_all(path, ec);
+}
+
+scene uniform_source_scene(double source_mm, int resolution) {
+  scene s;
+  const std::string panel = asset_dir() + "/models/panel.gltf";
+  s.source.mesh = s.half_mirror.mesh = s.retroreflector.mesh = panel;
+  s.source.image.clear();
+  s.source.width_mm = s.source.height_mm = source_mm;
+  s.camera.width = s.camera.height = resolution;
+  return s;
+}
+
+render_snapshot render_to(const scene& s, std::uint64_t spp, int threads) {
+  render_session session(s, {.threads = threads, .target_spp = spp});
+  return session.wait_for(0, spp);
+}
+
+centroid luminance_centroid(const render_snapshot& snap) {
+  centroid c;
+  for (int y = 0; y < snap.height; ++y) {
+    for (int x = 0; x < snap.width; ++x) {
+      const float* p = snap.rgb->data() + 3 * (std::size_t(y) * snap.width + x);
+      const double v = (p[0] + p[1] + p[2]) / 3.0;
+      c.x += v * (x + 0.5);
+      c.y += v * (y + 0.5);
+      c.total += v;
+    }
+  }
+  if (c.total > 0) {
+    c.x /= c.total;
+    c.y /= c.total;
+  }
+  return c;
+}
+
+command_result run_cli(const std::string& args) {
+  command_result r;
+  const std::string cmd = std::string(AIRR_CLI) + " " + args + " 2>&1";
+  FILE* pipe = ::popen(cmd.c_str(), "r");
+  if (!pipe) return {-1, "popen failed"};
+  std::array<char, 4096> buf;
+  while (std::fgets(buf.data(), buf.size(), pipe)) r.out += buf.data();
+  const int status = ::pclose(pipe);
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return r;
+}
+
+}  // namespace airr::test

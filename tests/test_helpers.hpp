@@ -1,0 +1,38 @@
+#pragma once
+// Shared by the tests: scenes built in code, temporary directories, running the CLI.
+#include <filesystem>
+#include <string>
+
+#include "airr/optics/scene.hpp"
+#include "airr/render/image.hpp"
+#include "airr/render/render_session.hpp"
+
+namespace airr::test {
+
+// A fresh empty directory under the system temp dir, removed when the object dies.
+struct temp_dir {
+  std::filesystem::path path;
+  temp_dir();
+  ~temp_dir();
+  std::string file(const std::string& name) const { return (path / name).string(); }
+};
+
+// The default layout with absolute mesh paths, a uniform white source of the given size and a
+// small camera image; valid without any scene file.
+scene uniform_source_scene(double source_mm, int resolution = 96);
+
+// Renders to exactly `spp` samples per pixel.
+render_snapshot render_to(const scene& s, std::uint64_t spp, int threads = 0);
+
+struct centroid {
+  double x = 0, y = 0, total = 0;
+};
+centroid luminance_centroid(const render_snapshot& snap);
+
+struct command_result {
+  int exit_code = 0;
+  std::string out;  // stdout and stderr together
+};
+command_result run_cli(const std::string& args);
+
+}  // namespace airr::test

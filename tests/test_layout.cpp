@@ -1,0 +1,81 @@
+// Layout geometry against hand-derived positions: the mirror image, the camera, intersections.
+#include <gtest/gtest.h>
+
+#include "airr/optics/error.hpp"
+#include "airr/optics/layout.hpp"
+#include "test_helpers.hpp"
+
+using namespace airr;
+
+TEST(Layout, AerialImageIsTheMirrorImageAtPlusD) {
+  for (double d : {110.0, 150.0, 300.0}) {
+    scene s;
+    s.floating_distance_mm = d;
+    const glm::dvec3 a = aerial_image_center(s);
+    EXPECT_NEAR(a.x, 0, 1e-12);
+    EXPECT_NEAR(a.y, 0, 1e-12);
+    EXPECT_NEAR(a.z, d, 1e-12);
+  }
+}
+
+TEST(Layout, CameraLooksAtTheAerialImageFromDPlus300) {
+  scene s;
+  s.floating_distance_mm = 225;
+  const pinhole_camera c = make_camera(s);
+  EXPECT_NEAR(c.position.z, 525, 1e-12);
+  const glm::dvec2 p = camera_project(c, {0, 0, 225});
+  EXPECT_NEAR(p.x, s.camera.width / 2.0, 1e-9);
+  EXPECT_NEAR(p.y, s.camera.height / 2.0, 1e-9);
+  // Projection inverts the ray direction of a pixel position.
+  const glm::dvec3 d = camera_direction(c, 10.25, 200.5);
+  const glm::dvec2 back = camera_project(c, c.position + 123.0 * d);
+  EXPECT_NEAR(back.x, 10.25, 1e-9);
+  EXPECT_NEAR(back.y, 200.5, 1e-9);
+  // One pixel on the aerial-image plane: 2 * 300 * tan(7 deg) / 256.
+  EXPECT_NEAR(c.mm_per_pixel, 2 * 300 * std::tan(7 * M_PI / 180) / 256, 1e-12);
+}
+
+TEST(Layout, TiltTurnsTheSheetNormalUpwards) {
+  scene s;
+  s.retroreflector.tilt_deg = 30;
+  const part_frame f = retroreflector_frame(s);
+  EXPECT_NEAR(f.n.y, 0.5, 1e-12);
+  EXPECT_NEAR(f.n.z, std::sqrt(3.0) / 2, 1e-12);
+  // The chief ray (along -z) meets it at incidence angle tilt.
+  EXPECT_NEAR(std::acos(glm::dot(glm::dvec3(0, 0, 1), f.n)) * 180 / M_PI, 30, 1e-9);
+}
+
+TEST(Layout, IntersectingPartsAreALayoutError) {
+  scene s;
+  EXPECT_NO_THROW(check_layout(s, "x"));
+  s.retroreflector.distance_mm = 50;  // inside the mirror's reach (its top edge is at z = -106)
+  try {
+    check_layout(s, "x.json");
+    FAIL() << "no error";
+  } catch (const input_error& e) {
+    EXPECT_STREQ(e.what(), "x.json: layout: retroreflector and half mirror intersect");
+  }
+  s = scene{};
+  s.floating_distance_mm = 90;  // the mirror at y = -90 is at z = 90, clear of the source
+  EXPECT_NO_THROW(check_layout(s, "x"));
+  s.floating_distance_mm = 20;  // the mirror at y = -20 is at z = 20, inside the source's +-25 mm
+  EXPECT_THROW(check_layout(s, "x"), input_error);
+  s = scene{};
+  s.retroreflector.tilt_deg = 45;  // leaning away: still clear
+  EXPECT_NO_THROW(check_layout(s, "x"));
+}
+
+TEST(Layout, RectangleIntersectionAgreesWithHandCases) {
+  part_frame a, b;
+  a.width = a.height = b.width = b.height = 2;
+  b.n = {1, 0, 0};
+  b.u = {0, 1, 0};
+  b.v = {0, 0, 1};
+  EXPECT_TRUE(parts_intersect(a, b));  // crossing at x = 0
+  b.center = {0.99, 0, 0};
+  EXPECT_TRUE(parts_intersect(a, b));
+  b.center = {1.01, 0, 0};
+  EXPECT_FALSE(parts_intersect(a, b));
+  b.center = {0, 0, 1.01};
+  EXPECT_FALSE(parts_intersect(a, b));
+}

@@ -1,0 +1,176 @@
+// The scene format: exact round trips, atomic saves, and one clear error per kind of bad input.
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "airr/optics/error.hpp"
+#include "airr/optics/scene_json.hpp"
+#include "asset_paths.hpp"
+#include "test_helpers.hpp"
+
+using namespace airr;
+
+namespace {
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const input_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Writes a scene file into dir (with the shipped models), after editing its JSON.
+std::string write_scene(const test::temp_dir& dir, const std::function<void(nlohmann::json&)>& edit) {
+  scene s = test::uniform_source_scene(20);
+  nlohmann::json j = scene_to_json(s);
+  edit(j);
+  const std::string path = dir.file("scene.json");
+  std::ofstream(path) << j.dump(2);
+  return path;
+}
+
+}  // namespace
+
+TEST(SceneJson, DefaultSceneRoundTripsExactly) {
+  const scene a = load_scene(default_scene_path());
+  test::temp_dir dir;
+  const std::string copy = dir.file("copy.json");
+  // Relative paths are kept verbatim, so the saved text equals the shipped one.
+  save_scene(a, copy);
+  const nlohmann::json original = nlohmann::json::parse(read_text_file(default_scene_path()));
+  const nlohmann::json saved = nlohmann::json::parse(read_text_file(copy));
+  EXPECT_EQ(saved, scene_to_json(a));
+  EXPECT_EQ(scene_to_json(scene_from_json(saved, copy)), saved);
+  // The shipped file is in the canonical complete form.
+  EXPECT_EQ(original, saved);
+}
+
+TEST(SceneJson, NonDefaultValuesRoundTripBitExactly) {
+  scene s = test::uniform_source_scene(12.345678901234567);
+  s.floating_distance_mm = 0.1 + 0.2;  // not exactly representable in decimal
+  s.retroreflector.tilt_deg = 1.0 / 3.0;
+  s.seed = 18446744073709551615ull;
+  s.source.offset_mm = {1e-17, -2.5, 3.25};
+  s.retroreflector.model.type = retro_model_type::ideal;
+  const nlohmann::json j = scene_to_json(s);
+  const scene back = scene_from_json(nlohmann::json::parse(j.dump()), "mem");
+  EXPECT_EQ(back.floating_distance_mm, s.floating_distance_mm);
+  EXPECT_EQ(back.retroreflector.tilt_deg, s.retroreflector.tilt_deg);
+  EXPECT_EQ(back.source.width_mm, s.source.width_mm);
+  EXPECT_EQ(back.seed, s.seed);
+  EXPECT_EQ(back.source.offset_mm, s.source.offset_mm);
+  EXPECT_EQ(scene_to_json(back), j);
+}
+
+TEST(SceneJson, SaveIsAtomicAndLeavesNoTemporaryFiles) {
+  test::temp_dir dir;
+  const std::string path = dir.file("s.json");
+  std::ofstream(path) << "previous contents";
+  save_scene(test::uniform_source_scene(10), path);
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path)) ++files;
+  EXPECT_EQ(files, 1);
+  EXPECT_NO_THROW(scene_from_json(nlohmann::json::parse(read_text_file(path)), path));
+  // A save into a directory that does not exist fails without touching anything.
+  EXPECT_NE(error_of([&] { save_scene(scene{}, dir.file("missing/dir/s.json")); }), "");
+}
+
+TEST(SceneJson, MalformedJsonNamesTheFile) {
+  test::temp_dir dir;
+  const std::string path = dir.file("broken.json");
+  std::ofstream(path) << "{ \"floating_distance_mm\": 150, ";
+  const std::string e = error_of([&] { load_scene(path); });
+  EXPECT_NE(e.find(path), std::string::npos) << e;
+  EXPECT_NE(e.find("malformed JSON"), std::string::npos) << e;
+}
+
+TEST(SceneJson, UnknownKeyNamesTheField) {
+  test::temp_dir dir;
+  const auto path = write_scene(dir, [](nlohmann::json& j) { j["retroreflector"]["tilt"] = 5; });
+  const std::string e = error_of([&] { load_scene(path); });
+  EXPECT_NE(e.find(path), std::string::npos) << e;
+  EXPECT_NE(e.find("retroreflector.tilt: unknown key"), std::string::npos) << e;
+}
+
+TEST(SceneJson, MissingGltfNamesFieldAndFile) {
+  test::temp_dir dir;
+  const auto path = write_scene(dir, [](nlohmann::json& j) { j["half_mirror"]["mesh"] = "nowhere.gltf"; });
+  const std::string e = error_of([&] { load_scene(path); });
+  EXPECT_NE(e.find("half_mirror.mesh: file not found"), std::string::npos) << e;
+  EXPECT_NE(e.find("nowhere.gltf"), std::string::npos) << e;
+}
+
+TEST(SceneJson, MissingImageNamesFieldAndFile) {
+  test::temp_dir dir;
+  const auto path = write_scene(dir, [](nlohmann::json& j) { j["source"]["image"] = "chart-missing.png"; });
+  const std::string e = error_of([&] { load_scene(path); });
+  EXPECT_NE(e.find("source.image: file not found"), std::string::npos) << e;
+  EXPECT_NE(e.find("chart-missing.png"), std::string::npos) << e;
+}
+
+TEST(SceneJson, NegativeSizeIsRejected) {
+  test::temp_dir dir;
+  const auto path = write_scene(dir, [](nlohmann::json& j) { j["source"]["width_mm"] = -5; });
+  const std::string e = error_of([&] { load_scene(path); });
+  EXPECT_NE(e.find("source.width_mm: must be positive"), std::string::npos) << e;
+}
+
+TEST(SceneJson, NanFromOverrideIsRejected) {
+  test::temp_dir dir;
+  const auto path = write_scene(dir, [](nlohmann::json&) {});
+  const std::string e = error_of([&] { load_scene(path, {parse_override("retroreflector.tilt_deg=nan")}); });
+  EXPECT_NE(e.find("retroreflector.tilt_deg"), std::string::npos) << e;
+  EXPECT_NE(e.find("finite"), std::string::npos) << e;
+}
+
+TEST(SceneJson, HugeNumberInFileIsRejected) {
+  test::temp_dir dir;
+  const std::string path = dir.file("huge.json");
+  std::ofstream(path) << R"({"format": "airr-scene", "version": 1, "floating_distance_mm": 1e999})";
+  const std::string e = error_of([&] { load_scene(path); });
+  EXPECT_NE(e.find(path), std::string::npos) << e;
+}
+
+TEST(SceneJson, ResolutionAboveCapIsRejected) {
+  test::temp_dir dir;
+  const auto path = write_scene(dir, [](nlohmann::json& j) {
+    j["camera"]["width"] = 100000;
+  });
+  const std::string e = error_of([&] { load_scene(path); });
+  EXPECT_NE(e.find("camera.width: must be in"), std::string::npos) << e;
+  const auto path2 = write_scene(dir, [](nlohmann::json& j) {
+    j["camera"]["width"] = 8192;
+    j["camera"]["height"] = 8192;
+  });
+  const std::string e2 = error_of([&] { load_scene(path2); });
+  EXPECT_NE(e2.find("exceeds the cap"), std::string::npos) << e2;
+}
+
+TEST(SceneJson, WrongTypesAndVersionsAreRejected) {
+  test::temp_dir dir;
+  auto p = write_scene(dir, [](nlohmann::json& j) { j["camera"]["width"] = "wide"; });
+  EXPECT_NE(error_of([&] { load_scene(p); }).find("camera.width: must be an integer"), std::string::npos);
+  p = write_scene(dir, [](nlohmann::json& j) { j["version"] = 99; });
+  EXPECT_NE(error_of([&] { load_scene(p); }).find("version: unsupported version 99"), std::string::npos);
+  p = write_scene(dir, [](nlohmann::json& j) { j["retroreflector"]["model"]["type"] = "magic"; });
+  EXPECT_NE(error_of([&] { load_scene(p); }).find("unknown model 'magic'"), std::string::npos);
+  p = write_scene(dir, [](nlohmann::json& j) { j["half_mirror"]["reflectance"] = 0.8; });
+  EXPECT_NE(error_of([&] { load_scene(p); }).find("must not exceed 1"), std::string::npos);
+}
+
+TEST(SceneJson, OverridesReachFieldsTheFileOmits) {
+  test::temp_dir dir;
+  const std::string path = dir.file("minimal.json");
+  const std::string panel = asset_dir() + "/models/panel.gltf";
+  std::ofstream(path) << R"({"source": {"mesh": ")" << panel << R"(", "image": ""}, "half_mirror": {"mesh": ")" << panel
+                      << R"("}, "retroreflector": {"mesh": ")" << panel << R"("}})";
+  const scene s = load_scene(path, {parse_override("retroreflector.tilt_deg=20"), parse_override("floating_distance_mm=225")});
+  EXPECT_EQ(s.retroreflector.tilt_deg, 20);
+  EXPECT_EQ(s.floating_distance_mm, 225);
+  EXPECT_NE(error_of([&] { load_scene(path, {parse_override("retroreflector.tlt_deg=20")}); }).find("unknown key"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { parse_override("no-equals-sign"); }), "");
+}
