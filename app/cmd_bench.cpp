@@ -12,7 +12,7 @@
 #include "airr/optics/scene_json.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/render/tracer.hpp"
-#include "asset_paths.hpp"
+#include "airr/optics/assets.hpp"
 #include "commands.hpp"
 
 namespace {
@@ -62,7 +62,7 @@ double raw_embree_seconds(const airr::tracer_scene& ts, std::uint64_t ray_count,
 
 void add_bench_command(CLI::App& app) {
   struct options {
-    std::string scene_path = default_scene_path();
+    std::string scene_path = airr::default_scene_path();
     std::uint64_t spp = 16;
     int edits = 20;
   };

@@ -3,12 +3,12 @@
 
 #include "airr/optics/mesh_gltf.hpp"
 #include "airr/optics/scene_json.hpp"
-#include "asset_paths.hpp"
+#include "airr/optics/assets.hpp"
 #include "commands.hpp"
 #include "test_charts.hpp"
 
 void add_make_assets_command(CLI::App& app) {
-  auto dir = std::make_shared<std::string>(asset_dir());
+  auto dir = std::make_shared<std::string>(airr::asset_dir());
   auto* cmd = app.add_subcommand("make-assets", "Regenerate the panel model, test charts and default scene in assets/");
   cmd->add_option("--dir", *dir, "Assets directory")->capture_default_str();
   cmd->callback([dir] {

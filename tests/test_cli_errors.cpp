@@ -5,7 +5,7 @@
 
 #include "airr/optics/scene_json.hpp"
 #include "airr/render/image.hpp"
-#include "asset_paths.hpp"
+#include "airr/optics/assets.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -126,6 +126,6 @@ TEST(CliRender, WritesImageWithMetadata) {
 
 TEST(CliRender, DefaultSceneRenders) {
   test::temp_dir dir;
-  const auto r = test::run_cli("render " + default_scene_path() + " -o " + dir.file("d.exr") + " --spp 1 --set camera.width=32 --set camera.height=32");
+  const auto r = test::run_cli("render " + airr::default_scene_path() + " -o " + dir.file("d.exr") + " --spp 1 --set camera.width=32 --set camera.height=32");
   EXPECT_EQ(r.exit_code, 0) << r.out;
 }

@@ -5,7 +5,7 @@
 
 #include "airr/optics/error.hpp"
 #include "airr/optics/mesh_gltf.hpp"
-#include "asset_paths.hpp"
+#include "airr/optics/assets.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -23,7 +23,7 @@ TEST(Gltf, SaveLoadRoundTrip) {
 }
 
 TEST(Gltf, ShippedPanelIsTheUnitPanel) {
-  const triangle_mesh shipped = load_gltf_mesh(asset_dir() + "/models/panel.gltf");
+  const triangle_mesh shipped = load_gltf_mesh(airr::asset_dir() + "/models/panel.gltf");
   const triangle_mesh made = make_unit_panel();
   EXPECT_EQ(shipped.positions, made.positions);
   EXPECT_EQ(shipped.indices, made.indices);

@@ -5,7 +5,7 @@
 #include <random>
 #include <sys/wait.h>
 
-#include "asset_paths.hpp"
+#include "airr/optics/assets.hpp"
 
 namespace airr::test {
 
@@ -21,7 +21,7 @@ temp_dir::~temp_dir() {
 
 scene uniform_source_scene(double source_mm, int resolution) {
   scene s;
-  const std::string panel = asset_dir() + "/models/panel.gltf";
+  const std::string panel = airr::asset_dir() + "/models/panel.gltf";
   s.source.mesh = s.half_mirror.mesh = s.retroreflector.mesh = panel;
   s.source.image.clear();
   s.source.width_mm = s.source.height_mm = source_mm;

@@ -6,7 +6,7 @@
 
 #include "airr/optics/error.hpp"
 #include "airr/optics/scene_json.hpp"
-#include "asset_paths.hpp"
+#include "airr/optics/assets.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -35,12 +35,12 @@ std::string write_scene(const test::temp_dir& dir, const std::function<void(nloh
 }  // namespace
 
 TEST(SceneJson, DefaultSceneRoundTripsExactly) {
-  const scene a = load_scene(default_scene_path());
+  const scene a = load_scene(airr::default_scene_path());
   test::temp_dir dir;
   const std::string copy = dir.file("copy.json");
   // Relative paths are kept verbatim, so the saved text equals the shipped one.
   save_scene(a, copy);
-  const nlohmann::json original = nlohmann::json::parse(read_text_file(default_scene_path()));
+  const nlohmann::json original = nlohmann::json::parse(read_text_file(airr::default_scene_path()));
   const nlohmann::json saved = nlohmann::json::parse(read_text_file(copy));
   EXPECT_EQ(saved, scene_to_json(a));
   EXPECT_EQ(scene_to_json(scene_from_json(saved, copy)), saved);
@@ -164,7 +164,7 @@ TEST(SceneJson, WrongTypesAndVersionsAreRejected) {
 TEST(SceneJson, OverridesReachFieldsTheFileOmits) {
   test::temp_dir dir;
   const std::string path = dir.file("minimal.json");
-  const std::string panel = asset_dir() + "/models/panel.gltf";
+  const std::string panel = airr::asset_dir() + "/models/panel.gltf";
   std::ofstream(path) << R"({"source": {"mesh": ")" << panel << R"(", "image": ""}, "half_mirror": {"mesh": ")" << panel
                       << R"("}, "retroreflector": {"mesh": ")" << panel << R"("}})";
   const scene s = load_scene(path, {parse_override("retroreflector.tilt_deg=20"), parse_override("floating_distance_mm=225")});

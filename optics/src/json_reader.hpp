@@ -1,6 +1,7 @@
 #pragma once
 // Strict reading of one JSON object: typed fields, unknown keys reported with their dotted path.
 #include <cmath>
+#include <optional>
 #include <set>
 #include <string>
 
@@ -33,6 +34,17 @@ class json_reader {
     if (!v.is_number()) fail(field(key), "must be a number");
     out = v.get<double>();
     if (!std::isfinite(out)) fail(field(key), "must be finite");
+  }
+  // A number, or null for "unset".
+  void optional_number(const std::string& key, std::optional<double>& out) {
+    if (!has(key)) return;
+    if (j_.at(key).is_null()) {
+      out.reset();
+      return;
+    }
+    double v = 0;
+    number(key, v);
+    out = v;
   }
   template <class Int>
   void integer(const std::string& key, Int& out) {

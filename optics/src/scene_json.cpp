@@ -20,8 +20,20 @@ std::string resolve_scene_path(const scene& s, const std::string& path) {
 
 // ---------------------------------------------------------------- writing
 
+static json optional_number(const std::optional<double>& v) { return v ? json(*v) : json(nullptr); }
+
 static json model_to_json(const retro_model_params& m) {
-  return {{"type", retro_model_type_names[static_cast<int>(m.type)]}, {"mu", m.mu}};
+  return {{"type", retro_model_type_names[static_cast<int>(m.type)]},
+          {"mu", optional_number(m.mu)},
+          {"preset", m.preset},
+          {"a_per_mm", optional_number(m.a_per_mm)},
+          {"c_mm", optional_number(m.c_mm)},
+          {"reference_distance_mm", optional_number(m.reference_distance_mm)},
+          {"shift_table", m.shift_table},
+          {"alpha_surface", m.alpha_surface},
+          {"alpha_internal", m.alpha_internal},
+          {"internal_reflectance", m.internal_reflectance},
+          {"eta", m.eta}};
 }
 
 json scene_to_json(const scene& s) {
@@ -76,7 +88,16 @@ static void read_model(json_reader r, retro_model_params& m) {
     }
   }
   if (!known) r.fail(r.field("type"), "unknown model '" + type + "' (ideal, sinc_shift, microfacet)");
-  r.number("mu", m.mu);
+  r.optional_number("mu", m.mu);
+  r.string("preset", m.preset);
+  r.optional_number("a_per_mm", m.a_per_mm);
+  r.optional_number("c_mm", m.c_mm);
+  r.optional_number("reference_distance_mm", m.reference_distance_mm);
+  r.string("shift_table", m.shift_table);
+  r.number("alpha_surface", m.alpha_surface);
+  r.number("alpha_internal", m.alpha_internal);
+  r.number("internal_reflectance", m.internal_reflectance);
+  r.number("eta", m.eta);
   r.finish();
 }
 
@@ -187,7 +208,15 @@ void validate_scene(const scene& s, const std::string& origin) {
   c.positive("retroreflector.height_mm", s.retroreflector.height_mm);
   c.positive("retroreflector.distance_mm", s.retroreflector.distance_mm);
   c.range("retroreflector.tilt_deg", s.retroreflector.tilt_deg, -80, 80);
-  c.range("retroreflector.model.mu", s.retroreflector.model.mu, 0, 1);
+  const retro_model_params& m = s.retroreflector.model;
+  if (m.mu) c.range("retroreflector.model.mu", *m.mu, 0, 1);
+  if (m.a_per_mm) c.positive("retroreflector.model.a_per_mm", *m.a_per_mm);
+  if (m.c_mm) c.range("retroreflector.model.c_mm", *m.c_mm, 0, 100);
+  if (m.reference_distance_mm) c.positive("retroreflector.model.reference_distance_mm", *m.reference_distance_mm);
+  c.range("retroreflector.model.alpha_surface", m.alpha_surface, 0, 1);
+  c.range("retroreflector.model.alpha_internal", m.alpha_internal, 0, 1);
+  c.range("retroreflector.model.internal_reflectance", m.internal_reflectance, 0, 1);
+  c.range("retroreflector.model.eta", m.eta, 1, 3);
   c.positive("camera.distance_mm", s.camera.distance_mm);
   c.range("camera.fov_deg", s.camera.fov_deg, 0.01, 170);
   c.range("camera.width", s.camera.width, 1, max_resolution_side);
@@ -209,6 +238,7 @@ void validate_scene_files(const scene& s, const std::string& origin) {
     }
   };
   need("source.image", s.source.image);
+  need("retroreflector.model.shift_table", s.retroreflector.model.shift_table);
   if (s.source.mesh.empty()) throw input_error(origin + ": source.mesh: must name a glTF file");
   need("source.mesh", s.source.mesh);
   if (s.half_mirror.mesh.empty()) throw input_error(origin + ": half_mirror.mesh: must name a glTF file");

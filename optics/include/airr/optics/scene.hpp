@@ -2,6 +2,7 @@
 // The AIRR layout description: plain structs with the defaults of the canonical layout.
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace airr {
@@ -32,9 +33,22 @@ struct half_mirror_params {
   double transmittance = 0.5;
 };
 
+// Parameters of every retroreflector model; each model reads the ones that concern it.
+// Unset optionals come from the preset (sinc_shift) or from the documented default.
 struct retro_model_params {
   retro_model_type type = retro_model_type::ideal;
-  double mu = 1.0;  // reflectance weight
+  std::optional<double> mu;  // reflectance weight; default: the preset's mu(theta), else 1
+  // sinc_shift
+  std::string preset;                              // a name in assets/presets or a path; empty: none
+  std::optional<double> a_per_mm;                  // spread parameter a; default: the preset's a(theta)
+  std::optional<double> c_mm;                      // corner size c; default: the preset's c
+  std::optional<double> reference_distance_mm;     // R; default: the preset's, else 300
+  std::string shift_table;                         // path; empty: the shipped corner-cube table
+  // microfacet (the baseline model)
+  double alpha_surface = 0.0;
+  double alpha_internal = 0.0005;
+  double internal_reflectance = 0.83;
+  double eta = 1.5046;
 };
 
 struct retroreflector_params {

@@ -1,0 +1,35 @@
+#pragma once
+// Corner-cube exit-point shift distributions P(theta) (spec section 3): for each tabulated
+// incidence angle, a normalised histogram of the shift between entry and exit points on the
+// aperture plane, in cube edge lengths, plus the retroreflected fraction of the aperture.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace airr {
+
+struct shift_table {
+  std::vector<double> theta_deg;                 // ascending, e.g. 0, 5, ..., 45
+  double s_max = 1.5;                            // histogram range [0, s_max]
+  std::vector<std::vector<double>> probability;  // [theta][bin]; each row sums to 1
+  std::vector<double> retro_fraction;            // [theta]: retroreflected / entering the aperture
+  nlohmann::json provenance;                     // grid, angles, date, command, run time
+
+  int bins() const { return probability.empty() ? 0 : int(probability[0].size()); }
+};
+
+// Throws input_error naming the file and the problem (malformed, rows not normalised, ...).
+shift_table load_shift_table(const std::string& path);
+// Atomic write (temporary file, then rename).
+void save_shift_table(const shift_table& table, const std::string& path);
+
+// The table shipped in assets/shift_tables/corner_cube.json.
+std::string default_shift_table_path();
+
+// Draws a shift (edge lengths) for incidence angle theta_deg: one of the two neighbouring
+// tables is chosen with the linear interpolation weight (u_pick), a bin from its distribution
+// (u_bin) and a uniform position inside the bin (u_jitter). Angles outside the table clamp.
+double sample_shift(const shift_table& table, double theta_deg, double u_pick, double u_bin, double u_jitter);
+
+}  // namespace airr
