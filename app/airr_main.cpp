@@ -10,10 +10,8 @@ int main(int argc, char** argv) {
   add_render_command(app);
   add_bench_command(app);
   add_make_assets_command(app);
-#ifdef AIRR_HAVE_ANALYSIS
   add_mtf_command(app);
   add_compare_command(app);
-#endif
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,6 +1,7 @@
 // airr make-assets [--dir DIR]: regenerates the glTF models and test charts shipped in assets/.
 #include <filesystem>
 
+#include "airr/optics/corner_cube.hpp"
 #include "airr/optics/mesh_gltf.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "airr/optics/assets.hpp"
@@ -17,6 +18,7 @@ void add_make_assets_command(CLI::App& app) {
     fs::create_directories(fs::path(*dir) / "charts");
     const std::string panel = *dir + "/models/panel.gltf";
     airr::save_gltf_mesh(airr::make_unit_panel(), panel);
+    airr::save_gltf_mesh(airr::make_corner_cube(), *dir + "/models/corner_cube.gltf");
     const airr::image_metadata meta{{"airr:generator", "airr make-assets"}};
     airr::write_image(*dir + "/charts/test_chart.png", airr::make_test_chart(), meta);
     airr::write_image(*dir + "/charts/slanted_edge.png", airr::make_slanted_edge_chart(), meta);
@@ -24,7 +26,9 @@ void add_make_assets_command(CLI::App& app) {
     airr::scene s;  // the canonical layout of the paper: D = 150 mm, tilt 0
     s.source.image = "../charts/test_chart.png";
     airr::save_scene(s, *dir + "/scenes/default.json");
-    std::fprintf(stderr, "wrote %s, charts/test_chart.png, charts/slanted_edge.png, scenes/default.json in %s\n",
+    std::fprintf(stderr,
+                 "wrote %s, models/corner_cube.gltf, charts/test_chart.png, charts/slanted_edge.png, "
+                 "scenes/default.json in %s\n",
                  panel.c_str(), dir->c_str());
   });
 }

@@ -6,7 +6,7 @@
 #include "airr/render/render_session.hpp"
 #include "commands.hpp"
 #include "progress_bar.hpp"
-#include "render_metadata.hpp"
+#include "airr/render/render_metadata.hpp"
 
 void add_render_command(CLI::App& app) {
   struct options {

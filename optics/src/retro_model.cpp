@@ -1,14 +1,41 @@
 #include "airr/optics/retro_model.hpp"
 
+#include <filesystem>
+#include <map>
+#include <mutex>
+
 #include "airr/optics/error.hpp"
+#include "airr/optics/retro_sinc_shift.hpp"
+#include "airr/optics/scene.hpp"
 
 namespace airr {
 
-std::unique_ptr<retro_model> make_retro_model(const retro_model_params& p) {
+// Shift tables are shared between models built from the same file.
+static std::shared_ptr<const shift_table> cached_shift_table(const std::string& path) {
+  static std::mutex mutex;
+  static std::map<std::string, std::shared_ptr<const shift_table>> cache;
+  std::lock_guard lock(mutex);
+  auto& entry = cache[path];
+  if (!entry) entry = std::make_shared<const shift_table>(load_shift_table(path));
+  return entry;
+}
+
+std::unique_ptr<retro_model> make_retro_model(const retro_model_params& p, const std::string& base_dir) {
   switch (p.type) {
     case retro_model_type::ideal:
-      return std::make_unique<ideal_retro>(p.mu);
-    case retro_model_type::sinc_shift:
+      return std::make_unique<ideal_retro>(p.mu.value_or(1.0));
+    case retro_model_type::sinc_shift: {
+      sinc_shift_params sp = resolve_sinc_shift_params(p, base_dir);
+      std::shared_ptr<const shift_table> shifts;
+      if (sp.c_mm > 0) {
+        std::string path = p.shift_table.empty() ? default_shift_table_path() : p.shift_table;
+        if (!p.shift_table.empty() && !std::filesystem::path(path).is_absolute() && !base_dir.empty()) {
+          path = (std::filesystem::path(base_dir) / path).lexically_normal().string();
+        }
+        shifts = cached_shift_table(path);
+      }
+      return std::make_unique<sinc_shift_retro>(std::move(sp), std::move(shifts));
+    }
     case retro_model_type::microfacet:
       break;
   }

@@ -6,6 +6,7 @@
 
 #include "airr/optics/error.hpp"
 #include "airr/optics/layout.hpp"
+#include "airr/optics/retro_model.hpp"
 #include "json_reader.hpp"
 
 namespace airr {
@@ -247,6 +248,18 @@ void validate_scene_files(const scene& s, const std::string& origin) {
   need("retroreflector.mesh", s.retroreflector.mesh);
 }
 
+void check_scene(const scene& s, const std::string& origin) {
+  validate_scene(s, origin);
+  validate_scene_files(s, origin);
+  check_layout(s, origin);
+  try {
+    make_retro_model(s.retroreflector.model, s.base_dir);  // presets and tables load, values resolve
+  } catch (const input_error& e) {
+    const std::string what = e.what();
+    throw input_error(what.rfind("retroreflector.", 0) == 0 ? origin + ": " + what : what);
+  }
+}
+
 // ---------------------------------------------------------------- overrides
 
 scene_override parse_override(const std::string& text) {
@@ -311,9 +324,7 @@ scene parse_scene(const std::string& text, const std::string& origin, const std:
     s = scene_from_json(full, where);
   }
   s.base_dir = base_dir;
-  validate_scene(s, where);
-  validate_scene_files(s, where);
-  check_layout(s, where);
+  check_scene(s, where);
   return s;
 }
 

@@ -12,22 +12,26 @@ namespace airr {
 static constexpr float ray_epsilon_mm = 1e-3f;
 
 void build_tracer_scene(tracer_scene& ts, const embree_device& device, const scene& s) {
+  // Everything that can fail is built first, so a bad edit leaves the previous state intact.
   const std::array<std::string, part_count> meshes = {resolve_scene_path(s, s.source.mesh),
                                                       resolve_scene_path(s, s.half_mirror.mesh),
                                                       resolve_scene_path(s, s.retroreflector.mesh)};
-  if (!ts.embree || ts.embree->mesh_paths() != meshes) {
-    ts.embree.reset();
-    ts.embree = std::make_unique<embree_layout_scene>(device, meshes);
-  }
+  std::unique_ptr<embree_layout_scene> embree;
+  if (!ts.embree || ts.embree->mesh_paths() != meshes) embree = std::make_unique<embree_layout_scene>(device, meshes);
   const std::string tex = resolve_scene_path(s, s.source.image);
-  if (tex != ts.texture_path || (!tex.empty() && !ts.texture)) {
-    ts.texture = tex.empty() ? nullptr : std::make_shared<const image_rgb>(load_image_linear(tex));
-    ts.texture_path = tex;
+  std::shared_ptr<const image_rgb> texture = ts.texture;
+  if (tex != ts.texture_path || (!tex.empty() && !texture)) {
+    texture = tex.empty() ? nullptr : std::make_shared<const image_rgb>(load_image_linear(tex));
   }
+  std::unique_ptr<retro_model> retro = make_retro_model(s.retroreflector.model, s.base_dir);
+
+  if (embree) ts.embree = std::move(embree);
+  ts.texture = std::move(texture);
+  ts.texture_path = tex;
+  ts.retro = std::move(retro);
   ts.layout = s;
   ts.frames = {source_frame(s), half_mirror_frame(s), retroreflector_frame(s)};
   ts.camera = make_camera(s);
-  ts.retro = make_retro_model(s.retroreflector.model);
   ts.embree->set_transforms({part_transform(ts.frames[0]), part_transform(ts.frames[1]), part_transform(ts.frames[2])});
 }
 

@@ -3,6 +3,7 @@
 // point away from the surface: wi towards where the light came from, wo where it leaves.
 #include <array>
 #include <memory>
+#include <string>
 
 #include <glm/glm.hpp>
 
@@ -40,6 +41,7 @@ class ideal_retro final : public retro_model {
   double mu_;
 };
 
-std::unique_ptr<retro_model> make_retro_model(const retro_model_params& p);
+// Builds the model a scene names; files (presets, shift tables) resolve against base_dir.
+std::unique_ptr<retro_model> make_retro_model(const retro_model_params& p, const std::string& base_dir = "");
 
 }  // namespace airr

@@ -28,6 +28,9 @@ void validate_scene(const scene& s, const std::string& origin);
 // Checks that every referenced file exists.
 void validate_scene_files(const scene& s, const std::string& origin);
 
+// All of the above plus the layout and the retroreflector model (presets, tables) resolving.
+void check_scene(const scene& s, const std::string& origin);
+
 // Reads, overrides, validates (values, files and layout). Throws input_error.
 scene load_scene(const std::string& path, const std::vector<scene_override>& overrides = {});
 // Parses scene JSON text (base_dir for relative paths), then as load_scene.

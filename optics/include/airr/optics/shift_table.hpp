@@ -15,9 +15,14 @@ struct shift_table {
   std::vector<std::vector<double>> probability;  // [theta][bin]; each row sums to 1
   std::vector<double> retro_fraction;            // [theta]: retroreflected / entering the aperture
   nlohmann::json provenance;                     // grid, angles, date, command, run time
+  std::vector<std::vector<double>> cdf;          // [theta][bin]: cumulative probability (finalize_shift_table)
 
   int bins() const { return probability.empty() ? 0 : int(probability[0].size()); }
 };
+
+// Fills `cdf` from `probability` (sample_shift needs it); load_shift_table and the generator
+// call it. Throws std::invalid_argument for rows of different lengths or a row with no probability.
+void finalize_shift_table(shift_table& table);
 
 // Throws input_error naming the file and the problem (malformed, rows not normalised, ...).
 shift_table load_shift_table(const std::string& path);

@@ -1,0 +1,37 @@
+#pragma once
+
+#include <optional>
+
+#include "airr/analysis/slanted_edge_mtf.hpp"
+
+namespace airr::analysis {
+
+struct mtf50_result {
+  double cycles_per_pixel = 0;
+  double lp_per_mm = 0;  // 0 when no pixel size was given
+};
+
+struct mean_mtf_params {
+  double max_lp_per_mm = 1.0;  // upper end of the averaging range (0, max]
+  int samples = 200;           // uniform grid points in (0, max]
+};
+
+struct mean_mtf_result {
+  double value = 0;
+  double upper_lp_per_mm = 0;  // upper end actually used
+  bool clamped = false;        // the range was cut at the image's Nyquist frequency
+};
+
+// MTF linearly interpolated at a frequency in cycles/pixel; 0 beyond the measured range.
+double interpolate_mtf(const mtf_curve& curve, double cycles_per_pixel);
+
+// First crossing of 0.5, linearly interpolated; empty when the curve stays above 0.5.
+// mm_per_pixel <= 0 leaves lp_per_mm at 0.
+std::optional<mtf50_result> mtf50(const mtf_curve& curve, double mm_per_pixel = 0);
+
+// Mean of the MTF over (0, max_lp_per_mm] lp/mm on a uniform grid, cut at the Nyquist frequency
+// (0.5 cycles/pixel) when that is lower.
+mean_mtf_result mean_mtf(const mtf_curve& curve, double mm_per_pixel,
+                         const mean_mtf_params& params = {});
+
+}  // namespace airr::analysis

@@ -1,0 +1,50 @@
+#include "airr/analysis/psf_mtf.hpp"
+
+#include <cmath>
+#include <numbers>
+
+namespace airr::analysis {
+
+static double mtf_at(const psf_samples& psf, double f, double pixel_mm) {
+  double re = 0, im = 0, total = 0;
+  const double w0 = -2.0 * std::numbers::pi * f;
+  for (std::size_t i = 0; i < psf.offset_mm.size(); ++i) {
+    const double phase = w0 * psf.offset_mm[i].x;
+    re += psf.weight[i] * std::cos(phase);
+    im += psf.weight[i] * std::sin(phase);
+    total += psf.weight[i];
+  }
+  double m = total > 0 ? std::hypot(re, im) / total : 0.0;
+  if (pixel_mm > 0 && f > 0) {
+    const double x = std::numbers::pi * f * pixel_mm;
+    m *= std::abs(std::sin(x) / x);
+  }
+  return m;
+}
+
+psf_mtf_curve psf_mtf(const psf_samples& psf, const psf_mtf_params& p) {
+  psf_mtf_curve c;
+  for (int i = 0; i < p.points; ++i) {
+    const double f = p.max_lp_per_mm * i / std::max(1, p.points - 1);
+    c.lp_per_mm.push_back(f);
+    c.mtf.push_back(mtf_at(psf, f, p.pixel_mm));
+  }
+  return c;
+}
+
+double psf_mean_mtf(const psf_samples& psf, double max_lp_per_mm, double pixel_mm, int samples) {
+  double sum = 0;
+  for (int i = 1; i <= samples; ++i) sum += mtf_at(psf, max_lp_per_mm * i / samples, pixel_mm);
+  return sum / samples;
+}
+
+double psf_mtf50(const psf_mtf_curve& c) {
+  for (std::size_t i = 1; i < c.mtf.size(); ++i) {
+    if (c.mtf[i - 1] >= 0.5 && c.mtf[i] < 0.5) {
+      return c.lp_per_mm[i - 1] + (c.mtf[i - 1] - 0.5) / (c.mtf[i - 1] - c.mtf[i]) * (c.lp_per_mm[i] - c.lp_per_mm[i - 1]);
+    }
+  }
+  return 0.0;
+}
+
+}  // namespace airr::analysis

@@ -1,0 +1,32 @@
+#pragma once
+// Fitted parameters of a real retroreflective sheet for the sinc-shift model: a and mu per
+// incidence angle (or one value for all), corner size c and reference distance R.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace airr {
+
+struct sheet_preset {
+  std::string name;
+  std::vector<double> theta_deg;  // tabulated incidence angles, ascending; empty: scalars
+  std::vector<double> a_per_mm;   // one per angle, or a single value
+  std::vector<double> mu;         // one per angle, or a single value
+  double c_mm = 0.0;
+  double reference_distance_mm = 300.0;
+  nlohmann::json provenance;      // where the values come from (a table, a fit with its inputs and losses)
+};
+
+// A name ("rf-ay") is looked up in assets/presets; anything with a '/' or ending in ".json" is a
+// path, relative to base_dir. Throws input_error naming the file and the field.
+std::string resolve_preset_path(const std::string& name_or_path, const std::string& base_dir);
+sheet_preset load_preset(const std::string& name_or_path, const std::string& base_dir = "");
+sheet_preset preset_from_json(const nlohmann::json& j, const std::string& origin);
+nlohmann::json preset_to_json(const sheet_preset& p);
+void save_preset(const sheet_preset& p, const std::string& path);
+
+// Linear interpolation of values over ascending angles, clamped outside; one value is constant.
+double interpolate_by_angle(const std::vector<double>& theta_deg, const std::vector<double>& values, double theta);
+
+}  // namespace airr

@@ -1,0 +1,39 @@
+#pragma once
+// The model's point spread function without the tracer: the camera's ray through an aerial-image
+// point is followed through half mirror, retroreflector (sampled many times) and half mirror to
+// the source plane; where it lands, relative to the ideal mirror point, is the blur, expressed on
+// the aerial-image plane. Cheap enough to redraw on every edit.
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "airr/optics/retro_model.hpp"
+#include "airr/optics/scene.hpp"
+
+namespace airr {
+
+struct psf_params {
+  std::uint64_t samples = 100000;
+  std::uint64_t seed = 1;
+};
+
+struct psf_samples {
+  std::vector<glm::dvec2> offset_mm;  // on the aerial-image plane (x right, y up), from the ideal point
+  std::vector<double> weight;         // throughput including R_hm x T_hm
+  std::uint64_t launched = 0;
+  double rr_distance_mm = 0;          // retroreflector to aerial image along the chief ray
+  double incidence_deg = 0;           // the chief ray's incidence angle on the retroreflector
+
+  // Aerial-image radiance per unit source radiance (what a uniform source would show).
+  double brightness() const;
+};
+
+// Throws input_error when the chief ray through `aerial_point` misses a part.
+psf_samples sample_psf(const scene& s, const retro_model& model, const psf_params& p, const glm::dvec3& aerial_point);
+psf_samples sample_psf(const scene& s, const retro_model& model, const psf_params& p);
+
+// The radius around the ideal point holding `fraction` of the arriving energy.
+double energy_radius(const psf_samples& psf, double fraction = 0.5);
+
+}  // namespace airr

@@ -1,0 +1,41 @@
+#pragma once
+// The sinc-shift retroreflector (the default model): a sinc^2 angular spread whose blur grows
+// with the distance to the aerial image, an exit-point shift drawn from the corner-cube shift
+// distribution for the ray's incidence angle, and weight mu; a and mu follow the incidence angle.
+#include <memory>
+
+#include "airr/optics/preset.hpp"
+#include "airr/optics/retro_model.hpp"
+#include "airr/optics/shift_table.hpp"
+
+namespace airr {
+
+// Concrete parameters: a(theta), mu(theta) over tabulated angles (or single values), c, R.
+struct sinc_shift_params {
+  std::vector<double> theta_deg;
+  std::vector<double> a_per_mm{2.0};
+  std::vector<double> mu{1.0};
+  double c_mm = 0.0;
+  double reference_distance_mm = 300.0;
+};
+
+// Combines an optional preset with the scene's overrides (a set value applies at every angle).
+// Throws input_error when a needed value has no source.
+sinc_shift_params resolve_sinc_shift_params(const retro_model_params& p, const std::string& base_dir);
+
+class sinc_shift_retro final : public retro_model {
+ public:
+  // `shifts` may be null when c is 0.
+  sinc_shift_retro(sinc_shift_params p, std::shared_ptr<const shift_table> shifts);
+  retro_sample sample(const glm::dvec3& wi, const retro_randoms& r) const override;
+
+  double a_at(double theta_deg) const;
+  double mu_at(double theta_deg) const;
+  const sinc_shift_params& params() const { return p_; }
+
+ private:
+  sinc_shift_params p_;
+  std::shared_ptr<const shift_table> shifts_;
+};
+
+}  // namespace airr

@@ -1,0 +1,31 @@
+#pragma once
+// The angular spread of the sinc-shift model: the deviation delta from the exact retro direction
+// has density p(delta) ~ sinc^2(k tan delta) / cos^2 delta on [0, pi/2), k = a R, so that the
+// offset x = R tan delta at distance R is sinc^2(a x) distributed.
+#include <vector>
+
+namespace airr {
+
+inline constexpr int sinc_lobe_table_size = 30000;
+
+class sinc_lobe {
+ public:
+  // The 30000-point table over [0, 90 deg) for k = 1, normalised to sum 1.
+  static const sinc_lobe& instance();
+
+  // Deviation angle (radians) for spread k = a R, from two uniform numbers. The table is
+  // sampled as a discrete distribution with uniform jitter inside the cell, giving delta_1
+  // for k = 1; tan(delta) = tan(delta_1) / k maps k tan(delta) onto the same sinc^2 law.
+  double sample_delta(double k, double u_cell, double u_jitter) const;
+
+  // The continuous density of delta (per radian) for spread k, normalised on [0, pi/2).
+  static double pdf(double delta, double k);
+
+ private:
+  sinc_lobe();
+  std::vector<double> cdf_;  // cdf_[j] = sum of weights of cells < j+1
+};
+
+double sinc(double x);
+
+}  // namespace airr

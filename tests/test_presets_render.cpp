@@ -1,0 +1,43 @@
+// The shipped presets through the tracer: the aerial image's brightness follows mu(tilt).
+#include <gtest/gtest.h>
+
+#include "airr/optics/preset.hpp"
+#include "test_helpers.hpp"
+
+using namespace airr;
+
+namespace {
+
+double centre_radiance(const render_snapshot& snap, int half) {
+  double sum = 0;
+  int n = 0;
+  for (int y = snap.height / 2 - half; y < snap.height / 2 + half; ++y) {
+    for (int x = snap.width / 2 - half; x < snap.width / 2 + half; ++x) {
+      sum += (*snap.rgb)[3 * (std::size_t(y) * snap.width + x) + 1];
+      ++n;
+    }
+  }
+  return sum / n;
+}
+
+}  // namespace
+
+TEST(PresetsRender, BrightnessFallsWithTiltAsMuDoes) {
+  for (const char* name : {"rf-ay", "rf-an"}) {
+    const sheet_preset preset = load_preset(name);
+    double previous = 1e30;
+    for (std::size_t i = 0; i < preset.theta_deg.size(); ++i) {
+      // A large source keeps the sinc^2 tail's loss small (about 1 / (pi a R tan(delta_edge)));
+      // centre pixels see incidence angles within 0.2 deg of the tilt.
+      scene s = test::uniform_source_scene(100.0, 64);
+      s.retroreflector.tilt_deg = preset.theta_deg[i];
+      s.retroreflector.model.type = retro_model_type::sinc_shift;
+      s.retroreflector.model.preset = name;
+      const double l = centre_radiance(test::render_to(s, 32), 3);
+      const double expected = s.source.intensity * 0.25 * preset.mu[i];
+      EXPECT_NEAR(l, expected, 0.03 * expected) << name << " tilt " << preset.theta_deg[i];
+      EXPECT_LT(l, previous) << name << " tilt " << preset.theta_deg[i];
+      previous = l;
+    }
+  }
+}

@@ -1,0 +1,540 @@
+// The microfacet retroreflector (spec 2.3): its Beckmann samplers against their densities
+// (chi-square), the ERA and Fresnel formulas against hand-computed values, and the whole model's
+// energy and retro spread against analytic values and an independent linearised propagation.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <vector>
+
+#include "airr/optics/random.hpp"
+#include "airr/optics/retro_microfacet.hpp"
+
+using namespace airr;
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+constexpr double rad = pi / 180;
+
+glm::dvec3 direction(double theta_deg, double phi_deg) {
+  const double t = theta_deg * rad, p = phi_deg * rad;
+  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
+}
+
+retro_randoms next_randoms(pcg32& rng) {
+  retro_randoms r;
+  for (double& v : r.u) v = rng.next_double();
+  return r;
+}
+
+// Regularised upper incomplete gamma Q(a, x): series below a + 1, continued fraction above.
+double gamma_q(double a, double x) {
+  if (x <= 0) return 1;
+  const double log_prefix = a * std::log(x) - x - std::lgamma(a);
+  if (x < a + 1) {
+    double term = 1 / a, sum = term;
+    for (int n = 1; n < 10000 && term > sum * 1e-16; ++n) sum += term *= x / (a + n);
+    return 1 - sum * std::exp(log_prefix);
+  }
+  const double tiny = 1e-300;
+  double b = x + 1 - a, c = 1 / tiny, d = 1 / b, h = d;
+  for (int i = 1; i < 10000; ++i) {
+    const double an = -i * (i - a);
+    b += 2;
+    d = an * d + b;
+    if (std::abs(d) < tiny) d = tiny;
+    c = b + an / c;
+    if (std::abs(c) < tiny) c = tiny;
+    d = 1 / d;
+    const double step = d * c;
+    h *= step;
+    if (std::abs(step - 1) < 1e-16) break;
+  }
+  return std::exp(log_prefix) * h;
+}
+
+double chi2_survival(double chi2, int dof) { return gamma_q(0.5 * dof, 0.5 * chi2); }
+
+// Integrates f(m) over the part of the hemisphere about +z with tan(theta_m) / alpha in [q0, q1]
+// and azimuth in [p0, p1] (composite Simpson in q and phi).
+double integrate_patch(const std::function<double(const glm::dvec3&)>& f, double alpha, double q0, double q1,
+                       double p0, double p1, int nq, int np) {
+  const double hq = (q1 - q0) / nq, hp = (p1 - p0) / np;
+  double sum = 0;
+  for (int i = 0; i <= nq; ++i) {
+    const double q = q0 + i * hq;
+    const double theta = std::atan(alpha * q);
+    const double jac = std::sin(theta) * alpha / (1 + alpha * alpha * q * q);  // dω = sinθ dθ dφ
+    const double wq = (i == 0 || i == nq) ? 1 : (i % 2 ? 4 : 2);
+    for (int j = 0; j <= np; ++j) {
+      const double p = p0 + j * hp;
+      const double wp = (j == 0 || j == np) ? 1 : (j % 2 ? 4 : 2);
+      const glm::dvec3 m{std::sin(theta) * std::cos(p), std::sin(theta) * std::sin(p), std::cos(theta)};
+      sum += wq * wp * jac * f(m);
+    }
+  }
+  return sum * hq * hp / 9;
+}
+
+// Beyond tan(theta) / alpha = 8 a Beckmann density holds less than exp(-64) of its mass.
+constexpr double q_max = 8;
+
+// Bins in (theta_m, phi_m): 10 rings holding a tenth of the plain Beckmann mass each, 8 sectors.
+struct beckmann_bins {
+  static constexpr int rings = 10, sectors = 8;
+  double alpha;
+  std::array<double, rings + 1> q{};  // ring edges in tan(theta) / alpha
+  explicit beckmann_bins(double a) : alpha(a) {
+    for (int k = 0; k < rings; ++k) q[k] = std::sqrt(-std::log(1 - double(k) / rings));
+    q[rings] = q_max;
+  }
+  int index(const glm::dvec3& m) const {
+    const double qm = std::sqrt(std::max(0.0, 1 - m.z * m.z)) / m.z / alpha;
+    const int ring = int(std::upper_bound(q.begin() + 1, q.end() - 1, qm) - q.begin()) - 1;
+    double phi = std::atan2(m.y, m.x);
+    if (phi < 0) phi += 2 * pi;
+    const int sector = std::min(sectors - 1, int(phi / (2 * pi) * sectors));
+    return ring * sectors + sector;
+  }
+  std::vector<double> probabilities(const std::function<double(const glm::dvec3&)>& density) const {
+    std::vector<double> p(rings * sectors);
+    for (int k = 0; k < rings; ++k)
+      for (int s = 0; s < sectors; ++s)
+        p[k * sectors + s] = integrate_patch(density, alpha, q[k], q[k + 1], 2 * pi * s / sectors,
+                                             2 * pi * (s + 1) / sectors, 100, 32);
+    return p;
+  }
+};
+
+// p-value of the chi-square goodness of fit of `n` samples against the bin probabilities; bins
+// expecting fewer than 5 samples are pooled into one.
+double chi_square_p(const beckmann_bins& bins, const std::vector<double>& prob, int n,
+                    const std::function<glm::dvec3()>& draw) {
+  std::vector<double> counts(prob.size(), 0);
+  for (int i = 0; i < n; ++i) counts[bins.index(draw())] += 1;
+  double chi2 = 0, pooled_expected = 0, pooled_observed = 0;
+  int cells = 0;
+  for (std::size_t i = 0; i < prob.size(); ++i) {
+    const double expected = prob[i] * n;
+    if (expected < 5) {
+      pooled_expected += expected;
+      pooled_observed += counts[i];
+      continue;
+    }
+    chi2 += (counts[i] - expected) * (counts[i] - expected) / expected;
+    ++cells;
+  }
+  if (pooled_expected >= 5) {
+    chi2 += (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) / pooled_expected;
+    ++cells;
+  }
+  return chi2_survival(chi2, cells - 1);
+}
+
+double total(const std::vector<double>& p) {
+  double s = 0;
+  for (double v : p) s += v;
+  return s;
+}
+
+}  // namespace
+
+TEST(ChiSquare, SurvivalFunctionMatchesClosedForms) {
+  for (double x : {0.1, 1.0, 3.0, 10.0, 40.0, 150.0}) {
+    EXPECT_NEAR(chi2_survival(x, 2), std::exp(-x / 2), 1e-13 + 1e-12 * std::exp(-x / 2));
+    EXPECT_NEAR(chi2_survival(x, 1), std::erfc(std::sqrt(x / 2)), 1e-13);
+    EXPECT_NEAR(chi2_survival(x, 4), std::exp(-x / 2) * (1 + x / 2), 1e-13);
+  }
+}
+
+TEST(Beckmann, DensityIntegratesToOne) {
+  for (double alpha : {0.01, 0.05, 0.2, 0.5, 1.0}) {
+    const double integral = integrate_patch([&](const glm::dvec3& m) { return beckmann_d(m, alpha) * m.z; },
+                                            alpha, 0, q_max, 0, 2 * pi, 4000, 8);
+    EXPECT_NEAR(integral, 1, 1e-7) << "alpha " << alpha;
+  }
+}
+
+TEST(Beckmann, VisibleDensityIntegratesToOne) {
+  for (double alpha : {0.05, 0.2, 0.5}) {
+    for (double theta : {0.0, 30.0, 60.0, 80.0, 89.0}) {
+      const glm::dvec3 wi = direction(theta, 35);
+      const double integral = integrate_patch(
+          [&](const glm::dvec3& m) { return beckmann_visible_d(wi, m, alpha); }, alpha, 0, q_max, 0, 2 * pi, 2000, 720);
+      EXPECT_NEAR(integral, 1, 1e-4) << "alpha " << alpha << " theta " << theta;
+    }
+  }
+}
+
+TEST(Beckmann, SamplingFollowsTheDensity) {
+  for (double alpha : {0.05, 0.2, 0.5}) {
+    const beckmann_bins bins(alpha);
+    const auto prob = bins.probabilities([&](const glm::dvec3& m) { return beckmann_d(m, alpha) * m.z; });
+    EXPECT_NEAR(total(prob), 1, 1e-6);
+    pcg32 rng(7, 1);
+    const double p = chi_square_p(bins, prob, 200000, [&] {
+      const double u1 = rng.next_double();
+      return sample_beckmann(alpha, u1, rng.next_double());
+    });
+    EXPECT_GT(p, 1e-3) << "alpha " << alpha;
+    // The test has power: a roughness 5% off is rejected.
+    const double p_wrong = chi_square_p(bins, prob, 200000, [&] {
+      const double u1 = rng.next_double();
+      return sample_beckmann(alpha * 1.05, u1, rng.next_double());
+    });
+    EXPECT_LT(p_wrong, 1e-6) << "alpha " << alpha;
+  }
+}
+
+TEST(Beckmann, VisibleSamplingFollowsTheVisibleDensity) {
+  for (double alpha : {0.05, 0.2, 0.5}) {
+    const beckmann_bins bins(alpha);
+    for (const auto& [theta, phi] : {std::pair{0.0, 0.0}, {30.0, 20.0}, {70.0, 200.0}, {88.0, 300.0}}) {
+      const glm::dvec3 wi = direction(theta, phi);
+      const auto prob = bins.probabilities([&](const glm::dvec3& m) { return beckmann_visible_d(wi, m, alpha); });
+      EXPECT_NEAR(total(prob), 1, 1e-4);
+      pcg32 rng(11, 3);
+      const double p = chi_square_p(bins, prob, 200000, [&] {
+        const double u1 = rng.next_double();
+        return sample_beckmann_visible(wi, alpha, u1, rng.next_double());
+      });
+      EXPECT_GT(p, 1e-3) << "alpha " << alpha << " theta " << theta;
+    }
+  }
+  // The test has power: at oblique incidence the visible normals are not the plain ones.
+  const double alpha = 0.5;
+  const beckmann_bins bins(alpha);
+  const auto plain = bins.probabilities([&](const glm::dvec3& m) { return beckmann_d(m, alpha) * m.z; });
+  pcg32 rng(5, 9);
+  const glm::dvec3 wi = direction(70, 200);
+  EXPECT_LT(chi_square_p(bins, plain, 200000,
+                         [&] {
+                           const double u1 = rng.next_double();
+                           return sample_beckmann_visible(wi, alpha, u1, rng.next_double());
+                         }),
+            1e-6);
+}
+
+TEST(Era, MatchesHandComputedValues) {
+  // U(x), L(x) evaluated separately for x = 0, 10, 20, 30, 40.
+  const std::array<double, 5> x{0, 10, 20, 30, 40};
+  const std::array<double, 5> upper{0.683356248, 0.613629456, 0.494063622, 0.313729998, 0.137477359};
+  const std::array<double, 5> lower{0.678575082, 0.617530254, 0.494755694, 0.218412440, 0.0};
+  for (int i = 0; i < 5; ++i) {
+    EXPECT_NEAR(era(x[i], 0), upper[i], 1e-8) << "x " << x[i];      // w = 1
+    EXPECT_NEAR(era(x[i], 30), lower[i], 1e-8) << "x " << x[i];     // w = 0
+    EXPECT_NEAR(era(x[i], 60), upper[i], 1e-8) << "x " << x[i];     // period 60
+    EXPECT_NEAR(era(x[i], 15), 0.5 * (upper[i] + lower[i]), 1e-8);  // w = 1/2
+    EXPECT_NEAR(era(x[i], -15), 0.5 * (upper[i] + lower[i]), 1e-8);
+    EXPECT_NEAR(era(x[i], 200), upper[i] / 3 + 2 * lower[i] / 3, 1e-8);  // 200 mod 60 = 20: w = 1/3
+  }
+  EXPECT_EQ(era(40, 30), 0.0);  // L is clamped at 0 beyond about 35.4 deg
+}
+
+TEST(Fresnel, KnownValues) {
+  for (double eta : {1.33, 1.5, 1.5046, 2.0}) {
+    EXPECT_NEAR(fresnel_dielectric(1, eta), std::pow((eta - 1) / (eta + 1), 2), 1e-14);
+    EXPECT_NEAR(fresnel_dielectric(1, 1 / eta), std::pow((eta - 1) / (eta + 1), 2), 1e-14);
+    // At Brewster's angle the p component vanishes: F = ((eta^2 - 1) / (eta^2 + 1))^2 / 2.
+    EXPECT_NEAR(fresnel_dielectric(std::cos(std::atan(eta)), eta), 0.5 * std::pow((eta * eta - 1) / (eta * eta + 1), 2),
+                1e-14);
+    EXPECT_NEAR(fresnel_dielectric(0, eta), 1, 1e-14);  // grazing
+    // Reciprocity: the same interface seen from the other side.
+    for (double c : {0.2, 0.5, 0.9}) {
+      const double ct = std::sqrt(1 - (1 - c * c) / (eta * eta));
+      EXPECT_NEAR(fresnel_dielectric(c, eta), fresnel_dielectric(ct, 1 / eta), 1e-14);
+    }
+    // Total internal reflection beyond the critical angle asin(1 / eta).
+    const double critical = std::asin(1 / eta);
+    EXPECT_EQ(fresnel_dielectric(std::cos(critical + 0.01), 1 / eta), 1.0);
+    EXPECT_LT(fresnel_dielectric(std::cos(critical - 0.01), 1 / eta), 1.0);
+  }
+}
+
+namespace {
+
+retro_model_params smooth_params(double alpha_internal) {
+  retro_model_params p;
+  p.type = retro_model_type::microfacet;
+  p.alpha_surface = 0;
+  p.alpha_internal = alpha_internal;
+  return p;
+}
+
+struct branch_energy {
+  double surface = 0, retro = 0, diffuse = 0, total = 0;
+  double surface_sq = 0, total_sq = 0;
+  int n = 0;
+};
+
+branch_energy measure(const microfacet_retro& model, const glm::dvec3& wi, int n, std::uint64_t seed) {
+  pcg32 rng(seed, 17);
+  branch_energy e;
+  for (int i = 0; i < n; ++i) {
+    const microfacet_trace t = model.trace(wi, next_randoms(rng));
+    const double w = t.sample.weight;
+    if (t.branch == microfacet_branch::surface) e.surface += w, e.surface_sq += w * w;
+    if (t.branch == microfacet_branch::retro) e.retro += w;
+    if (t.branch == microfacet_branch::diffuse) e.diffuse += w;
+    e.total += w;
+    e.total_sq += w * w;
+  }
+  e.n = n;
+  for (double* v : {&e.surface, &e.retro, &e.diffuse, &e.total, &e.surface_sq, &e.total_sq}) *v /= n;
+  return e;
+}
+
+double standard_error(double mean, double mean_sq, int n) { return std::sqrt(std::max(0.0, mean_sq - mean * mean) / n); }
+
+// The expected energies of a smooth sheet whose internal path loses nothing (internal angle below
+// 35.26 deg, where every cube face faces the ray): surface F, retro (1 - F) p (1 - F), diffuse
+// (1 - F) (1 - p), with p = ERA * internal_reflectance at the refracted angle.
+branch_energy analytic_smooth(const glm::dvec3& wi, double eta, double internal_reflectance) {
+  const double f = fresnel_dielectric(wi.z, eta);
+  const double sin_x = std::sqrt(1 - wi.z * wi.z) / eta;
+  const double x_deg = std::asin(sin_x) / rad;
+  const double phi_deg = std::atan2(wi.y, wi.x) / rad;
+  const double p = era(x_deg, phi_deg) * internal_reflectance;
+  branch_energy e;
+  e.surface = f;
+  e.retro = (1 - f) * p * (1 - f);
+  e.diffuse = (1 - f) * (1 - p);
+  e.total = e.surface + e.retro + e.diffuse;
+  return e;
+}
+
+}  // namespace
+
+TEST(MicrofacetRetro, EveryWeightIsAtMostOneAndTheMeanAtMostOne) {
+  for (double alpha_surface : {0.0, 0.3}) {
+    for (double alpha_internal : {0.0005, 0.3}) {
+      retro_model_params params = smooth_params(alpha_internal);
+      params.alpha_surface = alpha_surface;
+      const microfacet_retro model(params);
+      pcg32 rng(3, 5);
+      for (double theta = 0; theta < 90; theta += 5) {
+        for (double phi = 0; phi < 360; phi += 30) {
+          const glm::dvec3 wi = direction(theta, phi);
+          double sum = 0;
+          const int n = 1000;
+          for (int i = 0; i < n; ++i) {
+            const retro_sample s = model.sample(wi, next_randoms(rng));
+            ASSERT_GE(s.weight, 0);
+            ASSERT_LE(s.weight, 1);
+            if (s.weight > 0) {
+              ASSERT_NEAR(glm::length(s.wo), 1, 1e-9);
+              ASSERT_GT(s.wo.z, 0);
+            }
+            EXPECT_EQ(s.shift_mm, glm::dvec2(0, 0));
+            sum += s.weight;
+          }
+          EXPECT_LE(sum / n, 1.0);
+          EXPECT_GT(sum / n, 0.0) << theta << " " << phi;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(microfacet_retro(smooth_params(0.0005)).sample({0.6, 0, -0.8}, {}).weight, 0.0);  // from below
+}
+
+TEST(MicrofacetRetro, MuScalesTheWeight) {
+  retro_model_params params = smooth_params(0.0005);
+  params.mu = 0.25;
+  const microfacet_retro scaled(params);
+  const microfacet_retro plain(smooth_params(0.0005));
+  pcg32 rng(1, 2);
+  for (int i = 0; i < 2000; ++i) {
+    const glm::dvec3 wi = direction(60 * rng.next_double(), 360 * rng.next_double());
+    const retro_randoms r = next_randoms(rng);
+    const retro_sample a = scaled.sample(wi, r), b = plain.sample(wi, r);
+    EXPECT_NEAR(a.weight, 0.25 * b.weight, 1e-15);
+    EXPECT_EQ(a.wo, b.wo);
+  }
+}
+
+TEST(MicrofacetRetro, RetroreflectedDirectionsStayCloseToWi) {
+  const microfacet_retro model(smooth_params(0.0005));
+  for (const auto& [theta, phi] : {std::pair{0.0, 0.0}, {15.0, 10.0}, {30.0, 45.0}, {45.0, 200.0}, {55.0, 290.0}}) {
+    const glm::dvec3 wi = direction(theta, phi);
+    pcg32 rng(21, 4);
+    double angle_sum = 0, max_angle = 0;
+    int kept = 0, lost = 0;
+    for (int i = 0; i < 50000; ++i) {
+      const microfacet_trace t = model.trace(wi, next_randoms(rng));
+      if (t.branch != microfacet_branch::retro) continue;
+      if (t.sample.weight == 0) {
+        ++lost;
+        continue;
+      }
+      const double a = std::acos(std::clamp(glm::dot(t.sample.wo, wi), -1.0, 1.0)) / rad;
+      angle_sum += a;
+      max_angle = std::max(max_angle, a);
+      ++kept;
+    }
+    ASSERT_GT(kept, 5000);
+    EXPECT_EQ(lost, 0) << "theta " << theta;  // internal angle below 35.26 deg: every face faces the ray
+    EXPECT_LT(angle_sum / kept, 0.5) << "theta " << theta;
+    EXPECT_LT(max_angle, 1.0) << "theta " << theta;
+  }
+}
+
+TEST(MicrofacetRetro, SmoothSurfaceReflectsTheFresnelFraction) {
+  const microfacet_retro model(smooth_params(0.0005));
+  const int n = 200000;
+  for (double theta : {15.0, 30.0, 45.0, 60.0, 75.0, 85.0}) {
+    const glm::dvec3 wi = direction(theta, 70);
+    const glm::dvec3 mirror{-wi.x, -wi.y, wi.z};
+    pcg32 rng(31, 6);
+    double energy = 0;
+    for (int i = 0; i < n; ++i) {
+      const retro_sample s = model.sample(wi, next_randoms(rng));
+      if (glm::length(s.wo - mirror) < 1e-12) energy += s.weight;
+    }
+    energy /= n;
+    const double f = fresnel_dielectric(std::cos(theta * rad), 1.5046);
+    EXPECT_NEAR(energy, f, 4 * std::sqrt(f * (1 - f) / n) + 1e-12) << "theta " << theta;
+  }
+}
+
+TEST(MicrofacetRetro, RoughSurfaceReflectionMatchesQuadrature) {
+  const double alpha = 0.2, eta = 1.5046;
+  retro_model_params params = smooth_params(0.0005);
+  params.alpha_surface = alpha;
+  const microfacet_retro model(params);
+  for (double theta : {0.0, 30.0, 60.0, 80.0}) {
+    const glm::dvec3 wi = direction(theta, 125);
+    // Expected surface energy: Fresnel at the visible facet, lost when the mirror goes below.
+    const double expected = integrate_patch(
+        [&](const glm::dvec3& m) {
+          const glm::dvec3 wo = 2 * glm::dot(wi, m) * m - wi;
+          return wo.z > 0 ? beckmann_visible_d(wi, m, alpha) * fresnel_dielectric(glm::dot(wi, m), eta) : 0.0;
+        },
+        alpha, 0, q_max, 0, 2 * pi, 2000, 720);
+    const branch_energy e = measure(model, wi, 200000, 41);
+    EXPECT_NEAR(e.surface, expected, 4 * standard_error(e.surface, e.surface_sq, e.n)) << "theta " << theta;
+  }
+}
+
+TEST(MicrofacetRetro, BranchEnergiesMatchTheAnalyticValues) {
+  const retro_model_params params = smooth_params(0.0005);
+  const microfacet_retro model(params);
+  const int n = 400000;
+  std::printf("microfacet retroreflector, alpha_surface 0, alpha_internal 0.0005, eta %.4f, R_int %.2f, %d samples\n",
+              params.eta, params.internal_reflectance, n);
+  std::printf("theta  phi | surface  retro    diffuse  total   | analytic: surface  retro    diffuse  total\n");
+  for (double phi : {0.0, 30.0}) {
+    for (double theta : {0.0, 15.0, 30.0, 45.0}) {
+      const glm::dvec3 wi = direction(theta, phi);
+      const branch_energy e = measure(model, wi, n, 51);
+      const branch_energy a = analytic_smooth(wi, params.eta, params.internal_reflectance);
+      std::printf("%5.0f %4.0f | %.5f  %.5f  %.5f  %.5f |           %.5f  %.5f  %.5f  %.5f\n", theta, phi, e.surface,
+                  e.retro, e.diffuse, e.total, a.surface, a.retro, a.diffuse, a.total);
+      const double tol = 4 * std::sqrt(0.25 / n);  // each branch is a Bernoulli share of weights <= 1
+      EXPECT_NEAR(e.surface, a.surface, tol) << theta << " " << phi;
+      EXPECT_NEAR(e.retro, a.retro, tol) << theta << " " << phi;
+      EXPECT_NEAR(e.diffuse, a.diffuse, tol) << theta << " " << phi;
+      EXPECT_NEAR(e.total, a.total, 4 * standard_error(e.total, e.total_sq, e.n)) << theta << " " << phi;
+      EXPECT_LE(e.total, 1.0);
+    }
+  }
+}
+
+TEST(MicrofacetRetro, NormalIncidenceRetroFractionIsUOfZero) {
+  const retro_model_params params = smooth_params(0.0005);
+  const microfacet_retro model(params);
+  pcg32 rng(61, 8);
+  int retro = 0, refracted = 0;
+  double diffuse_cos = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const microfacet_trace t = model.trace({0, 0, 1}, next_randoms(rng));
+    if (t.branch == microfacet_branch::retro) ++retro, ++refracted;
+    if (t.branch == microfacet_branch::diffuse) ++refracted, diffuse_cos += t.sample.wo.z;
+  }
+  const double p = 0.683356248 * params.internal_reflectance;  // U(0) R_int
+  EXPECT_NEAR(double(retro) / refracted, p, 4 * std::sqrt(p * (1 - p) / refracted));
+  // The diffuse lobe is cosine-weighted: mean cos = 2/3, standard deviation sqrt(1/18).
+  const int diffuse = refracted - retro;
+  EXPECT_NEAR(diffuse_cos / diffuse, 2.0 / 3, 4 * std::sqrt(1.0 / 18 / diffuse));
+}
+
+namespace {
+
+// Independent small-roughness prediction of E[1 - cos(wo, wi)] for the retroreflected path of a
+// smooth sheet: each facet normal is the face normal plus a tangent offset with covariance
+// alpha^2 / 2 per axis (the Beckmann slope variance), propagated to first order through the
+// three reflections and the exit refraction, and averaged over the prism orientations and face
+// orders with the model's documented order probabilities.
+double linearised_retro_spread(const glm::dvec3& wi, double eta, double alpha) {
+  const auto snell = [](const glm::dvec3& d, const glm::dvec3& n, double ratio) {  // n faces against d
+    const double c = -glm::dot(d, n);
+    return ratio * d + (ratio * c - std::sqrt(1 - ratio * ratio * (1 - c * c))) * n;
+  };
+  const glm::dvec3 t0 = snell(-wi, {0, 0, 1}, 1 / eta);
+  const auto exit = [&](const glm::dvec3& d) { return snell(glm::normalize(d), {0, 0, -1}, eta); };
+  double spread = 0;
+  for (double s : {1.0, -1.0}) {
+    std::array<glm::dvec3, 3> n;
+    std::array<double, 3> c;
+    for (int k = 0; k < 3; ++k) {
+      const double a = 2 * pi * k / 3;
+      n[k] = {s * 2 / std::sqrt(6.0) * std::cos(a), s * 2 / std::sqrt(6.0) * std::sin(a), 1 / std::sqrt(3.0)};
+      c[k] = std::max(0.0, -glm::dot(t0, n[k]));
+    }
+    std::array<int, 3> order{0, 1, 2};
+    do {
+      // The once-reflected ray keeps its component along the other two (orthogonal) normals.
+      const double prob = 0.5 * c[order[0]] / (c[0] + c[1] + c[2]) * c[order[1]] / (c[order[1]] + c[order[2]]);
+      glm::dmat3 cov(0.0);
+      glm::dvec3 d = t0;
+      for (int k : order) {
+        const glm::dmat3 reflect = glm::dmat3(1.0) - 2.0 * glm::outerProduct(n[k], n[k]);
+        const glm::dmat3 tangent = glm::dmat3(1.0) - glm::outerProduct(n[k], n[k]);
+        // d' = d - 2 (d.m) m with m = n + delta: the first-order change is B delta.
+        const glm::dmat3 b = -2.0 * (glm::outerProduct(n[k], d) + glm::dot(d, n[k]) * glm::dmat3(1.0));
+        cov = reflect * cov * glm::transpose(reflect) + (alpha * alpha / 2) * b * tangent * glm::transpose(b);
+        d = reflect * d;
+      }
+      glm::dmat3 jac;
+      const double h = 1e-6;
+      for (int i = 0; i < 3; ++i) {
+        glm::dvec3 e(0.0);
+        e[i] = h;
+        jac[i] = (exit(d + e) - exit(d - e)) / (2 * h);
+      }
+      const glm::dmat3 out = jac * cov * glm::transpose(jac);
+      spread += prob * (out[0][0] + out[1][1] + out[2][2]) / 2;
+    } while (std::next_permutation(order.begin(), order.end()));
+  }
+  return spread;
+}
+
+}  // namespace
+
+TEST(MicrofacetRetro, RetroSpreadMatchesLinearisedPropagation) {
+  const double alpha = 0.01;
+  const retro_model_params params = smooth_params(alpha);
+  const microfacet_retro model(params);
+  for (const auto& [theta, phi] : {std::pair{0.0, 0.0}, {20.0, 10.0}, {35.0, 100.0}, {45.0, 250.0}}) {
+    const glm::dvec3 wi = direction(theta, phi);
+    pcg32 rng(71, 2);
+    double sum = 0, sum_sq = 0;
+    int kept = 0;
+    for (int i = 0; i < 400000; ++i) {
+      const microfacet_trace t = model.trace(wi, next_randoms(rng));
+      if (t.branch != microfacet_branch::retro || t.sample.weight == 0) continue;
+      const double v = 1 - glm::dot(t.sample.wo, wi);
+      sum += v;
+      sum_sq += v * v;
+      ++kept;
+    }
+    const double mean = sum / kept;
+    const double predicted = linearised_retro_spread(wi, params.eta, alpha);
+    std::printf("theta %4.0f phi %4.0f: mean 1 - cos %.4e, linearised %.4e (%d samples)\n", theta, phi, mean,
+                predicted, kept);
+    EXPECT_NEAR(mean, predicted, 0.02 * predicted + 4 * standard_error(mean, sum_sq / kept, kept)) << theta;
+  }
+}

@@ -1,0 +1,226 @@
+// The sinc-shift model: its angular lobe against the density by chi-square, its energy, the blur
+// it predicts (linear in distance, 1/a), and the shipped presets' trends.
+#include <fstream>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "airr/optics/assets.hpp"
+#include "airr/optics/error.hpp"
+#include "airr/optics/preset.hpp"
+#include "airr/optics/psf.hpp"
+#include "airr/optics/random.hpp"
+#include "airr/optics/retro_sinc_shift.hpp"
+#include "airr/optics/sinc_lobe.hpp"
+#include "chi_square.hpp"
+#include "test_helpers.hpp"
+
+using namespace airr;
+
+namespace {
+
+// Integral of sinc^2 over [y0, y1] by composite Simpson: an independent reference.
+double sinc2_integral(double y0, double y1) {
+  const int n = 2000;
+  const double h = (y1 - y0) / n;
+  auto f = [](double y) {
+    const double s = y == 0 ? 1.0 : std::sin(y) / y;
+    return s * s;
+  };
+  double sum = f(y0) + f(y1);
+  for (int i = 1; i < n; ++i) sum += f(y0 + i * h) * (i % 2 ? 4 : 2);
+  return sum * h / 3;
+}
+
+scene sinc_scene(double a, double c, double distance_mm = 150) {
+  scene s = test::uniform_source_scene(20.0);
+  s.floating_distance_mm = distance_mm;
+  s.retroreflector.model.type = retro_model_type::sinc_shift;
+  s.retroreflector.model.a_per_mm = a;
+  s.retroreflector.model.c_mm = c;
+  return s;
+}
+
+scene preset_scene(const std::string& preset, double distance_mm, double tilt_deg) {
+  scene s = test::uniform_source_scene(20.0);
+  s.floating_distance_mm = distance_mm;
+  s.retroreflector.tilt_deg = tilt_deg;
+  s.retroreflector.model.type = retro_model_type::sinc_shift;
+  s.retroreflector.model.preset = preset;
+  return s;
+}
+
+double blur_r50(const scene& s, std::uint64_t samples = 200000) {
+  const auto model = make_retro_model(s.retroreflector.model);
+  return energy_radius(sample_psf(s, *model, {.samples = samples, .seed = 3}));
+}
+
+}  // namespace
+
+class SincLobe : public ::testing::TestWithParam<double> {};
+
+TEST_P(SincLobe, SamplingFollowsTheDensityByChiSquare) {
+  const double a = GetParam(), k = a * 300.0;
+  // Bins in y = k tan(delta), where the density is sinc^2(y) / (pi/2).
+  std::vector<double> edges;
+  for (double y = 0; y < 8.0; y += 0.25) edges.push_back(y);
+  for (double y : {8.0, 12.0, 20.0, 50.0}) edges.push_back(y);
+  std::vector<double> expected(edges.size()), observed(edges.size(), 0.0);
+  const int n = 400000;
+  double covered = 0;
+  for (std::size_t i = 0; i + 1 < edges.size(); ++i) {
+    expected[i] = sinc2_integral(edges[i], edges[i + 1]) / (std::numbers::pi / 2) * n;
+    covered += expected[i];
+  }
+  expected.back() = n - covered;  // the tail beyond the last edge
+  pcg32 rng(42, int(a * 1000));
+  const sinc_lobe& lobe = sinc_lobe::instance();
+  for (int i = 0; i < n; ++i) {
+    const double y = k * std::tan(lobe.sample_delta(k, rng.next_double(), rng.next_double()));
+    const auto bin = std::upper_bound(edges.begin(), edges.end(), y) - edges.begin() - 1;
+    observed[bin] += 1;
+  }
+  const auto r = test::chi_square(observed, expected);
+  EXPECT_GT(r.p_value, 1e-3) << "a=" << a << " chi2=" << r.statistic << " dof=" << r.dof;
+}
+
+INSTANTIATE_TEST_SUITE_P(SeveralA, SincLobe, ::testing::Values(0.8, 1.17931, 2.0, 9.9302));
+
+TEST(SincLobe, DensityIntegratesToOne) {
+  for (double k : {1.0, 30.0, 300.0}) {
+    // Integrate in y = k tan(delta) so the narrow peak is resolved: p(delta) d(delta) = sinc^2(y) dy / (pi/2).
+    double sum = 0;
+    const int n = 200000;
+    const double y_max = 2000;
+    for (int i = 0; i < n; ++i) {
+      const double y = (i + 0.5) * y_max / n, delta = std::atan(y / k);
+      sum += sinc_lobe::pdf(delta, k) * (k / (k * k + y * y)) * (y_max / n);  // d(delta)/dy = k / (k^2 + y^2)
+    }
+    EXPECT_NEAR(sum, 1.0, 2e-3) << "k=" << k;  // the tail beyond y_max holds 1/(pi y_max)
+  }
+}
+
+TEST(SincShift, NeverReturnsMoreEnergyThanItReceives) {
+  const sinc_shift_retro model({.a_per_mm = {0.05}, .mu = {0.9}}, nullptr);
+  for (double theta : {0.0, 30.0, 60.0, 85.0}) {
+    const double t = theta * std::numbers::pi / 180;
+    const glm::dvec3 wi(std::sin(t), 0, std::cos(t));
+    pcg32 rng(7, 1);
+    double sum = 0;
+    const int n = 50000;
+    for (int i = 0; i < n; ++i) {
+      retro_randoms r;
+      for (auto& u : r.u) u = rng.next_double();
+      const retro_sample s = model.sample(wi, r);
+      EXPECT_LE(s.weight, 1.0);
+      if (s.weight > 0) EXPECT_GT(s.wo.z, 0.0);
+      sum += s.weight;
+    }
+    EXPECT_LE(sum / n, 0.9 + 1e-12) << theta;
+    if (theta == 0.0) EXPECT_NEAR(sum / n, 0.9, 0.01);  // a wide lobe still stays above the sheet
+  }
+}
+
+TEST(SincShift, LobeBlurGrowsLinearlyWithDistanceAndAsOneOverA) {
+  for (double a : {2.0, 4.0}) {
+    std::vector<double> l, r;
+    for (double d = 150; d <= 300; d += 25) {
+      const scene s = sinc_scene(a, 0.0, d);
+      const auto model = make_retro_model(s.retroreflector.model);
+      const psf_samples psf = sample_psf(s, *model, {.samples = 200000, .seed = 5});
+      l.push_back(psf.rr_distance_mm);
+      r.push_back(energy_radius(psf));
+    }
+    // Least-squares line and r^2.
+    const double n = double(l.size());
+    double sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
+    for (std::size_t i = 0; i < l.size(); ++i) {
+      sx += l[i];
+      sy += r[i];
+      sxx += l[i] * l[i];
+      sxy += l[i] * r[i];
+      syy += r[i] * r[i];
+    }
+    const double cov = sxy - sx * sy / n, vx = sxx - sx * sx / n, vy = syy - sy * sy / n;
+    const double r2 = cov * cov / (vx * vy);
+    EXPECT_GE(r2, 0.99) << "a=" << a;
+    // Through the origin: r50 = L * y50 / (a R), y50 the median of sinc^2 on [0, inf).
+    EXPECT_NEAR(r.front() / l.front(), r.back() / l.back(), 0.03 * r.back() / l.back());
+  }
+  const double r2 = blur_r50(sinc_scene(2.0, 0.0)), r4 = blur_r50(sinc_scene(4.0, 0.0));
+  EXPECT_NEAR(r2 / r4, 2.0, 0.06);
+}
+
+TEST(Presets, LoadByNameAndPath) {
+  const sheet_preset ay = load_preset("rf-ay");
+  EXPECT_EQ(ay.name, "RF-Ay");
+  ASSERT_EQ(ay.theta_deg.size(), 10u);
+  EXPECT_DOUBLE_EQ(ay.a_per_mm[0], 9.93020);
+  EXPECT_DOUBLE_EQ(ay.mu[9], 0.10973);
+  EXPECT_DOUBLE_EQ(ay.c_mm, 0.94966);
+  EXPECT_DOUBLE_EQ(ay.reference_distance_mm, 300);
+  const sheet_preset an = load_preset(asset_dir() + "/presets/rf-an.json");
+  EXPECT_DOUBLE_EQ(an.c_mm, 0.0015561);
+  EXPECT_DOUBLE_EQ(interpolate_by_angle(an.theta_deg, an.a_per_mm, 2.5), (1.11525 + 1.21330) / 2);
+  EXPECT_DOUBLE_EQ(interpolate_by_angle(an.theta_deg, an.mu, 60), 0.088765);
+  test::temp_dir dir;
+  save_preset(an, dir.file("copy.json"));
+  EXPECT_EQ(preset_to_json(load_preset(dir.file("copy.json"))), preset_to_json(an));
+}
+
+TEST(Presets, SceneOverridesApplyAtEveryAngle) {
+  retro_model_params m;
+  m.type = retro_model_type::sinc_shift;
+  m.preset = "rf-ay";
+  m.mu = 0.5;
+  const sinc_shift_params p = resolve_sinc_shift_params(m, "");
+  EXPECT_EQ(p.mu, std::vector<double>{0.5});
+  EXPECT_EQ(p.a_per_mm.size(), 10u);
+  EXPECT_DOUBLE_EQ(p.c_mm, 0.94966);
+}
+
+TEST(Presets, BadPresetsGiveClearErrors) {
+  test::temp_dir dir;
+  auto expect_error = [&](const std::string& text, const std::string& needle) {
+    const std::string path = dir.file("p.json");
+    std::ofstream(path) << text;
+    try {
+      load_preset(path);
+      ADD_FAILURE() << "no error for " << text;
+    } catch (const input_error& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  const std::string head = R"({"format": "airr-preset", "version": 1, )";
+  expect_error(head + R"("a_per_mm": [1, 2], "mu": 0.2, "c_mm": 0.1, "tilt_deg": [0, 5, 10]})", "a_per_mm: needs one value");
+  expect_error(head + R"("a_per_mm": -1, "mu": 0.2, "c_mm": 0.1})", "a_per_mm: must be positive");
+  expect_error(head + R"("a_per_mm": 1, "mu": 0.2})", "c_mm: missing");
+  expect_error(head + R"("a_per_mm": 1, "mu": 0.2, "c_mm": 0.1, "colour": 1})", "colour: unknown key");
+  expect_error("{", "malformed JSON");
+  EXPECT_THROW(load_preset("no-such-sheet"), input_error);
+}
+
+TEST(Presets, BlurGrowsWithFloatingDistance) {
+  for (const char* preset : {"rf-ay", "rf-an"}) {
+    double previous = 0;
+    for (double d = 150; d <= 300; d += 25) {
+      const double r = blur_r50(preset_scene(preset, d, 0));
+      EXPECT_GT(r, previous) << preset << " D=" << d;
+      previous = r;
+    }
+  }
+}
+
+TEST(Presets, BlurAt45ExceedsBlurAt0) {
+  for (const char* preset : {"rf-ay", "rf-an"}) {
+    EXPECT_GT(blur_r50(preset_scene(preset, 150, 45)), blur_r50(preset_scene(preset, 150, 0))) << preset;
+  }
+}
+
+TEST(Presets, RfAnBlursMoreThanRfAyAtEveryTilt) {
+  for (double tilt = 0; tilt <= 45; tilt += 5) {
+    const double ay = blur_r50(preset_scene("rf-ay", 150, tilt)), an = blur_r50(preset_scene("rf-an", 150, tilt));
+    std::printf("tilt %4.0f deg: r50 RF-Ay %.4f mm, RF-AN %.4f mm\n", tilt, ay, an);
+    EXPECT_GT(an, ay) << "tilt " << tilt;
+  }
+}
