@@ -10,8 +10,11 @@ int main(int argc, char** argv) {
   add_render_command(app);
   add_bench_command(app);
   add_make_assets_command(app);
+  add_shift_table_command(app);
   add_mtf_command(app);
   add_compare_command(app);
+  add_psf_command(app);
+  add_sweep_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

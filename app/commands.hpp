@@ -5,5 +5,8 @@
 void add_render_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_make_assets_command(CLI::App& app);
+void add_shift_table_command(CLI::App& app);
 void add_mtf_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
+void add_psf_command(CLI::App& app);
+void add_sweep_command(CLI::App& app);

@@ -1,0 +1,222 @@
+// airr-studio: the interactive designer. A window with the layout panel, the progressive render,
+// the side view and live plots; scripted runs write a screenshot and exit.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <numeric>
+
+#include <CLI/CLI.hpp>
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include "airr/optics/assets.hpp"
+#include "airr/optics/scene_json.hpp"
+#include "airr/ui/screenshot.hpp"
+#include "airr/ui/studio.hpp"
+
+namespace {
+
+struct options {
+  std::string scene_path;
+  std::vector<std::string> sets;
+  int frames = 0;
+  std::string screenshot;
+  int bench_edits = 0;
+};
+
+struct app_state {
+  airr::ui::studio* st = nullptr;
+  float content_scale = 1.0f;
+  bool rebuild_fonts = true;
+};
+
+// Fonts and sizes follow the monitor's content scale.
+void load_fonts(float scale) {
+  ImGuiIO& io = ImGui::GetIO();
+  io.Fonts->Clear();
+  const char* dejavu = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+  const float size = std::round(15.0f * scale);
+  if (std::filesystem::exists(dejavu)) {
+    io.Fonts->AddFontFromFileTTF(dejavu, size);
+  } else {
+    ImFontConfig cfg;
+    cfg.SizePixels = std::round(13.0f * scale);
+    io.Fonts->AddFontDefault(&cfg);
+  }
+  ImGuiStyle style;
+  ImGui::StyleColorsDark(&style);
+  style.WindowRounding = 3.0f;
+  style.FrameRounding = 2.0f;
+  style.ScaleAllSizes(scale);
+  ImGui::GetStyle() = style;
+}
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, std::size_t(q * (v.size() - 1) + 0.5))];
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  options opt;
+  CLI::App cli{"airr-studio: design AIRR optical systems interactively"};
+  cli.add_option("scene", opt.scene_path, "Scene JSON file (default: the shipped default scene)");
+  cli.add_option("--set", opt.sets, "Override a scene value, e.g. retroreflector.tilt_deg=20");
+  cli.add_option("--frames", opt.frames, "Run this many frames, then exit (scripted run)")->check(CLI::Range(1, 1000000));
+  cli.add_option("--screenshot", opt.screenshot, "After the scripted frames, save the window as PNG");
+  cli.add_option("--bench-edits", opt.bench_edits, "Measure edit-to-image latency over this many edits, then exit")
+      ->check(CLI::Range(1, 100000));
+  CLI11_PARSE(cli, argc, argv);
+  if (!opt.screenshot.empty() && opt.frames == 0) opt.frames = 60;
+
+  // Load the scene before opening a window, so bad input fails fast with one line.
+  airr::scene s, as_saved;
+  std::string path = opt.scene_path.empty() ? airr::default_scene_path() : opt.scene_path;
+  try {
+    std::vector<airr::scene_override> overrides;
+    for (const auto& v : opt.sets) overrides.push_back(airr::parse_override(v));
+    s = airr::load_scene(path, overrides);
+    as_saved = overrides.empty() ? s : airr::load_scene(path);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+
+  glfwSetErrorCallback([](int code, const char* msg) { std::fprintf(stderr, "glfw error %d: %s\n", code, msg); });
+  if (!glfwInit()) {
+    std::fprintf(stderr, "error: cannot initialise GLFW (no display?); use `airr render` without a display\n");
+    return 1;
+  }
+  airr::ui::studio st;
+  st.settings = airr::ui::load_settings();
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+  glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
+  GLFWwindow* window = glfwCreateWindow(st.settings.window_width, st.settings.window_height, "AIRR Studio", nullptr, nullptr);
+  if (!window) {
+    std::fprintf(stderr, "error: cannot open an OpenGL 3.3 window\n");
+    glfwTerminate();
+    return 1;
+  }
+  glfwMakeContextCurrent(window);
+  glfwSwapInterval(opt.frames > 0 || opt.bench_edits > 0 ? 0 : 1);
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  static const std::string ini_path = airr::ui::config_dir() + "/imgui.ini";
+  ImGui::GetIO().IniFilename = ini_path.c_str();
+  ImGui_ImplGlfw_InitForOpenGL(window, true);
+  ImGui_ImplOpenGL3_Init("#version 330");
+
+  app_state app;
+  app.st = &st;
+  float xs = 1, ys = 1;
+  glfwGetWindowContentScale(window, &xs, &ys);
+  app.content_scale = std::max(xs, 1.0f);
+  glfwSetWindowUserPointer(window, &app);
+  glfwSetWindowContentScaleCallback(window, [](GLFWwindow* w, float x, float) {
+    auto* a = static_cast<app_state*>(glfwGetWindowUserPointer(w));
+    a->content_scale = std::max(x, 1.0f);
+    a->rebuild_fonts = true;
+  });
+  glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
+    auto* a = static_cast<app_state*>(glfwGetWindowUserPointer(w));
+    if (count > 0) airr::ui::studio_drop_file(*a->st, paths[0]);
+  });
+
+  airr::ui::studio_start(st, as_saved, path);
+  st.doc = s;  // --set overrides show as unsaved changes
+  st.status = "opened " + path;
+
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  auto now = [&] { return std::chrono::duration<double>(clock::now() - t0).count(); };
+  std::vector<double> frame_ms;
+  int frame = 0, edits_done = 0;
+  bool screenshot_pending = !opt.screenshot.empty();
+  int exit_code = 0;
+
+  while (true) {
+    glfwPollEvents();
+    if (glfwWindowShouldClose(window)) {
+      glfwSetWindowShouldClose(window, GLFW_FALSE);
+      if (opt.frames > 0 || !airr::ui::studio_dirty(st)) break;
+      st.after_save_prompt = airr::ui::studio::pending_action::quit;
+      st.show_save_prompt = true;
+    }
+    if (st.quit_requested) break;
+    if (app.rebuild_fonts) {
+      load_fonts(app.content_scale);
+      ImGui_ImplOpenGL3_DestroyFontsTexture();
+      ImGui_ImplOpenGL3_CreateFontsTexture();
+      app.rebuild_fonts = false;
+    }
+    const auto f0 = clock::now();
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    airr::ui::studio_frame(st, now());
+    ImGui::Render();
+    int fw = 0, fh = 0;
+    glfwGetFramebufferSize(window, &fw, &fh);
+    glViewport(0, 0, fw, fh);
+    glClearColor(0.08f, 0.08f, 0.09f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    ++frame;
+
+    if (opt.frames > 0 && frame >= opt.frames) {
+      if (screenshot_pending) {
+        // The last frames show the finished plots and at least a few samples of the edited layout.
+        st.session->wait_for(st.generation, 4);
+        st.analysis.wait_idle();
+        if (frame < opt.frames + 3) {
+          glfwSwapBuffers(window);
+          continue;
+        }
+        try {
+          airr::ui::write_framebuffer_png(opt.screenshot, fw, fh);
+          std::fprintf(stderr, "wrote %s (%dx%d)\n", opt.screenshot.c_str(), fw, fh);
+        } catch (const std::exception& e) {
+          std::fprintf(stderr, "error: %s\n", e.what());
+          exit_code = 1;
+        }
+      }
+      if (opt.bench_edits == 0) break;
+    }
+    glfwSwapBuffers(window);
+    frame_ms.push_back(std::chrono::duration<double, std::milli>(clock::now() - f0).count());
+
+    // Latency benchmark: a new edit once the previous one's first image is on screen.
+    if (opt.bench_edits > 0 && st.edit_time < 0 && frame > 5) {
+      if (edits_done == opt.bench_edits) break;
+      st.doc.retroreflector.tilt_deg = (edits_done % 2) ? s.retroreflector.tilt_deg : s.retroreflector.tilt_deg + 2.0;
+      ++edits_done;
+    }
+  }
+
+  if (opt.bench_edits > 0) {
+    const auto& l = st.edit_latencies_ms;
+    std::printf("edit-to-image latency in the window: median %.1f ms, p95 %.1f ms, max %.1f ms over %zu edits\n",
+                percentile(l, 0.5), percentile(l, 0.95), l.empty() ? 0.0 : *std::max_element(l.begin(), l.end()), l.size());
+    std::printf("frame time while the tracer runs: median %.1f ms, p95 %.1f ms over %zu frames\n",
+                percentile(frame_ms, 0.5), percentile(frame_ms, 0.95), frame_ms.size());
+  }
+  if (opt.frames == 0 && opt.bench_edits == 0) {
+    glfwGetWindowSize(window, &st.settings.window_width, &st.settings.window_height);
+    airr::ui::save_settings(st.settings);
+  }
+  st.session->stop();
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  glfwDestroyWindow(window);
+  glfwTerminate();
+  return exit_code;
+}

@@ -1,0 +1,39 @@
+#pragma once
+// A small line-plot widget drawn with ImGui draw lists: axes, ticks, tick labels, axis titles,
+// legend. One call draws one plot into the current window.
+#include <string>
+#include <vector>
+
+namespace airr::ui {
+
+struct plot_curve {
+  std::string label;
+  std::vector<double> x;
+  std::vector<double> y;
+  unsigned colour = 0;  // ImU32; 0 picks from the palette by index
+  bool dashed = false;
+};
+
+struct plot_params {
+  std::string title;
+  std::string x_title;
+  std::string y_title;
+  double x_min = 0, x_max = 1, y_min = 0, y_max = 1;
+  bool auto_x = true, auto_y = false;
+  float height = 200;  // pixels before content scale; width fills the window
+};
+
+// What the cursor points at, when it is over the plot area.
+struct plot_hover {
+  bool active = false;
+  double x = 0, y = 0;
+};
+
+plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, const plot_params& params);
+
+// "Nice" tick positions covering [lo, hi], about `target` of them.
+std::vector<double> nice_ticks(double lo, double hi, int target);
+
+unsigned plot_palette(int index);
+
+}  // namespace airr::ui

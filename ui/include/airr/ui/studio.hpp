@@ -1,0 +1,85 @@
+#pragma once
+// The designer's state: the scene being edited, the render session and analysis behind it, the
+// files, and what the panels show. The panels edit `doc`; once per frame the studio validates the
+// edit and hands it to the render session and the analysis worker.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "airr/optics/scene.hpp"
+#include "airr/render/render_session.hpp"
+#include "airr/ui/analysis_worker.hpp"
+#include "airr/ui/file_dialog.hpp"
+#include "airr/ui/gl_texture.hpp"
+#include "airr/ui/settings.hpp"
+
+namespace airr::ui {
+
+struct pinned_curve {
+  std::string label;
+  std::vector<double> x, y;
+};
+
+struct render_view_state {
+  float zoom = 1.0f;  // screen pixels per image pixel, relative to fit
+  float pan_x = 0, pan_y = 0;
+  bool paused = false;
+  std::uint64_t uploaded_generation = ~0ull, uploaded_spp = 0;
+  float uploaded_exposure = -1;
+  gl_texture texture;
+};
+
+struct studio {
+  scene doc;                   // what the panels edit
+  std::string doc_path;        // empty: untitled
+  nlohmann::json saved_json;   // the form last loaded or saved, for "unsaved changes"
+  nlohmann::json applied_json; // the form last handed to the session
+  std::string doc_error;       // why the current edit cannot be rendered
+  std::uint64_t generation = 0;
+
+  std::unique_ptr<render_session> session;
+  analysis_worker analysis;
+  studio_settings settings;
+  render_view_state view;
+  std::vector<pinned_curve> pinned_mtf;
+  std::string status;          // last message for the status bar
+  double last_measure_time = -1;
+  std::uint64_t last_measured_spp = 0;
+
+  file_dialog dialog;
+  enum class pending_action { none, quit, open_file, open_path, new_scene } after_save_prompt = pending_action::none;
+  std::string pending_path;
+  bool show_save_prompt = false;
+  bool quit_requested = false;  // the app may close
+
+  // Latency measurement: when the last edit was applied, and when its first image was shown.
+  double edit_time = -1;
+  std::vector<double> edit_latencies_ms;
+};
+
+// Starts with a scene (already loaded and validated by the caller).
+void studio_start(studio& st, const scene& s, const std::string& path);
+
+bool studio_dirty(const studio& st);
+// Validates and applies `doc` if it changed; called once per frame.
+void studio_apply_edits(studio& st, double now_seconds);
+
+void studio_open(studio& st, const std::string& path);  // with an error in st.status on failure
+bool studio_save(studio& st, const std::string& path);  // atomic; false with st.status on failure
+// Makes an image file the source (drag and drop); scene files are opened instead.
+void studio_drop_file(studio& st, const std::string& path);
+bool studio_export_render(studio& st, const std::string& path);
+bool studio_export_plots(studio& st, const std::string& path);
+
+// Runs the whole UI for one frame (menus, panels, dialogs).
+void studio_frame(studio& st, double now_seconds);
+
+// Panels, one file each.
+void draw_layout_panel(studio& st);
+void draw_side_view(studio& st);
+void draw_render_view(studio& st, double now_seconds);
+void draw_plots_panel(studio& st);
+
+}  // namespace airr::ui

@@ -1,0 +1,71 @@
+// The plots: MTF predicted from the model PSF (every edit) and measured on the render (when the
+// source shows a slanted edge), the PSF's cross-section, and mean MTF against floating distance.
+// "Pin" keeps the current predicted curve for before/after comparisons.
+#include <cstdio>
+
+#include <imgui.h>
+
+#include "airr/ui/plot_widget.hpp"
+#include "airr/ui/studio.hpp"
+
+namespace airr::ui {
+
+void draw_plots_panel(studio& st) {
+  ImGui::Begin("Plots");
+  const auto pred = st.analysis.predicted();
+  const auto meas = st.analysis.measured();
+  const bool current = pred && pred->generation == st.generation;
+
+  if (pred && !pred->error.empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", pred->error.c_str());
+  if (pred) {
+    ImGui::Text("model PSF: r50 %.3f mm   mean MTF(0-1 lp/mm) %.3f   MTF50 %.2f lp/mm", pred->r50_mm, pred->mean_mtf,
+                pred->mtf50);
+    ImGui::TextDisabled("brightness %.4f x source   PSF %.1f ms, sweep %.1f ms%s", pred->brightness, pred->psf_ms,
+                        pred->sweep_ms, current ? "" : "   (updating)");
+  }
+  if (ImGui::Button("Pin MTF") && pred && !pred->mtf.empty()) {
+    char label[64];
+    std::snprintf(label, sizeof label, "pinned D=%.0f tilt=%.0f", st.doc.floating_distance_mm, st.doc.retroreflector.tilt_deg);
+    st.pinned_mtf.push_back({label, pred->lp_per_mm, pred->mtf});
+    if (st.pinned_mtf.size() > 4) st.pinned_mtf.erase(st.pinned_mtf.begin());
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Clear pins")) st.pinned_mtf.clear();
+
+  const float h = std::max(120.0f, (ImGui::GetContentRegionAvail().y - 2 * ImGui::GetFrameHeightWithSpacing()) / 3.0f /
+                                       (ImGui::GetFontSize() / 13.0f));
+  std::vector<plot_curve> mtf;
+  if (pred) mtf.push_back({"predicted (model PSF)", pred->lp_per_mm, pred->mtf});
+  if (meas && meas->found && meas->generation == st.generation) {
+    char label[80];
+    std::snprintf(label, sizeof label, "measured on render (%llu spp)", static_cast<unsigned long long>(meas->spp));
+    mtf.push_back({label, meas->lp_per_mm, meas->mtf});
+  }
+  for (std::size_t i = 0; i < st.pinned_mtf.size(); ++i) {
+    mtf.push_back({st.pinned_mtf[i].label, st.pinned_mtf[i].x, st.pinned_mtf[i].y, plot_palette(int(i) + 2), true});
+  }
+  draw_plot("mtf", mtf,
+            {.title = "MTF", .x_title = "spatial frequency (lp/mm)", .y_title = "MTF", .x_min = 0, .x_max = 2,
+             .y_min = 0, .y_max = 1.05, .auto_x = false, .auto_y = false, .height = h});
+  if (meas && !meas->found && !meas->note.empty()) ImGui::TextDisabled("render MTF: %s", meas->note.c_str());
+
+  std::vector<plot_curve> psf;
+  if (pred) psf.push_back({"PSF cross-section", pred->psf_x_mm, pred->psf_density});
+  draw_plot("psf", psf,
+            {.title = "PSF through the centre (y = 0)", .x_title = "x on the aerial-image plane (mm)",
+             .y_title = "energy density (1/mm^2)", .auto_x = true, .auto_y = true, .height = h});
+
+  std::vector<plot_curve> sweep;
+  if (pred && !pred->sweep_d_mm.empty()) {
+    sweep.push_back({"mean MTF (0-1 lp/mm)", pred->sweep_d_mm, pred->sweep_mean_mtf});
+    sweep.push_back({"current D", {st.doc.floating_distance_mm, st.doc.floating_distance_mm}, {0.0, 1.0},
+                     IM_COL32(160, 160, 160, 255), true});
+  }
+  draw_plot("sweep", sweep,
+            {.title = "Mean MTF against floating distance", .x_title = "floating distance D (mm)",
+             .y_title = "mean MTF", .x_min = 140, .x_max = 310, .y_min = 0, .y_max = 1.05, .auto_x = false,
+             .auto_y = false, .height = h});
+  ImGui::End();
+}
+
+}  // namespace airr::ui

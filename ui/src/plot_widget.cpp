@@ -1,0 +1,165 @@
+#include "airr/ui/plot_widget.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <imgui.h>
+
+namespace airr::ui {
+
+std::vector<double> nice_ticks(double lo, double hi, int target) {
+  std::vector<double> ticks;
+  if (!(hi > lo) || target < 1) return ticks;
+  const double raw = (hi - lo) / target;
+  const double mag = std::pow(10.0, std::floor(std::log10(raw)));
+  const double norm = raw / mag;
+  const double step = (norm < 1.5 ? 1 : norm < 3 ? 2 : norm < 7 ? 5 : 10) * mag;
+  for (double t = std::ceil(lo / step - 1e-9) * step; t <= hi + 1e-9 * step; t += step) {
+    ticks.push_back(std::abs(t) < 1e-12 * step ? 0.0 : t);
+  }
+  return ticks;
+}
+
+unsigned plot_palette(int index) {
+  static const ImU32 colours[] = {IM_COL32(80, 160, 255, 255), IM_COL32(255, 150, 60, 255), IM_COL32(90, 200, 110, 255),
+                                  IM_COL32(230, 80, 90, 255), IM_COL32(190, 120, 240, 255), IM_COL32(240, 220, 80, 255)};
+  return colours[index % 6];
+}
+
+static std::string tick_label(double v, double step) {
+  char buf[32];
+  const int decimals = step >= 1 ? 0 : std::min(6, int(std::ceil(-std::log10(step) - 1e-9)));
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, const plot_params& in) {
+  plot_params p = in;
+  if (p.auto_x || p.auto_y) {
+    double x0 = 1e300, x1 = -1e300, y0 = 1e300, y1 = -1e300;
+    for (const auto& c : curves) {
+      for (std::size_t i = 0; i < c.x.size() && i < c.y.size(); ++i) {
+        if (!std::isfinite(c.x[i]) || !std::isfinite(c.y[i])) continue;
+        x0 = std::min(x0, c.x[i]);
+        x1 = std::max(x1, c.x[i]);
+        y0 = std::min(y0, c.y[i]);
+        y1 = std::max(y1, c.y[i]);
+      }
+    }
+    if (x1 >= x0 && p.auto_x) {
+      p.x_min = x0;
+      p.x_max = x1 > x0 ? x1 : x0 + 1;
+    }
+    if (y1 >= y0 && p.auto_y) {
+      const double pad = 0.05 * std::max(y1 - y0, 1e-9);
+      p.y_min = y0 - pad;
+      p.y_max = y1 + pad;
+    }
+  }
+
+  const float scale = ImGui::GetFontSize() / 13.0f;
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const float width = std::max(100.0f, ImGui::GetContentRegionAvail().x);
+  const float height = p.height * scale;
+  ImGui::InvisibleButton(id, ImVec2(width, height));
+  const bool hovered = ImGui::IsItemHovered();
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  const float line_h = ImGui::GetTextLineHeight();
+
+  // Plot area inside margins for tick labels and titles.
+  const ImVec2 a(origin.x + 4.2f * line_h, origin.y + 1.4f * line_h);
+  const ImVec2 b(origin.x + width - 0.8f * line_h, origin.y + height - 2.4f * line_h);
+  const ImU32 axis_col = ImGui::GetColorU32(ImGuiCol_Text);
+  const ImU32 grid_col = ImGui::GetColorU32(ImGuiCol_TextDisabled, 0.35f);
+  dl->AddRectFilled(a, b, ImGui::GetColorU32(ImGuiCol_FrameBg));
+  auto sx = [&](double x) { return float(a.x + (x - p.x_min) / (p.x_max - p.x_min) * (b.x - a.x)); };
+  auto sy = [&](double y) { return float(b.y - (y - p.y_min) / (p.y_max - p.y_min) * (b.y - a.y)); };
+
+  if (!p.title.empty()) {
+    const float w = ImGui::CalcTextSize(p.title.c_str()).x;
+    dl->AddText(ImVec2(b.x - w, origin.y), axis_col, p.title.c_str());  // the y title takes the left
+  }
+  const auto xt = nice_ticks(p.x_min, p.x_max, std::max(2, int((b.x - a.x) / (5 * line_h))));
+  const auto yt = nice_ticks(p.y_min, p.y_max, std::max(2, int((b.y - a.y) / (2.5f * line_h))));
+  const double xstep = xt.size() > 1 ? xt[1] - xt[0] : 1, ystep = yt.size() > 1 ? yt[1] - yt[0] : 1;
+  for (double t : xt) {
+    const float x = sx(t);
+    dl->AddLine(ImVec2(x, a.y), ImVec2(x, b.y), grid_col);
+    dl->AddLine(ImVec2(x, b.y), ImVec2(x, b.y + 0.3f * line_h), axis_col);
+    const std::string s = tick_label(t, xstep);
+    const float w = ImGui::CalcTextSize(s.c_str()).x;
+    dl->AddText(ImVec2(x - w / 2, b.y + 0.35f * line_h), axis_col, s.c_str());
+  }
+  for (double t : yt) {
+    const float y = sy(t);
+    dl->AddLine(ImVec2(a.x, y), ImVec2(b.x, y), grid_col);
+    dl->AddLine(ImVec2(a.x - 0.3f * line_h, y), ImVec2(a.x, y), axis_col);
+    const std::string s = tick_label(t, ystep);
+    const float w = ImGui::CalcTextSize(s.c_str()).x;
+    dl->AddText(ImVec2(a.x - 0.45f * line_h - w, y - line_h / 2), axis_col, s.c_str());
+  }
+  dl->AddRect(a, b, axis_col);
+  if (!p.x_title.empty()) {
+    const float w = ImGui::CalcTextSize(p.x_title.c_str()).x;
+    dl->AddText(ImVec2((a.x + b.x - w) / 2, b.y + 1.35f * line_h), axis_col, p.x_title.c_str());
+  }
+  if (!p.y_title.empty()) {
+    // ImGui draws no vertical text: the y title sits above the y axis.
+    dl->AddText(ImVec2(origin.x, origin.y), axis_col, p.y_title.c_str());
+  }
+
+  dl->PushClipRect(a, b, true);
+  for (std::size_t ci = 0; ci < curves.size(); ++ci) {
+    const auto& c = curves[ci];
+    const ImU32 col = c.colour ? c.colour : plot_palette(int(ci));
+    for (std::size_t i = 1; i < c.x.size() && i < c.y.size(); ++i) {
+      if (!std::isfinite(c.y[i - 1]) || !std::isfinite(c.y[i])) continue;
+      const ImVec2 p0(sx(c.x[i - 1]), sy(c.y[i - 1])), p1(sx(c.x[i]), sy(c.y[i]));
+      if (!c.dashed) {
+        dl->AddLine(p0, p1, col, 2.0f * scale);
+        continue;
+      }
+      const float len = std::hypot(p1.x - p0.x, p1.y - p0.y), dash = 5.0f * scale;
+      for (float t = 0; t < len; t += 2 * dash) {
+        const float t1 = std::min(len, t + dash);
+        dl->AddLine(ImVec2(p0.x + (p1.x - p0.x) * t / len, p0.y + (p1.y - p0.y) * t / len),
+                    ImVec2(p0.x + (p1.x - p0.x) * t1 / len, p0.y + (p1.y - p0.y) * t1 / len), col, 2.0f * scale);
+      }
+    }
+    if (c.x.size() == 1) dl->AddCircleFilled(ImVec2(sx(c.x[0]), sy(c.y[0])), 3 * scale, col);
+  }
+  dl->PopClipRect();
+
+  // Legend, top right inside the plot area.
+  float ly = a.y + 0.3f * line_h;
+  for (std::size_t ci = 0; ci < curves.size(); ++ci) {
+    const auto& c = curves[ci];
+    if (c.label.empty()) continue;
+    const float w = ImGui::CalcTextSize(c.label.c_str()).x;
+    const float lx = b.x - w - 2.6f * line_h;
+    dl->AddRectFilled(ImVec2(lx - 0.3f * line_h, ly - 0.1f * line_h), ImVec2(b.x - 0.2f * line_h, ly + 1.05f * line_h),
+                      ImGui::GetColorU32(ImGuiCol_PopupBg, 0.85f));
+    dl->AddLine(ImVec2(lx, ly + line_h / 2), ImVec2(lx + 1.6f * line_h, ly + line_h / 2),
+                c.colour ? c.colour : plot_palette(int(ci)), 2.0f * scale);
+    dl->AddText(ImVec2(lx + 2.0f * line_h, ly), axis_col, c.label.c_str());
+    ly += 1.15f * line_h;
+  }
+
+  plot_hover hover;
+  if (hovered) {
+    const ImVec2 m = ImGui::GetIO().MousePos;
+    if (m.x >= a.x && m.x <= b.x && m.y >= a.y && m.y <= b.y) {
+      hover.active = true;
+      hover.x = p.x_min + (m.x - a.x) / (b.x - a.x) * (p.x_max - p.x_min);
+      hover.y = p.y_min + (b.y - m.y) / (b.y - a.y) * (p.y_max - p.y_min);
+      dl->AddLine(ImVec2(m.x, a.y), ImVec2(m.x, b.y), grid_col);
+      char buf[64];
+      std::snprintf(buf, sizeof buf, "%.3g, %.3g", hover.x, hover.y);
+      dl->AddText(ImVec2(m.x + 4, a.y + 2), axis_col, buf);
+    }
+  }
+  return hover;
+}
+
+}  // namespace airr::ui

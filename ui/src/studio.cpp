@@ -1,0 +1,336 @@
+#include "airr/ui/studio.hpp"
+
+#include <filesystem>
+#include <fstream>
+
+#include <imgui.h>
+
+#include "airr/optics/assets.hpp"
+#include "airr/optics/error.hpp"
+#include "airr/optics/scene_json.hpp"
+#include "airr/render/image.hpp"
+#include "airr/render/render_metadata.hpp"
+
+namespace airr::ui {
+
+namespace fs = std::filesystem;
+
+static std::string display_name(const studio& st) {
+  return st.doc_path.empty() ? "untitled" : fs::path(st.doc_path).filename().string();
+}
+
+void studio_start(studio& st, const scene& s, const std::string& path) {
+  st.doc = s;
+  st.doc_path = path;
+  st.saved_json = scene_to_json(s);
+  st.applied_json = st.saved_json;
+  st.doc_error.clear();
+  if (!st.session) {
+    st.session = std::make_unique<render_session>(s);
+    st.generation = 0;
+  } else {
+    st.generation = st.session->edit(s);
+  }
+  st.analysis.submit_scene(s, st.generation);
+  st.view.uploaded_generation = ~0ull;
+  if (!path.empty()) add_recent_file(st.settings, path);
+}
+
+bool studio_dirty(const studio& st) { return scene_to_json(st.doc) != st.saved_json; }
+
+void studio_apply_edits(studio& st, double now) {
+  const nlohmann::json j = scene_to_json(st.doc);
+  if (j == st.applied_json) return;
+  st.applied_json = j;
+  try {
+    check_scene(st.doc, "layout");
+    st.doc_error.clear();
+    st.generation = st.session->edit(st.doc);
+    st.analysis.submit_scene(st.doc, st.generation);
+    st.edit_time = now;
+  } catch (const std::exception& e) {
+    st.doc_error = e.what();
+  }
+}
+
+void studio_open(studio& st, const std::string& path) {
+  try {
+    const scene s = load_scene(path);
+    studio_start(st, s, path);
+    st.settings.last_dir = fs::path(path).parent_path().string();
+    st.status = "opened " + path;
+  } catch (const std::exception& e) {
+    st.status = std::string("cannot open: ") + e.what();
+  }
+}
+
+// Relative paths in the scene are rewritten so they still point at the same files from the new
+// location.
+static scene rebase_paths(const scene& s, const std::string& new_dir) {
+  scene out = s;
+  auto rebase = [&](std::string& p) {
+    if (p.empty() || fs::path(p).is_absolute() || s.base_dir.empty()) return;
+    const fs::path abs = (fs::path(s.base_dir) / p).lexically_normal();
+    p = abs.lexically_relative(new_dir).string();
+  };
+  rebase(out.source.image);
+  rebase(out.source.mesh);
+  rebase(out.half_mirror.mesh);
+  rebase(out.retroreflector.mesh);
+  rebase(out.retroreflector.model.shift_table);
+  if (out.retroreflector.model.preset.find('/') != std::string::npos ||
+      fs::path(out.retroreflector.model.preset).extension() == ".json") {
+    rebase(out.retroreflector.model.preset);
+  }
+  out.base_dir = new_dir;
+  return out;
+}
+
+bool studio_save(studio& st, const std::string& path) {
+  try {
+    const std::string dir = fs::absolute(path).parent_path().string();
+    const scene s = rebase_paths(st.doc, dir);
+    save_scene(s, path);
+    st.doc = s;
+    st.doc_path = path;
+    st.saved_json = scene_to_json(s);
+    st.applied_json = st.saved_json;  // same files, same layout: nothing to re-render
+    add_recent_file(st.settings, path);
+    st.settings.last_dir = dir;
+    st.status = "saved " + path;
+    return true;
+  } catch (const std::exception& e) {
+    st.status = std::string("cannot save: ") + e.what();
+    return false;
+  }
+}
+
+void studio_drop_file(studio& st, const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == ".json") {
+    if (studio_dirty(st)) {
+      st.pending_path = path;
+      st.after_save_prompt = studio::pending_action::open_path;
+      st.show_save_prompt = true;
+    } else {
+      studio_open(st, path);
+    }
+    return;
+  }
+  try {
+    load_image_linear(path);  // refuse unreadable images before they reach the layout
+    st.doc.source.image = fs::absolute(path).lexically_normal().string();
+    st.status = "source image: " + path;
+  } catch (const std::exception& e) {
+    st.status = std::string("not an image: ") + e.what();
+  }
+}
+
+bool studio_export_render(studio& st, const std::string& path) {
+  try {
+    const render_snapshot snap = st.session->snapshot();
+    if (!snap.rgb || snap.spp == 0) throw input_error("nothing rendered yet");
+    const float exposure = float(default_exposure(st.doc) * std::exp2(st.settings.exposure_ev));
+    write_image(path, snap.image(), render_metadata(st.doc, snap, exposure), exposure);
+    st.status = "exported " + path + " (" + std::to_string(snap.spp) + " spp)";
+    return true;
+  } catch (const std::exception& e) {
+    st.status = std::string("cannot export: ") + e.what();
+    return false;
+  }
+}
+
+bool studio_export_plots(studio& st, const std::string& path) {
+  const auto pred = st.analysis.predicted();
+  const auto meas = st.analysis.measured();
+  std::string csv = "curve,x,y\n";
+  auto add = [&](const std::string& name, const std::vector<double>& x, const std::vector<double>& y) {
+    for (std::size_t i = 0; i < x.size() && i < y.size(); ++i) {
+      csv += name + "," + std::to_string(x[i]) + "," + std::to_string(y[i]) + "\n";
+    }
+  };
+  if (pred) {
+    add("mtf_predicted(lp_per_mm)", pred->lp_per_mm, pred->mtf);
+    add("psf_cross_section(mm)", pred->psf_x_mm, pred->psf_density);
+    add("mean_mtf_vs_floating_distance(mm)", pred->sweep_d_mm, pred->sweep_mean_mtf);
+  }
+  if (meas && meas->found) add("mtf_measured_on_render(lp_per_mm)", meas->lp_per_mm, meas->mtf);
+  for (const auto& p : st.pinned_mtf) add("pinned:" + p.label, p.x, p.y);
+  try {
+    write_file_atomic(path, csv);
+    st.status = "exported " + path;
+    return true;
+  } catch (const std::exception& e) {
+    st.status = std::string("cannot export: ") + e.what();
+    return false;
+  }
+}
+
+// ---------------------------------------------------------------- frame
+
+static std::string start_dir(const studio& st) {
+  if (!st.doc_path.empty()) return fs::path(st.doc_path).parent_path().string();
+  return st.settings.last_dir;
+}
+
+static void request_save_as(studio& st) {
+  st.dialog.request(file_purpose::save_scene, true, "Save scene as", start_dir(st), {".json"},
+                    st.doc_path.empty() ? "scene.json" : fs::path(st.doc_path).filename().string());
+}
+
+// Continues whatever waited for the unsaved-changes question.
+static void run_pending(studio& st) {
+  const auto action = st.after_save_prompt;
+  st.after_save_prompt = studio::pending_action::none;
+  switch (action) {
+    case studio::pending_action::quit: st.quit_requested = true; break;
+    case studio::pending_action::open_file:
+      st.dialog.request(file_purpose::open_scene, false, "Open scene", start_dir(st), {".json"});
+      break;
+    case studio::pending_action::open_path: studio_open(st, st.pending_path); break;
+    case studio::pending_action::new_scene: {
+      scene s;
+      s.base_dir = asset_dir() + "/scenes";  // the defaults' relative paths point into assets/
+      s.source.image = "../charts/test_chart.png";
+      studio_start(st, s, "");
+      break;
+    }
+    case studio::pending_action::none: break;
+  }
+}
+
+static void ask_or_run(studio& st, studio::pending_action action) {
+  st.after_save_prompt = action;
+  if (studio_dirty(st)) st.show_save_prompt = true;
+  else run_pending(st);
+}
+
+static void draw_menu(studio& st) {
+  if (!ImGui::BeginMainMenuBar()) return;
+  if (ImGui::BeginMenu("File")) {
+    if (ImGui::MenuItem("New scene")) ask_or_run(st, studio::pending_action::new_scene);
+    if (ImGui::MenuItem("Open scene...", "Ctrl+O")) ask_or_run(st, studio::pending_action::open_file);
+    if (ImGui::BeginMenu("Open recent", !st.settings.recent_files.empty())) {
+      for (const auto& f : st.settings.recent_files) {
+        if (ImGui::MenuItem(f.c_str())) {
+          st.pending_path = f;
+          ask_or_run(st, studio::pending_action::open_path);
+        }
+      }
+      ImGui::EndMenu();
+    }
+    if (ImGui::MenuItem("Save", "Ctrl+S")) {
+      if (st.doc_path.empty()) request_save_as(st);
+      else studio_save(st, st.doc_path);
+    }
+    if (ImGui::MenuItem("Save as...")) request_save_as(st);
+    ImGui::Separator();
+    if (ImGui::MenuItem("Source image...")) {
+      st.dialog.request(file_purpose::choose_source_image, false, "Source image", start_dir(st),
+                        {".png", ".jpg", ".jpeg", ".exr", ".tif", ".tiff", ".hdr"});
+    }
+    if (ImGui::MenuItem("Export render...")) {
+      st.dialog.request(file_purpose::export_render, true, "Export render (.exr or .png)", start_dir(st),
+                        {".exr", ".png"}, "render.exr");
+    }
+    if (ImGui::MenuItem("Export plot data...")) {
+      st.dialog.request(file_purpose::export_plots, true, "Export plot data (CSV)", start_dir(st), {".csv"},
+                        "plots.csv");
+    }
+    ImGui::Separator();
+    if (ImGui::MenuItem("Quit", "Ctrl+Q")) ask_or_run(st, studio::pending_action::quit);
+    ImGui::EndMenu();
+  }
+  ImGui::TextDisabled("  %s%s", display_name(st).c_str(), studio_dirty(st) ? " (unsaved changes)" : "");
+  ImGui::EndMainMenuBar();
+}
+
+static void draw_save_prompt(studio& st) {
+  if (st.show_save_prompt) {
+    ImGui::OpenPopup("Unsaved changes");
+    st.show_save_prompt = false;
+  }
+  if (ImGui::BeginPopupModal("Unsaved changes", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::Text("%s has unsaved changes.", display_name(st).c_str());
+    if (ImGui::Button("Save")) {
+      ImGui::CloseCurrentPopup();
+      if (st.doc_path.empty()) request_save_as(st);  // the pending action runs after the dialog
+      else if (studio_save(st, st.doc_path)) run_pending(st);
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Discard")) {
+      ImGui::CloseCurrentPopup();
+      st.saved_json = scene_to_json(st.doc);
+      run_pending(st);
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) {
+      st.after_save_prompt = studio::pending_action::none;
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+  }
+}
+
+static void handle_dialog(studio& st) {
+  const std::string path = st.dialog.draw();
+  if (path.empty()) return;
+  switch (st.dialog.purpose) {
+    case file_purpose::open_scene: studio_open(st, path); break;
+    case file_purpose::save_scene:
+      if (studio_save(st, path)) run_pending(st);
+      break;
+    case file_purpose::export_render: studio_export_render(st, path); break;
+    case file_purpose::export_plots: studio_export_plots(st, path); break;
+    case file_purpose::choose_source_image: studio_drop_file(st, path); break;
+  }
+}
+
+static void handle_shortcuts(studio& st) {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (!io.KeyCtrl || io.WantTextInput) return;
+  // ImGui 1.86 indexes keys by the backend's codes; GLFW's letter codes are their ASCII capitals.
+  if (ImGui::IsKeyPressed('S')) {
+    if (st.doc_path.empty()) request_save_as(st);
+    else studio_save(st, st.doc_path);
+  }
+  if (ImGui::IsKeyPressed('O')) ask_or_run(st, studio::pending_action::open_file);
+}
+
+void studio_frame(studio& st, double now) {
+  handle_shortcuts(st);
+  draw_menu(st);
+  const ImGuiViewport* vp = ImGui::GetMainViewport();
+  const float top = vp->WorkPos.y, w = vp->WorkSize.x, h = vp->WorkSize.y - ImGui::GetFrameHeight();
+  const float left_w = std::min(0.26f * w, 30.0f * ImGui::GetFontSize()), right_w = 0.28f * w;
+  const float mid_w = w - left_w - right_w, render_h = 0.62f * h;
+  auto place = [&](float x, float y, float ww, float hh) {
+    ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x + x, top + y), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(ww, hh), ImGuiCond_FirstUseEver);
+  };
+  place(0, 0, left_w, h);
+  draw_layout_panel(st);
+  place(left_w, 0, mid_w, render_h);
+  draw_render_view(st, now);
+  place(left_w, render_h, mid_w, h - render_h);
+  draw_side_view(st);
+  place(left_w + mid_w, 0, right_w, h);
+  draw_plots_panel(st);
+
+  // Status bar.
+  ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x, vp->WorkPos.y + vp->WorkSize.y - ImGui::GetFrameHeight()));
+  ImGui::SetNextWindowSize(ImVec2(vp->WorkSize.x, ImGui::GetFrameHeight()));
+  ImGui::Begin("##status", nullptr,
+               ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+                   ImGuiWindowFlags_NoBringToFrontOnFocus);
+  if (!st.doc_error.empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", st.doc_error.c_str());
+  else ImGui::TextUnformatted(st.status.c_str());
+  ImGui::End();
+
+  draw_save_prompt(st);
+  handle_dialog(st);
+  studio_apply_edits(st, now);
+}
+
+}  // namespace airr::ui
