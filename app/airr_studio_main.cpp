@@ -182,6 +182,14 @@ int main(int argc, char** argv) {
         }
         try {
           airr::ui::write_framebuffer_png(opt.screenshot, fw, fh);
+          // The panels' rectangles in framebuffer pixels, for checks of the screenshot.
+          int ww = 0, wh = 0;
+          glfwGetWindowSize(window, &ww, &wh);
+          const float sx = ww ? float(fw) / ww : 1.0f, sy = wh ? float(fh) / wh : 1.0f;
+          nlohmann::json regions;
+          for (const auto& [name, r] : st.regions) regions[name] = {r[0] * sx, r[1] * sy, r[2] * sx, r[3] * sy};
+          airr::write_file_atomic(opt.screenshot + ".json",
+                                  nlohmann::json{{"width", fw}, {"height", fh}, {"regions", regions}}.dump(2) + "\n");
           std::fprintf(stderr, "wrote %s (%dx%d)\n", opt.screenshot.c_str(), fw, fh);
         } catch (const std::exception& e) {
           std::fprintf(stderr, "error: %s\n", e.what());

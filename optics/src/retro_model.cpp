@@ -5,6 +5,7 @@
 #include <mutex>
 
 #include "airr/optics/error.hpp"
+#include "airr/optics/retro_microfacet.hpp"
 #include "airr/optics/retro_sinc_shift.hpp"
 #include "airr/optics/scene.hpp"
 
@@ -37,10 +38,9 @@ std::unique_ptr<retro_model> make_retro_model(const retro_model_params& p, const
       return std::make_unique<sinc_shift_retro>(std::move(sp), std::move(shifts));
     }
     case retro_model_type::microfacet:
-      break;
+      return std::make_unique<microfacet_retro>(p);
   }
-  throw input_error(std::string("retroreflector.model.type: model '") + retro_model_type_names[int(p.type)] +
-                    "' is not available in this build");
+  throw input_error("retroreflector.model.type: unknown model");
 }
 
 }  // namespace airr

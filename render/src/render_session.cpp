@@ -2,11 +2,8 @@
 
 #include <chrono>
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
 #include "airr/optics/error.hpp"
+#include "parallel_rows.hpp"
 
 namespace airr {
 
@@ -79,17 +76,11 @@ bool render_session::render_wave(std::uint64_t first, std::uint64_t count, std::
   const int h = scene_.camera.height;
   std::atomic<std::uint64_t> total_rays{0};
   std::atomic<bool> complete{true};
-  auto body = [&](const tbb::blocked_range<int>& r) {
+  detail::parallel_rows(h, params_.threads, [&](int y0, int y1) {
     std::uint64_t local = 0;
-    if (!trace_rows(scene_, r.begin(), r.end(), first, count, sums, cancel_, local)) complete = false;
+    if (!trace_rows(scene_, y0, y1, first, count, sums, cancel_, local)) complete = false;
     total_rays += local;
-  };
-  if (params_.threads > 0) {
-    tbb::task_arena arena(params_.threads);
-    arena.execute([&] { tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), body); });
-  } else {
-    tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), body);
-  }
+  });
   rays += total_rays;
   return complete && !cancel_;
 }

@@ -18,10 +18,9 @@ void draw_plots_panel(studio& st) {
 
   if (pred && !pred->error.empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", pred->error.c_str());
   if (pred) {
-    ImGui::Text("model PSF: r50 %.3f mm   mean MTF(0-1 lp/mm) %.3f   MTF50 %.2f lp/mm", pred->r50_mm, pred->mean_mtf,
-                pred->mtf50);
-    ImGui::TextDisabled("brightness %.4f x source   PSF %.1f ms, sweep %.1f ms%s", pred->brightness, pred->psf_ms,
-                        pred->sweep_ms, current ? "" : "   (updating)");
+    ImGui::Text("model PSF: r50 %.3f mm   mean MTF (0-1 lp/mm) %.3f", pred->r50_mm, pred->mean_mtf);
+    ImGui::Text("MTF50 %.2f lp/mm   brightness %.4f x source", pred->mtf50, pred->brightness);
+    ImGui::TextDisabled("PSF %.1f ms, sweep %.1f ms%s", pred->psf_ms, pred->sweep_ms, current ? "" : "   (updating)");
   }
   if (ImGui::Button("Pin MTF") && pred && !pred->mtf.empty()) {
     char label[64];
@@ -44,16 +43,17 @@ void draw_plots_panel(studio& st) {
   for (std::size_t i = 0; i < st.pinned_mtf.size(); ++i) {
     mtf.push_back({st.pinned_mtf[i].label, st.pinned_mtf[i].x, st.pinned_mtf[i].y, plot_palette(int(i) + 2), true});
   }
-  draw_plot("mtf", mtf,
+  auto keep = [&](const char* name, const plot_hover& h) { st.regions[name] = {h.area[0], h.area[1], h.area[2], h.area[3]}; };
+  keep("plot_mtf", draw_plot("mtf", mtf,
             {.title = "MTF", .x_title = "spatial frequency (lp/mm)", .y_title = "MTF", .x_min = 0, .x_max = 2,
-             .y_min = 0, .y_max = 1.05, .auto_x = false, .auto_y = false, .height = h});
+             .y_min = 0, .y_max = 1.05, .auto_x = false, .auto_y = false, .height = h}));
   if (meas && !meas->found && !meas->note.empty()) ImGui::TextDisabled("render MTF: %s", meas->note.c_str());
 
   std::vector<plot_curve> psf;
   if (pred) psf.push_back({"PSF cross-section", pred->psf_x_mm, pred->psf_density});
-  draw_plot("psf", psf,
+  keep("plot_psf", draw_plot("psf", psf,
             {.title = "PSF through the centre (y = 0)", .x_title = "x on the aerial-image plane (mm)",
-             .y_title = "energy density (1/mm^2)", .auto_x = true, .auto_y = true, .height = h});
+             .y_title = "energy density (1/mm^2)", .auto_x = true, .auto_y = true, .height = h}));
 
   std::vector<plot_curve> sweep;
   if (pred && !pred->sweep_d_mm.empty()) {
@@ -61,10 +61,10 @@ void draw_plots_panel(studio& st) {
     sweep.push_back({"current D", {st.doc.floating_distance_mm, st.doc.floating_distance_mm}, {0.0, 1.0},
                      IM_COL32(160, 160, 160, 255), true});
   }
-  draw_plot("sweep", sweep,
+  keep("plot_sweep", draw_plot("sweep", sweep,
             {.title = "Mean MTF against floating distance", .x_title = "floating distance D (mm)",
              .y_title = "mean MTF", .x_min = 140, .x_max = 310, .y_min = 0, .y_max = 1.05, .auto_x = false,
-             .auto_y = false, .height = h});
+             .auto_y = false, .height = h}));
   ImGui::End();
 }
 

@@ -147,6 +147,10 @@ plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, cons
   }
 
   plot_hover hover;
+  hover.area[0] = a.x;
+  hover.area[1] = a.y;
+  hover.area[2] = b.x;
+  hover.area[3] = b.y;
   if (hovered) {
     const ImVec2 m = ImGui::GetIO().MousePos;
     if (m.x >= a.x && m.x <= b.x && m.y >= a.y && m.y <= b.y) {

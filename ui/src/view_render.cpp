@@ -4,6 +4,7 @@
 
 #include <imgui.h>
 
+#include "airr/optics/layout.hpp"
 #include "airr/render/image.hpp"
 #include "airr/render/render_metadata.hpp"
 #include "airr/ui/studio.hpp"
@@ -98,6 +99,12 @@ void draw_render_view(studio& st, double now) {
   dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(st.view.texture.id())), p0,
                ImVec2(p0.x + size.x, p0.y + size.y));
   dl->PopClipRect();
+  st.regions["render_image"] = {std::max(p0.x, origin.x), std::max(p0.y, origin.y), std::min(p0.x + size.x, origin.x + area.x),
+                                std::min(p0.y + size.y, origin.y + area.y)};
+  const glm::dvec2 centre = camera_project(make_camera(st.doc), aerial_image_center(st.doc));
+  const glm::dvec2 half(0.5 * st.doc.source.width_mm / snap.mm_per_pixel, 0.5 * st.doc.source.height_mm / snap.mm_per_pixel);
+  st.regions["render_aerial_image"] = {float(p0.x + (centre.x - half.x) * scale), float(p0.y + (centre.y - half.y) * scale),
+                                       float(p0.x + (centre.x + half.x) * scale), float(p0.y + (centre.y + half.y) * scale)};
 
   // Cursor readout: pixel, linear value, position in mm on the aerial-image plane (centre (0, 0, D)).
   std::string readout = "cursor outside the image";

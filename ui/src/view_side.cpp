@@ -138,7 +138,7 @@ void draw_side_view(studio& st) {
   label(cam.position, "camera", -20, 6 * lw);
 
   // Scale bar of 50 mm and the axes' directions.
-  const ImVec2 sb(canvas0.x + margin, canvas0.y + canvas.y - 0.8f * margin);
+  const ImVec2 sb(canvas0.x + margin, canvas0.y + 0.6f * margin);
   dl->AddLine(sb, ImVec2(sb.x + 50 * scale, sb.y), text, lw);
   dl->AddText(ImVec2(sb.x + 50 * scale + 4, sb.y - ImGui::GetFontSize() / 2), text, "50 mm   (z to the right, y up)");
   char info[160];

@@ -27,6 +27,7 @@ struct plot_params {
 struct plot_hover {
   bool active = false;
   double x = 0, y = 0;
+  float area[4] = {0, 0, 0, 0};  // the plot area on screen: x0, y0, x1, y1
 };
 
 plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, const plot_params& params);

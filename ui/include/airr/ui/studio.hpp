@@ -2,6 +2,8 @@
 // The designer's state: the scene being edited, the render session and analysis behind it, the
 // files, and what the panels show. The panels edit `doc`; once per frame the studio validates the
 // edit and hands it to the render session and the analysis worker.
+#include <array>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -53,6 +55,9 @@ struct studio {
   std::string pending_path;
   bool show_save_prompt = false;
   bool quit_requested = false;  // the app may close
+
+  // Screen rectangles (x0, y0, x1, y1) of what scripted runs check: "render_image", "plot_mtf", ...
+  std::map<std::string, std::array<float, 4>> regions;
 
   // Latency measurement: when the last edit was applied, and when its first image was shown.
   double edit_time = -1;

@@ -1,0 +1,117 @@
+// airr psf SCENE -o psf.csv [--plot psf.png] [--samples N] [--no-pixel] [--max-lp F] [--points N]
+//          [--set key=value ...]
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "airr/analysis/plot_png.hpp"
+#include "airr/analysis/psf_mtf.hpp"
+#include "airr/optics/layout.hpp"
+#include "airr/optics/scene_json.hpp"
+#include "commands.hpp"
+#include "mtf_routes.hpp"
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::string psf_csv(const airr::analysis::psf_mtf_curve& c) {
+  std::string out = "lp_per_mm,mtf\n";
+  char row[64];
+  for (std::size_t i = 0; i < c.mtf.size(); ++i) {
+    std::snprintf(row, sizeof row, "%.10g,%.10g\n", c.lp_per_mm[i], c.mtf[i]);
+    out += row;
+  }
+  return out;
+}
+
+}  // namespace
+
+void add_psf_command(CLI::App& app) {
+  struct options {
+    std::string scene_path, csv, plot;
+    std::uint64_t samples = 100000;
+    std::vector<std::string> sets;
+    bool no_pixel = false;
+    double max_lp = 2.0;
+    int points = 101;
+  };
+  auto opt = std::make_shared<options>();
+  auto* cmd = app.add_subcommand("psf", "MTF of the model PSF on the aerial-image plane (no tracer)");
+  cmd->add_option("scene", opt->scene_path, "Scene JSON file")->required();
+  cmd->add_option("-o,--output", opt->csv, "CSV file to write (lp_per_mm,mtf)")->required();
+  cmd->add_option("--plot", opt->plot, "Also write a PNG plot of the MTF");
+  cmd->add_option("--samples", opt->samples, "Rays traced through the retroreflector (default 100000)")
+      ->check(CLI::Range(100, 100000000));
+  cmd->add_flag("--no-pixel", opt->no_pixel,
+                "The optics alone; by default the camera pixel's aperture is included, as a render measures it");
+  cmd->add_option("--max-lp", opt->max_lp, "Highest frequency in the CSV, lp/mm (default 2)")->check(CLI::Range(0.01, 1000.0));
+  cmd->add_option("--points", opt->points, "Frequencies in the CSV, 0 .. max evenly spaced (default 101)")
+      ->check(CLI::Range(2, 100000));
+  cmd->add_option("--set", opt->sets, "Override a scene value, e.g. retroreflector.model.preset=rf-ay");
+  cmd->callback([opt] {
+    std::vector<airr::scene_override> overrides;
+    for (const auto& s : opt->sets) overrides.push_back(airr::parse_override(s));
+    const airr::scene s = airr::load_scene(opt->scene_path, overrides);
+    const double pixel_mm = opt->no_pixel ? 0.0 : airr::make_camera(s).mm_per_pixel;
+
+    const auto t0 = std::chrono::steady_clock::now();
+    const airr::psf_samples psf = airr::scene_psf(s, opt->samples);
+    const double t_sample = seconds_since(t0);
+    const auto t1 = std::chrono::steady_clock::now();
+    const auto curve = airr::analysis::psf_mtf(psf, {.max_lp_per_mm = opt->max_lp, .points = opt->points, .pixel_mm = pixel_mm});
+    const airr::mtf_summary m = airr::psf_route_mtf(psf, pixel_mm);
+    const double r50 = airr::energy_radius(psf);
+    const double t_mtf = seconds_since(t1);
+
+    std::printf("retroreflector: %s, %.6g mm from the aerial image, chief-ray incidence %.4g deg\n",
+                airr::retro_model_type_names[static_cast<int>(s.retroreflector.model.type)], psf.rr_distance_mm,
+                psf.incidence_deg);
+    std::printf("50%%-energy radius: %.4f mm\n", r50);
+    if (pixel_mm > 0)
+      std::printf("pixel aperture: %.6g mm on the aerial-image plane (included; --no-pixel for the optics alone)\n", pixel_mm);
+    else
+      std::printf("pixel aperture: none (optics alone)\n");
+    std::printf("mean MTF over (0, 1] lp/mm: %.5f\n", m.mean_mtf);
+    if (m.mtf50_lp_per_mm)
+      std::printf("MTF50: %.5g lp/mm\n", *m.mtf50_lp_per_mm);
+    else
+      std::printf("MTF50: not reached (MTF stays above 0.5 up to %g lp/mm)\n", pixel_mm > 0 ? 1.0 / pixel_mm : 4.0);
+    std::printf("brightness: %.6g (aerial radiance per unit source radiance)\n", psf.brightness());
+    std::printf("samples: %llu launched, %zu reach the source plane\n", static_cast<unsigned long long>(psf.launched),
+                psf.offset_mm.size());
+    std::printf("time: %.3f s (sampling %.3f s, MTF and radius %.3f s)\n", t_sample + t_mtf, t_sample, t_mtf);
+
+    airr::write_file_atomic(opt->csv, psf_csv(curve));
+    std::printf("wrote %s\n", opt->csv.c_str());
+    if (!opt->plot.empty()) {
+      std::vector<airr::analysis::plot_series> series;
+      char label[96];
+      if (pixel_mm > 0)
+        std::snprintf(label, sizeof label, "model PSF x %.3g mm pixel aperture", pixel_mm);
+      else
+        std::snprintf(label, sizeof label, "model PSF (optics alone)");
+      series.push_back({label, curve.lp_per_mm, curve.mtf, {}});
+      if (pixel_mm > 0) {
+        const auto optics = airr::analysis::psf_mtf(psf, {.max_lp_per_mm = opt->max_lp, .points = opt->points});
+        series.push_back({"model PSF (optics alone)", optics.lp_per_mm, optics.mtf, {}});
+      }
+      airr::analysis::plot_params pp;
+      char title[128];
+      std::snprintf(title, sizeof title, "model PSF MTF (%s, D %g mm, tilt %g deg, %llu samples)",
+                    airr::retro_model_type_names[static_cast<int>(s.retroreflector.model.type)], s.floating_distance_mm,
+                    s.retroreflector.tilt_deg, static_cast<unsigned long long>(psf.launched));
+      pp.title = title;
+      pp.y_title = "MTF (1)";
+      pp.x_min = 0.0;
+      pp.y_min = 0.0;
+      pp.y_max = 1.05;
+      airr::analysis::write_plot_png(opt->plot, series, pp);
+      std::printf("wrote %s\n", opt->plot.c_str());
+    }
+  });
+}

@@ -1,0 +1,69 @@
+#include "mtf_routes.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "airr/analysis/image_read.hpp"
+#include "airr/analysis/mtf_metrics.hpp"
+#include "airr/analysis/psf_mtf.hpp"
+#include "airr/analysis/slanted_edge_mtf.hpp"
+#include "airr/optics/error.hpp"
+#include "airr/optics/layout.hpp"
+#include "airr/optics/retro_model.hpp"
+
+namespace airr {
+
+psf_samples scene_psf(const scene& s, std::uint64_t samples) {
+  const auto model = make_retro_model(s.retroreflector.model, s.base_dir);
+  return sample_psf(s, *model, {.samples = samples, .seed = s.seed});
+}
+
+mtf_summary psf_route_mtf(const psf_samples& psf, double pixel_mm) {
+  mtf_summary m;
+  m.mm_per_pixel = pixel_mm;
+  if (psf.offset_mm.empty()) return m;  // no light arrives: nothing to resolve
+  m.mean_mtf = analysis::psf_mean_mtf(psf, 1.0, pixel_mm);
+  // Search MTF50 up to the sampling frequency, as the edge route does (1 cycle/pixel); the
+  // optics alone are searched up to 4 lp/mm.
+  const double top = pixel_mm > 0 ? 1.0 / pixel_mm : 4.0;
+  const auto curve = analysis::psf_mtf(psf, {.max_lp_per_mm = top, .points = 161, .pixel_mm = pixel_mm});
+  if (const double f = analysis::psf_mtf50(curve); f > 0) m.mtf50_lp_per_mm = f;
+  return m;
+}
+
+scene with_edge_chart(scene s, const std::string& chart_path) {
+  s.source.image = chart_path;
+  return s;
+}
+
+cv::Rect source_image_roi(const scene& s, double fraction) {
+  const part_frame src = source_frame(s), hm = half_mirror_frame(s);
+  const pinhole_camera cam = make_camera(s);
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (double su : {-1.0, 1.0}) {
+    for (double sv : {-1.0, 1.0}) {
+      const glm::dvec3 c = src.center + su * 0.5 * fraction * src.width * src.u + sv * 0.5 * fraction * src.height * src.v;
+      const glm::dvec3 aerial = c - 2.0 * glm::dot(c - hm.center, hm.n) * hm.n;  // mirror image in the half mirror
+      const glm::dvec2 p = camera_project(cam, aerial);
+      x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+    }
+  }
+  const int left = std::max(0, int(std::ceil(x0))), top = std::max(0, int(std::ceil(y0)));
+  const int right = std::min(cam.width, int(std::floor(x1))), bottom = std::min(cam.height, int(std::floor(y1)));
+  if (right - left < 8 || bottom - top < 8)
+    throw input_error("edge MTF: the source's image is not in the camera's view");
+  return {left, top, right - left, bottom - top};
+}
+
+mtf_summary edge_route_mtf(const scene& s, const render_snapshot& snap, double roi_fraction) {
+  cv::Mat rgb(snap.height, snap.width, CV_32FC3, const_cast<float*>(snap.rgb->data()));
+  const cv::Mat luminance = analysis::rec709_luminance(rgb);
+  const auto curve = analysis::slanted_edge_mtf(luminance, {.roi = source_image_roi(s, roi_fraction)});
+  mtf_summary m;
+  m.mm_per_pixel = snap.mm_per_pixel;
+  m.mean_mtf = analysis::mean_mtf(curve, snap.mm_per_pixel).value;
+  if (const auto m50 = analysis::mtf50(curve, snap.mm_per_pixel)) m.mtf50_lp_per_mm = m50->lp_per_mm;
+  return m;
+}
+
+}  // namespace airr

@@ -1,0 +1,39 @@
+#pragma once
+// The two ways of measuring the aerial image's MTF on one scene: the model PSF (no tracer) and a
+// slanted-edge chart rendered by the tracer. Both measure along x, as a near-vertical edge does,
+// and include the camera pixel's aperture.
+#include <optional>
+#include <string>
+
+#include <opencv2/core.hpp>
+
+#include "airr/optics/psf.hpp"
+#include "airr/optics/scene.hpp"
+#include "airr/render/render_session.hpp"
+
+namespace airr {
+
+struct mtf_summary {
+  double mean_mtf = 0;                    // over (0, 1] lp/mm
+  std::optional<double> mtf50_lp_per_mm;  // empty when the MTF stays above 0.5 where measured
+  double mm_per_pixel = 0;                // the pixel whose aperture is included; 0: none
+};
+
+// The model PSF of the scene's retroreflector at the aerial-image centre.
+psf_samples scene_psf(const scene& s, std::uint64_t samples);
+
+// MTF of a sampled PSF times a square pixel's aperture (pixel_mm = 0: the optics alone).
+mtf_summary psf_route_mtf(const psf_samples& psf, double pixel_mm);
+
+// The scene with the source showing `chart_path` (an edge chart) instead of its image.
+scene with_edge_chart(scene s, const std::string& chart_path);
+
+// The central `fraction` (per side) of the source's aerial image in camera pixels, clipped to
+// the frame. Throws input_error when nothing of it is in view.
+cv::Rect source_image_roi(const scene& s, double fraction);
+
+// Slanted-edge MTF of a render's Rec.709 luminance over source_image_roi(s, roi_fraction).
+// Throws std::runtime_error when no usable edge is found.
+mtf_summary edge_route_mtf(const scene& s, const render_snapshot& snap, double roi_fraction);
+
+}  // namespace airr

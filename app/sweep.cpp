@@ -1,0 +1,180 @@
+#include "sweep.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+
+#include "airr/optics/assets.hpp"
+#include "airr/optics/error.hpp"
+#include "airr/optics/layout.hpp"
+#include "airr/optics/scene_json.hpp"
+#include "airr/render/render_session.hpp"
+#include "mtf_routes.hpp"
+
+namespace airr {
+
+namespace {
+
+std::string number(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.10g", v);
+  return buf;
+}
+
+double parse_number(const std::string& text, const std::string& whole, const char* what) {
+  std::size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::logic_error&) {
+    used = 0;
+  }
+  if (text.empty() || used != text.size() || !std::isfinite(v))
+    throw input_error("--vary " + whole + ": " + what + " '" + text + "' is not a number");
+  return v;
+}
+
+std::string point_label(double d, double tilt) {
+  return "sweep point floating_distance=" + number(d) + ", tilt=" + number(tilt);
+}
+
+}  // namespace
+
+sweep_axis parse_sweep_axis(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos)
+    throw input_error("--vary " + text + ": expected key=start:end:step, e.g. floating_distance=150:300:25");
+  sweep_axis a;
+  a.key = text.substr(0, eq);
+  if (a.key != "floating_distance" && a.key != "tilt")
+    throw input_error("--vary " + text + ": unknown key '" + a.key + "' (use floating_distance or tilt)");
+  const std::string range = text.substr(eq + 1);
+  const auto c1 = range.find(':'), c2 = c1 == std::string::npos ? c1 : range.find(':', c1 + 1);
+  if (c2 == std::string::npos || range.find(':', c2 + 1) != std::string::npos)
+    throw input_error("--vary " + text + ": expected start:end:step after '='");
+  a.start = parse_number(range.substr(0, c1), text, "start");
+  a.end = parse_number(range.substr(c1 + 1, c2 - c1 - 1), text, "end");
+  a.step = parse_number(range.substr(c2 + 1), text, "step");
+  if (a.start > a.end) throw input_error("--vary " + text + ": start is above end");
+  if (!(a.step > 0)) throw input_error("--vary " + text + ": step must be positive");
+  if (std::floor((a.end - a.start) / a.step + 1e-9) + 1 > max_sweep_points)
+    throw input_error("--vary " + text + ": more than " + std::to_string(max_sweep_points) + " points");
+  return a;
+}
+
+std::vector<double> sweep_values(const sweep_axis& a) {
+  // A small tolerance keeps the end point when start + k * step lands on it up to rounding.
+  const int n = int(std::floor((a.end - a.start) / a.step + 1e-9)) + 1;
+  std::vector<double> v;
+  for (int i = 0; i < n; ++i) v.push_back(a.start + i * a.step);
+  return v;
+}
+
+double least_squares_slope(const std::vector<double>& x, const std::vector<double>& y) {
+  const std::size_t n = std::min(x.size(), y.size());
+  if (n < 2) return 0;
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < n; ++i) mx += x[i], my += y[i];
+  mx /= double(n), my /= double(n);
+  double sxy = 0, sxx = 0;
+  for (std::size_t i = 0; i < n; ++i) sxy += (x[i] - mx) * (y[i] - my), sxx += (x[i] - mx) * (x[i] - mx);
+  return sxx > 0 ? sxy / sxx : 0;
+}
+
+sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_progress& progress) {
+  if (p.axes.empty()) throw input_error("--vary: give floating_distance=start:end:step and/or tilt=start:end:step");
+  std::vector<double> distances = {base.floating_distance_mm}, tilts = {base.retroreflector.tilt_deg};
+  bool d_set = false, tilt_set = false;
+  for (const auto& a : p.axes) {
+    bool& seen = a.key == "floating_distance" ? d_set : tilt_set;
+    if (seen) throw input_error("--vary " + a.key + ": given twice");
+    seen = true;
+    (a.key == "floating_distance" ? distances : tilts) = sweep_values(a);
+  }
+  if (distances.size() * tilts.size() > std::size_t(max_sweep_points))
+    throw input_error("--vary: the grid has " + std::to_string(distances.size() * tilts.size()) + " points, more than " +
+                      std::to_string(max_sweep_points));
+
+  std::string chart = p.chart.empty() ? asset_dir() + "/charts/slanted_edge.png" : p.chart;
+  chart = std::filesystem::absolute(chart).lexically_normal().string();
+
+  // Every point's layout is checked before the first one is measured.
+  std::vector<scene> scenes;
+  for (double tilt : tilts) {
+    for (double d : distances) {
+      scene s = base;
+      s.floating_distance_mm = d;
+      s.retroreflector.tilt_deg = tilt;
+      if (!p.psf_route) s = with_edge_chart(s, chart);
+      check_scene(s, point_label(d, tilt));
+      scenes.push_back(std::move(s));
+    }
+  }
+
+  sweep_result r;
+  r.mm_per_pixel = make_camera(base).mm_per_pixel;
+  std::unique_ptr<render_session> session;
+  const double n = double(scenes.size());
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    const scene& s = scenes[i];
+    sweep_point pt;
+    pt.floating_distance_mm = s.floating_distance_mm;
+    pt.tilt_deg = s.retroreflector.tilt_deg;
+    const std::string label = point_label(pt.floating_distance_mm, pt.tilt_deg);
+    const std::string detail = "D " + number(pt.floating_distance_mm) + " mm, tilt " + number(pt.tilt_deg) + " deg";
+    if (progress) progress(double(i) / n, detail);
+
+    const psf_samples psf = scene_psf(s, p.psf_samples);
+    pt.r50_mm = energy_radius(psf);
+    mtf_summary m;
+    if (p.psf_route) {
+      m = psf_route_mtf(psf, make_camera(s).mm_per_pixel);
+    } else {
+      std::uint64_t gen = 0;
+      if (!session) session = std::make_unique<render_session>(s, session_params{.threads = p.threads, .target_spp = p.spp});
+      else gen = session->edit(s);
+      render_snapshot snap;
+      while (true) {
+        snap = session->snapshot();
+        const bool current = snap.generation == gen;
+        if (current && (!snap.error.empty() || snap.spp >= p.spp)) break;
+        const std::uint64_t done = current ? snap.spp : 0;
+        if (progress) progress((double(i) + double(done) / double(p.spp)) / n, detail + ", " + std::to_string(done) + " spp");
+        session->wait_for(gen, std::min<std::uint64_t>(p.spp, done + 1));
+      }
+      if (!snap.error.empty()) throw input_error(label + ": " + snap.error);
+      try {
+        m = edge_route_mtf(s, snap, p.roi_fraction);
+      } catch (const std::exception& e) {
+        throw std::runtime_error(label + ": " + e.what());
+      }
+    }
+    pt.mean_mtf = m.mean_mtf;
+    pt.mtf50_lp_per_mm = m.mtf50_lp_per_mm;
+    r.points.push_back(pt);
+  }
+  if (session) session->stop();
+  if (progress) progress(1.0, std::to_string(scenes.size()) + " points");
+
+  if (distances.size() > 1) {
+    for (std::size_t t = 0; t < tilts.size(); ++t) {
+      std::vector<double> y;
+      for (std::size_t k = 0; k < distances.size(); ++k) y.push_back(r.points[t * distances.size() + k].mean_mtf);
+      r.slopes.push_back({tilts[t], least_squares_slope(distances, y)});
+    }
+  }
+  return r;
+}
+
+std::string sweep_csv(const sweep_result& r) {
+  std::string out = "floating_distance_mm,tilt_deg,mean_mtf_0_1,mtf50_lp_per_mm,r50_mm\n";
+  for (const auto& pt : r.points) {
+    out += number(pt.floating_distance_mm) + "," + number(pt.tilt_deg) + "," + number(pt.mean_mtf) + "," +
+           (pt.mtf50_lp_per_mm ? number(*pt.mtf50_lp_per_mm) : "") + "," + number(pt.r50_mm) + "\n";
+  }
+  return out;
+}
+
+}  // namespace airr

@@ -1,0 +1,43 @@
+#pragma once
+// Runs body(y0, y1) over rows [0, rows) on `threads` workers (0: all cores). TBB normally; the
+// ThreadSanitizer build uses std::thread, because TSan cannot see the synchronisation inside the
+// uninstrumented TBB library and would report its hand-overs as races.
+#include <algorithm>
+#include <atomic>
+#include <thread>
+#include <vector>
+
+#ifndef AIRR_PLAIN_THREADS
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+#endif
+
+namespace airr::detail {
+
+template <class Body>
+void parallel_rows(int rows, int threads, const Body& body) {
+#ifdef AIRR_PLAIN_THREADS
+  const int n = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  std::atomic<int> next{0};
+  std::vector<std::thread> workers;
+  for (int t = 0; t < n; ++t) {
+    workers.emplace_back([&] {
+      for (int y; (y = next.fetch_add(1)) < rows;) body(y, y + 1);
+    });
+  }
+  for (auto& w : workers) w.join();
+#else
+  auto run = [&] {
+    tbb::parallel_for(tbb::blocked_range<int>(0, rows, 1), [&](const tbb::blocked_range<int>& r) { body(r.begin(), r.end()); });
+  };
+  if (threads > 0) {
+    tbb::task_arena arena(threads);
+    arena.execute(run);
+  } else {
+    run();
+  }
+#endif
+}
+
+}  // namespace airr::detail

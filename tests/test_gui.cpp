@@ -1,0 +1,127 @@
+// The designer for real: under Xvfb the app opens its window on the default scene, applies tilt
+// and floating distance from --set, runs frames, writes a screenshot and exits 0. The screenshot's
+// render region must show the aerial image and the plot regions must hold drawn curves.
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <OpenImageIO/imageio.h>
+
+#include "airr/optics/assets.hpp"
+#include "test_helpers.hpp"
+
+using namespace airr;
+
+namespace {
+
+struct rgb8_image {
+  int width = 0, height = 0;
+  std::vector<unsigned char> px;
+  const unsigned char* at(int x, int y) const { return px.data() + 3 * (std::size_t(y) * width + x); }
+};
+
+rgb8_image read_png(const std::string& path) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return {};
+  rgb8_image img{in->spec().width, in->spec().height, {}};
+  img.px.resize(std::size_t(img.width) * img.height * 3);
+  in->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, img.px.data());
+  return img;
+}
+
+struct region_stats {
+  double mean = 0, stddev = 0;
+  int count = 0;
+};
+
+// Mean and spread of grey level inside r, optionally excluding the rectangle `hole`.
+region_stats grey_stats(const rgb8_image& img, const std::array<int, 4>& r, const std::array<int, 4>* hole = nullptr) {
+  double sum = 0, sum2 = 0;
+  int n = 0;
+  for (int y = std::max(0, r[1]); y < std::min(img.height, r[3]); ++y) {
+    for (int x = std::max(0, r[0]); x < std::min(img.width, r[2]); ++x) {
+      if (hole && x >= (*hole)[0] && x < (*hole)[2] && y >= (*hole)[1] && y < (*hole)[3]) continue;
+      const unsigned char* p = img.at(x, y);
+      const double g = (p[0] + p[1] + p[2]) / 3.0;
+      sum += g;
+      sum2 += g * g;
+      ++n;
+    }
+  }
+  region_stats s;
+  s.count = n;
+  if (n) {
+    s.mean = sum / n;
+    s.stddev = std::sqrt(std::max(0.0, sum2 / n - s.mean * s.mean));
+  }
+  return s;
+}
+
+// Pixels close to a curve colour (the plot palette's first two entries).
+int curve_pixels(const rgb8_image& img, const std::array<int, 4>& r, std::array<int, 3> colour) {
+  int n = 0;
+  for (int y = std::max(0, r[1]); y < std::min(img.height, r[3]); ++y) {
+    for (int x = std::max(0, r[0]); x < std::min(img.width, r[2]); ++x) {
+      const unsigned char* p = img.at(x, y);
+      if (std::abs(p[0] - colour[0]) + std::abs(p[1] - colour[1]) + std::abs(p[2] - colour[2]) < 60) ++n;
+    }
+  }
+  return n;
+}
+
+std::array<int, 4> region(const nlohmann::json& j, const char* name) {
+  const auto& r = j.at("regions").at(name);
+  return {int(r[0].get<double>()) + 1, int(r[1].get<double>()) + 1, int(r[2].get<double>()) - 1, int(r[3].get<double>()) - 1};
+}
+
+}  // namespace
+
+TEST(Gui, ScriptedRunShowsTheAerialImageAndPlots) {
+  test::temp_dir dir;
+  const std::string shot = dir.file("studio.png");
+  const std::string cmd = "XDG_CONFIG_HOME=" + dir.file("config") + " xvfb-run -a -s '-screen 0 1600x1000x24' " +
+                          std::string(AIRR_STUDIO) + " " + default_scene_path() +
+                          " --set retroreflector.tilt_deg=15 --set floating_distance_mm=200 --frames 20 --screenshot " +
+                          shot + " > " + dir.file("log.txt") + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  std::ifstream log(dir.file("log.txt"));
+  const std::string log_text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(status, 0) << log_text;
+
+  const rgb8_image img = read_png(shot);
+  ASSERT_GT(img.width, 0) << "no screenshot: " << log_text;
+  const auto regions = nlohmann::json::parse(std::ifstream(shot + ".json"));
+  EXPECT_EQ(regions.at("width").get<int>(), img.width);
+
+  // The render: not uniform, and the aerial image is brighter than the black around it.
+  const auto render = region(regions, "render_image");
+  const auto aerial = region(regions, "render_aerial_image");
+  const region_stats whole = grey_stats(img, render);
+  const region_stats inside = grey_stats(img, aerial);
+  const region_stats outside = grey_stats(img, render, &aerial);
+  EXPECT_GT(whole.count, 10000);
+  EXPECT_GT(whole.stddev, 20.0);
+  EXPECT_GT(inside.mean, outside.mean + 40.0) << "inside " << inside.mean << " outside " << outside.mean;
+
+  // Every plot holds a drawn curve in the palette's first colour.
+  for (const char* plot : {"plot_mtf", "plot_psf", "plot_sweep"}) {
+    EXPECT_GT(curve_pixels(img, region(regions, plot), {80, 160, 255}), 100) << plot;
+  }
+  // The MTF plot also shows the curve measured on the render (the test chart has a slanted edge).
+  EXPECT_GT(curve_pixels(img, region(regions, "plot_mtf"), {255, 150, 60}), 100);
+}
+
+TEST(Gui, BadSceneFailsBeforeOpeningAWindow) {
+  test::temp_dir dir;
+  const std::string bad = dir.file("bad.json");
+  std::ofstream(bad) << "{";
+  const std::string cmd = std::string(AIRR_STUDIO) + " " + bad + " > " + dir.file("log.txt") + " 2>&1";
+  EXPECT_NE(std::system(cmd.c_str()), 0);
+  std::ifstream log(dir.file("log.txt"));
+  std::string line;
+  std::getline(log, line);
+  EXPECT_NE(line.find("malformed JSON"), std::string::npos) << line;
+}
