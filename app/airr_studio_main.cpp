@@ -25,6 +25,7 @@ struct options {
   int frames = 0;
   std::string screenshot;
   int bench_edits = 0;
+  int threads = 0;
 };
 
 struct app_state {
@@ -71,6 +72,7 @@ int main(int argc, char** argv) {
   cli.add_option("--screenshot", opt.screenshot, "After the scripted frames, save the window as PNG");
   cli.add_option("--bench-edits", opt.bench_edits, "Measure edit-to-image latency over this many edits, then exit")
       ->check(CLI::Range(1, 100000));
+  cli.add_option("--threads", opt.threads, "Tracer threads (0: all cores)")->check(CLI::Range(0, 1024));
   CLI11_PARSE(cli, argc, argv);
   if (!opt.screenshot.empty() && opt.frames == 0) opt.frames = 60;
 
@@ -130,6 +132,8 @@ int main(int argc, char** argv) {
     if (count > 0) airr::ui::studio_drop_file(*a->st, paths[0]);
   });
 
+  st.session_options.threads = opt.threads;
+  st.session_options.background_priority = true;
   airr::ui::studio_start(st, as_saved, path);
   st.doc = s;  // --set overrides show as unsaved changes
   st.status = "opened " + path;

@@ -12,6 +12,7 @@
 
 #include "airr/optics/assets.hpp"
 #include "airr/optics/layout.hpp"
+#include "airr/optics/retro_model.hpp"
 #include "airr/analysis/image_read.hpp"
 #include "airr/analysis/mtf_metrics.hpp"
 #include "airr/analysis/psf_mtf.hpp"
@@ -60,6 +61,20 @@ void compare_routes(const char* preset) {
     if (const double t = env_or("TRUNC", 0); t > 0) {
       psf_samples q = ps; q.offset_mm.clear(); q.weight.clear();
       for (std::size_t i = 0; i < ps.offset_mm.size(); ++i) if (std::abs(ps.offset_mm[i].x) < t) { q.offset_mm.push_back(ps.offset_mm[i]); q.weight.push_back(ps.weight[i]); }
+      ps = q;
+    }
+    if (env_or("FIELD", 0) > 0) {
+      const auto model = make_retro_model(s.retroreflector.model, s.base_dir);
+      const auto cam = make_camera(s);
+      psf_samples q;
+      const int k = 9;
+      for (int i = 0; i < k; ++i) {
+        const double y = ((i + 0.5) / k - 0.5) * cam.height * cam.mm_per_pixel;
+        const auto part = sample_psf(s, *model, {.samples = 100000 / k, .seed = s.seed + i}, glm::dvec3(0, y, s.floating_distance_mm));
+        q.offset_mm.insert(q.offset_mm.end(), part.offset_mm.begin(), part.offset_mm.end());
+        q.weight.insert(q.weight.end(), part.weight.begin(), part.weight.end());
+      }
+      std::printf("centre-psf mean %.4f\n", psf_route_mtf(ps, make_camera(s).mm_per_pixel).mean_mtf);
       ps = q;
     }
     const mtf_summary psf = psf_route_mtf(ps, make_camera(s).mm_per_pixel);

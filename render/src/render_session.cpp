@@ -1,6 +1,11 @@
 #include "airr/render/render_session.hpp"
 
+#include <algorithm>
 #include <chrono>
+
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
 #include "airr/optics/error.hpp"
 #include "parallel_rows.hpp"
@@ -71,18 +76,71 @@ render_snapshot render_session::wait_for(std::uint64_t gen, std::uint64_t spp) c
   return snapshot_;
 }
 
+namespace detail {
+void lower_thread_priority() {
+  thread_local bool done = false;
+  if (done) return;
+  done = true;
+  ::setpriority(PRIO_PROCESS, pid_t(::syscall(SYS_gettid)), 10);
+}
+}  // namespace detail
+
 bool render_session::render_wave(std::uint64_t first, std::uint64_t count, std::vector<double>& sums,
                                  std::uint64_t& rays) {
   const int h = scene_.camera.height;
   std::atomic<std::uint64_t> total_rays{0};
   std::atomic<bool> complete{true};
   detail::parallel_rows(h, params_.threads, [&](int y0, int y1) {
+    if (params_.background_priority) detail::lower_thread_priority();
     std::uint64_t local = 0;
     if (!trace_rows(scene_, y0, y1, first, count, sums, cancel_, local)) complete = false;
     total_rays += local;
   });
   rays += total_rays;
   return complete && !cancel_;
+}
+
+bool render_session::render_preview(std::vector<float>& rgb, std::uint64_t& rays) {
+  const int w = scene_.camera.width, h = scene_.camera.height, n = params_.preview_stride;
+  rgb.assign(std::size_t(w) * h * 3, 0.0f);
+  std::atomic<std::uint64_t> total{0};
+  detail::parallel_rows((h + n - 1) / n, params_.threads, [&](int r0, int r1) {
+    if (params_.background_priority) detail::lower_thread_priority();
+    std::uint64_t local = 0;
+    for (int r = r0; r < r1 && !cancel_.load(std::memory_order_relaxed); ++r) {
+      for (int x0 = 0; x0 < w; x0 += n) {
+        const glm::vec3 L = trace_sample(scene_, x0, r * n, 0, local);
+        for (int y = r * n; y < std::min(h, (r + 1) * n); ++y) {
+          for (int x = x0; x < std::min(w, x0 + n); ++x) {
+            float* p = rgb.data() + 3 * (std::size_t(y) * w + x);
+            p[0] = L.x;
+            p[1] = L.y;
+            p[2] = L.z;
+          }
+        }
+      }
+    }
+    total += local;
+  });
+  rays += total;
+  return !cancel_;
+}
+
+void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb) {
+  auto shared = std::make_shared<const std::vector<float>>(std::move(rgb));
+  std::lock_guard lock(mutex_);
+  if (gen != generation_) return;
+  snapshot_.generation = gen;
+  snapshot_.spp = 0;
+  snapshot_.preview = true;
+  snapshot_.width = scene_.camera.width;
+  snapshot_.height = scene_.camera.height;
+  snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
+  snapshot_.rgb = std::move(shared);
+  snapshot_.rays = 0;
+  snapshot_.seconds = 0;
+  snapshot_.error.clear();
+  changed_.notify_all();
 }
 
 void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::vector<double>& sums,
@@ -98,6 +156,7 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::ve
   snapshot_.height = scene_.camera.height;
   snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
   snapshot_.rgb = std::move(rgb);
+  snapshot_.preview = false;
   snapshot_.rays = rays;
   snapshot_.seconds = seconds;
   snapshot_.error.clear();
@@ -139,6 +198,12 @@ void render_session::run() {
           snapshot_.generation = gen;
           snapshot_.error = error;
           changed_.notify_all();
+        } else if (params_.preview_stride > 1 && !pending_) {
+          lock.unlock();
+          std::vector<float> preview;
+          std::uint64_t preview_rays = 0;
+          if (render_preview(preview, preview_rays)) publish_preview(gen, std::move(preview));
+          lock.lock();
         }
         continue;
       }

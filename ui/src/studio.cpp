@@ -26,7 +26,7 @@ void studio_start(studio& st, const scene& s, const std::string& path) {
   st.applied_json = st.saved_json;
   st.doc_error.clear();
   if (!st.session) {
-    st.session = std::make_unique<render_session>(s);
+    st.session = std::make_unique<render_session>(s, st.session_options);
     st.generation = 0;
   } else {
     st.generation = st.session->edit(s);

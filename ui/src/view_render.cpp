@@ -28,7 +28,7 @@ void draw_render_view(studio& st, double now) {
   const render_snapshot snap = st.session->snapshot();
   const float exposure = float(default_exposure(st.doc) * std::exp2(st.settings.exposure_ev));
 
-  if (snap.rgb && snap.spp > 0 &&
+  if (snap.rgb && (snap.spp > 0 || snap.preview) &&
       (snap.generation != st.view.uploaded_generation || snap.spp != st.view.uploaded_spp ||
        exposure != st.view.uploaded_exposure)) {
     const bool first_of_edit = snap.generation != st.view.uploaded_generation;
@@ -38,7 +38,7 @@ void draw_render_view(studio& st, double now) {
       st.edit_time = -1;
     }
     // Measure the render's MTF at most twice a second, on new samples only.
-    if (now - st.last_measure_time > 0.5 && snap.spp != st.last_measured_spp) {
+    if (!snap.preview && now - st.last_measure_time > 0.5 && snap.spp != st.last_measured_spp) {
       st.analysis.submit_render(snap, st.doc);
       st.last_measure_time = now;
       st.last_measured_spp = snap.spp;
@@ -60,8 +60,8 @@ void draw_render_view(studio& st, double now) {
   ImGui::SliderFloat("exposure (EV)", &st.settings.exposure_ev, -6.0f, 6.0f, "%+.1f");
   ImGui::SameLine();
   const double rays_per_s = snap.seconds > 0 ? double(snap.rays) / snap.seconds : 0.0;
-  ImGui::Text("%llu spp  %.1f Mrays/s  %.1f s%s", static_cast<unsigned long long>(snap.spp), rays_per_s * 1e-6,
-              snap.seconds, st.view.paused ? "  (paused)" : "");
+  ImGui::Text("%llu spp  %.1f Mrays/s  %.1f s%s%s", static_cast<unsigned long long>(snap.spp), rays_per_s * 1e-6,
+              snap.seconds, snap.preview ? "  (preview)" : "", st.view.paused ? "  (paused)" : "");
   if (!snap.error.empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", snap.error.c_str());
 
   // Image area: fit the image, then zoom about the cursor and pan by dragging.

@@ -42,6 +42,7 @@ struct studio {
   std::uint64_t generation = 0;
 
   std::unique_ptr<render_session> session;
+  session_params session_options;  // threads for the tracer (0: all cores)
   analysis_worker analysis;
   studio_settings settings;
   render_view_state view;
