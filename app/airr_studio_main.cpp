@@ -134,6 +134,8 @@ int main(int argc, char** argv) {
 
   st.session_options.threads = opt.threads;
   st.session_options.background_priority = true;
+  st.keep_recovery = opt.frames == 0 && opt.bench_edits == 0;
+  if (st.keep_recovery) airr::ui::studio_check_recovery(st);
   airr::ui::studio_start(st, as_saved, path);
   st.doc = s;  // --set overrides show as unsaved changes
   st.status = "opened " + path;
@@ -223,6 +225,7 @@ int main(int argc, char** argv) {
   if (opt.frames == 0 && opt.bench_edits == 0) {
     glfwGetWindowSize(window, &st.settings.window_width, &st.settings.window_height);
     airr::ui::save_settings(st.settings);
+    airr::ui::studio_clear_recovery();  // a clean exit: the user saved or chose to discard
   }
   st.session->stop();
   ImGui_ImplOpenGL3_Shutdown();

@@ -8,7 +8,7 @@ packages=(
   libembree-dev libtbb-dev libglm-dev
   libopenimageio-dev openimageio-tools libtinygltf-dev nlohmann-json3-dev libcli11-dev
   libopencv-dev
-  libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri xvfb xauth fonts-dejavu-core
+  libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri xvfb xauth x11-xserver-utils fonts-dejavu-core
   libgtest-dev libgmock-dev
 )
 

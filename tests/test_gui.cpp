@@ -125,3 +125,29 @@ TEST(Gui, BadSceneFailsBeforeOpeningAWindow) {
   std::getline(log, line);
   EXPECT_NE(line.find("malformed JSON"), std::string::npos) << line;
 }
+
+TEST(Gui, FontsAndSizesFollowTheContentScale) {
+  // The same window at 96 and at 192 dpi (Xft.dpi, read by GLFW): every panel doubles in size.
+  test::temp_dir dir;
+  auto run = [&](int dpi, const std::string& shot) {
+    const std::string script = dir.file("run" + std::to_string(dpi) + ".sh");
+    std::ofstream(script) << "echo 'Xft.dpi: " << dpi << "' | xrdb -nocpp -merge\n"
+                          << "XDG_CONFIG_HOME=" << dir.file("config" + std::to_string(dpi)) << " " << AIRR_STUDIO << " "
+                          << default_scene_path() << " --frames 10 --screenshot " << shot << "\n";
+    // -noreset keeps the resource database alive between xrdb and the app.
+    const std::string cmd = "xvfb-run -a -s '-noreset -screen 0 3400x2200x24' bash " + script + " > " +
+                            dir.file("log" + std::to_string(dpi) + ".txt") + " 2>&1";
+    return std::system(cmd.c_str());
+  };
+  ASSERT_EQ(run(96, dir.file("s1.png")), 0);
+  ASSERT_EQ(run(192, dir.file("s2.png")), 0);
+  const auto r1 = nlohmann::json::parse(std::ifstream(dir.file("s1.png.json")));
+  const auto r2 = nlohmann::json::parse(std::ifstream(dir.file("s2.png.json")));
+  EXPECT_EQ(r2.at("width").get<int>(), 2 * r1.at("width").get<int>());
+  for (const char* name : {"plot_mtf", "render_image"}) {
+    const auto& a = r1.at("regions").at(name);
+    const auto& b = r2.at("regions").at(name);
+    const double w1 = a[2].get<double>() - a[0].get<double>(), w2 = b[2].get<double>() - b[0].get<double>();
+    EXPECT_NEAR(w2 / w1, 2.0, 0.1) << name;
+  }
+}

@@ -93,6 +93,17 @@ void compare_routes(const char* preset) {
       std::printf("window %.1f px roi %d\n", c.window_half_width_px, c.roi.width);
       for (int k = 0; k <= 10; ++k) std::printf("  f %.1f psf %.4f edge %.4f\n", pc.lp_per_mm[k], pc.mtf[k], analysis::interpolate_mtf(c, pc.lp_per_mm[k] * snap.mm_per_pixel));
     }
+    if (env_or("WINDOWED", 0) > 0) {
+      cv::Mat rgb(snap.height, snap.width, CV_32FC3, const_cast<float*>(snap.rgb->data()));
+      const auto c = analysis::slanted_edge_mtf(analysis::rec709_luminance(rgb), {.roi = source_image_roi(s, 1.0)});
+      const double hw = c.window_half_width_px * snap.mm_per_pixel;
+      psf_samples q = ps;
+      for (std::size_t i = 0; i < q.weight.size(); ++i) {
+        const double t = q.offset_mm[i].x / hw;
+        q.weight[i] *= std::abs(t) < 1 ? 0.54 + 0.46 * std::cos(M_PI * t) : 0.0;
+      }
+      std::printf("windowed psf (hw %.1f mm) mean %.4f diff %+.4f\n", hw, psf_route_mtf(q, snap.mm_per_pixel).mean_mtf, edge.mean_mtf - psf_route_mtf(q, snap.mm_per_pixel).mean_mtf);
+    }
     EXPECT_NEAR(edge.mean_mtf, psf.mean_mtf, 0.03) << (preset ? preset : "ideal") << " D " << d;
   }
 }

@@ -167,6 +167,75 @@ bool studio_export_plots(studio& st, const std::string& path) {
   }
 }
 
+// ---------------------------------------------------------------- recovery
+
+static std::string recovery_path() { return config_dir() + "/recovery.json"; }
+
+void studio_keep_recovery(studio& st, double now) {
+  if (!st.keep_recovery) return;
+  if (!studio_dirty(st)) {
+    if (st.last_recovery_write >= 0) studio_clear_recovery();
+    st.last_recovery_write = -1;
+    return;
+  }
+  if (st.last_recovery_write >= 0 && now - st.last_recovery_write < 10.0) return;
+  st.last_recovery_write = now;
+  const nlohmann::json j = {{"path", st.doc_path}, {"base_dir", st.doc.base_dir}, {"scene", scene_to_json(st.doc)}};
+  try {
+    write_file_atomic(recovery_path(), j.dump(2) + "\n");
+  } catch (const std::exception& e) {
+    st.status = std::string("cannot write the recovery copy: ") + e.what();
+  }
+}
+
+void studio_clear_recovery() {
+  std::error_code ec;
+  fs::remove(recovery_path(), ec);
+}
+
+void studio_check_recovery(studio& st) {
+  std::error_code ec;
+  if (!fs::exists(recovery_path(), ec)) return;
+  try {
+    st.recovery_text = read_text_file(recovery_path());
+  } catch (const std::exception&) {
+    st.recovery_text.clear();
+  }
+}
+
+static void draw_recovery_prompt(studio& st) {
+  if (st.recovery_text.empty()) return;
+  if (!st.recovery_offered) {
+    ImGui::OpenPopup("Recover unsaved changes?");
+    st.recovery_offered = true;
+  }
+  if (ImGui::BeginPopupModal("Recover unsaved changes?", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    ImGui::TextUnformatted("A previous session ended with unsaved changes.");
+    if (ImGui::Button("Recover")) {
+      try {
+        const auto j = nlohmann::json::parse(st.recovery_text);
+        scene s = scene_from_json(j.at("scene"), recovery_path());
+        s.base_dir = j.value("base_dir", std::string());
+        st.doc = s;
+        st.doc_path = j.value("path", std::string());
+        st.saved_json = nlohmann::json();  // recovered edits are unsaved
+        st.status = "recovered unsaved changes" + (st.doc_path.empty() ? std::string() : " of " + st.doc_path);
+      } catch (const std::exception& e) {
+        st.status = std::string("cannot recover: ") + e.what();
+      }
+      st.recovery_text.clear();
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::SameLine();
+    if (ImGui::Button("Discard")) {
+      studio_clear_recovery();
+      st.recovery_text.clear();
+      ImGui::CloseCurrentPopup();
+    }
+    ImGui::EndPopup();
+  }
+}
+
 // ---------------------------------------------------------------- frame
 
 static std::string start_dir(const studio& st) {
@@ -329,8 +398,10 @@ void studio_frame(studio& st, double now) {
   ImGui::End();
 
   draw_save_prompt(st);
+  draw_recovery_prompt(st);
   handle_dialog(st);
   studio_apply_edits(st, now);
+  studio_keep_recovery(st, now);
 }
 
 }  // namespace airr::ui

@@ -1,5 +1,6 @@
 // The render view: the progressive image with its statistics, pause/resume, exposure, zoom and
 // pan, and a cursor readout of the pixel value and its position on the aerial-image plane.
+#include <algorithm>
 #include <cmath>
 
 #include <imgui.h>
@@ -58,6 +59,19 @@ void draw_render_view(studio& st, double now) {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(8 * ImGui::GetFontSize());
   ImGui::SliderFloat("exposure (EV)", &st.settings.exposure_ev, -6.0f, 6.0f, "%+.1f");
+  ImGui::SameLine();
+  if (ImGui::Button("Auto") && snap.rgb) {
+    // The 99th percentile of luminance maps to 90% of white.
+    std::vector<float> lum(std::size_t(snap.width) * snap.height);
+    for (std::size_t i = 0; i < lum.size(); ++i) {
+      lum[i] = 0.2126f * (*snap.rgb)[3 * i] + 0.7152f * (*snap.rgb)[3 * i + 1] + 0.0722f * (*snap.rgb)[3 * i + 2];
+    }
+    auto q = lum.begin() + std::ptrdiff_t(0.99 * double(lum.size() - 1));
+    std::nth_element(lum.begin(), q, lum.end());
+    const double base = default_exposure(st.doc);
+    if (*q > 0) st.settings.exposure_ev = std::clamp(float(std::log2(0.9 / (*q * base))), -6.0f, 6.0f);
+  }
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("0 EV shows a white source seen through a lossless retroreflector as white");
   ImGui::SameLine();
   const double rays_per_s = snap.seconds > 0 ? double(snap.rays) / snap.seconds : 0.0;
   ImGui::Text("%llu spp  %.1f Mrays/s  %.1f s%s%s", static_cast<unsigned long long>(snap.spp), rays_per_s * 1e-6,

@@ -60,6 +60,12 @@ struct studio {
   // Screen rectangles (x0, y0, x1, y1) of what scripted runs check: "render_image", "plot_mtf", ...
   std::map<std::string, std::array<float, 4>> regions;
 
+  // Crash recovery: unsaved edits are copied to config_dir()/recovery.json every few seconds.
+  bool keep_recovery = true;  // off in scripted runs
+  double last_recovery_write = -1;
+  bool recovery_offered = false;
+  std::string recovery_text;  // a recovery file found at start, offered to the user
+
   // Latency measurement: when the last edit was applied, and when its first image was shown.
   double edit_time = -1;
   std::vector<double> edit_latencies_ms;
@@ -78,6 +84,13 @@ bool studio_save(studio& st, const std::string& path);  // atomic; false with st
 void studio_drop_file(studio& st, const std::string& path);
 bool studio_export_render(studio& st, const std::string& path);
 bool studio_export_plots(studio& st, const std::string& path);
+
+// Writes or removes the recovery copy as the dirty state requires; call once per frame.
+void studio_keep_recovery(studio& st, double now_seconds);
+// Removes the recovery copy (after a clean exit).
+void studio_clear_recovery();
+// Looks for a recovery copy left by a session that did not exit cleanly.
+void studio_check_recovery(studio& st);
 
 // Runs the whole UI for one frame (menus, panels, dialogs).
 void studio_frame(studio& st, double now_seconds);
