@@ -1,4 +1,5 @@
 // The model PSF and the rendered slanted edge measure the same MTF; airr psf and airr sweep.
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -46,6 +47,8 @@ scene two_route_scene(const std::string& chart, const char* preset, double d) {
   if (preset) {
     s.retroreflector.model.type = retro_model_type::sinc_shift;
     s.retroreflector.model.preset = preset;
+    if (const char* c = std::getenv("CMM")) s.retroreflector.model.c_mm = std::atof(c);
+    if (const char* c = std::getenv("AMM")) s.retroreflector.model.a_per_mm = std::atof(c);
   }
   return s;
 }
@@ -103,6 +106,27 @@ void compare_routes(const char* preset) {
         q.weight[i] *= std::abs(t) < 1 ? 0.54 + 0.46 * std::cos(M_PI * t) : 0.0;
       }
       std::printf("windowed psf (hw %.1f mm) mean %.4f diff %+.4f\n", hw, psf_route_mtf(q, snap.mm_per_pixel).mean_mtf, edge.mean_mtf - psf_route_mtf(q, snap.mm_per_pixel).mean_mtf);
+    }
+    if (env_or("SYNTH", 0) > 0) {
+      const double ang = 5.0 * M_PI / 180, px = snap.mm_per_pixel;
+      std::vector<std::pair<double, double>> u;
+      double tot = 0;
+      for (std::size_t i = 0; i < ps.weight.size(); ++i) { u.push_back({std::cos(ang) * ps.offset_mm[i].x - std::sin(ang) * ps.offset_mm[i].y, ps.weight[i]}); tot += ps.weight[i]; }
+      std::sort(u.begin(), u.end());
+      std::vector<double> keys, cum; double acc = 0;
+      for (auto& [k, w] : u) { acc += w; keys.push_back(k); cum.push_back(acc / tot); }
+      auto esf = [&](double d) { const auto it = std::lower_bound(keys.begin(), keys.end(), d); const std::size_t i = it - keys.begin(); return i == 0 ? 0.0 : cum[i - 1]; };
+      cv::Mat img(snap.height, snap.width, CV_64FC1);
+      for (int y = 0; y < snap.height; ++y) for (int x = 0; x < snap.width; ++x) {
+        double v = 0;
+        for (int j = 0; j < 4; ++j) for (int i = 0; i < 4; ++i) {
+          const double xx = (x + (i + 0.5) / 4 - 0.5 * snap.width) * px, yy = (y + (j + 0.5) / 4 - 0.5 * snap.height) * px;
+          v += esf(std::cos(ang) * xx + std::sin(ang) * yy);
+        }
+        img.at<double>(y, x) = v / 16;
+      }
+      const auto c = analysis::slanted_edge_mtf(img, {.roi = source_image_roi(s, 1.0)});
+      std::printf("synthetic edge from psf: mean %.4f (window %.1f px)\n", analysis::mean_mtf(c, px).value, c.window_half_width_px);
     }
     EXPECT_NEAR(edge.mean_mtf, psf.mean_mtf, 0.03) << (preset ? preset : "ideal") << " D " << d;
   }

@@ -101,7 +101,7 @@ TEST(SincLobe, DensityIntegratesToOne) {
 }
 
 TEST(SincShift, NeverReturnsMoreEnergyThanItReceives) {
-  const sinc_shift_retro model({.a_per_mm = {0.05}, .mu = {0.9}}, nullptr);
+  const sinc_shift_retro model({.theta_deg = {}, .a_per_mm = {0.05}, .mu = {0.9}, .c_mm = 0.0, .reference_distance_mm = 300.0}, nullptr);
   for (double theta : {0.0, 30.0, 60.0, 85.0}) {
     const double t = theta * std::numbers::pi / 180;
     const glm::dvec3 wi(std::sin(t), 0, std::cos(t));
@@ -113,11 +113,15 @@ TEST(SincShift, NeverReturnsMoreEnergyThanItReceives) {
       for (auto& u : r.u) u = rng.next_double();
       const retro_sample s = model.sample(wi, r);
       EXPECT_LE(s.weight, 1.0);
-      if (s.weight > 0) EXPECT_GT(s.wo.z, 0.0);
+      if (s.weight > 0) {
+        EXPECT_GT(s.wo.z, 0.0);
+      }
       sum += s.weight;
     }
     EXPECT_LE(sum / n, 0.9 + 1e-12) << theta;
-    if (theta == 0.0) EXPECT_NEAR(sum / n, 0.9, 0.01);  // a wide lobe still stays above the sheet
+    if (theta == 0.0) {
+      EXPECT_NEAR(sum / n, 0.9, 0.01);  // a wide lobe still stays above the sheet
+    }
   }
 }
 

@@ -2,7 +2,7 @@
 
 #include <cstdio>
 
-#include "airr/analysis/atomic_write.hpp"
+#include "airr/optics/scene_json.hpp"
 
 namespace airr::analysis {
 
@@ -19,7 +19,7 @@ std::string format_mtf_csv(const mtf_curve& curve, double mm_per_pixel) {
 }
 
 void write_mtf_csv(const std::filesystem::path& path, const mtf_curve& curve, double mm_per_pixel) {
-  write_file_atomic(path, format_mtf_csv(curve, mm_per_pixel));
+  airr::write_file_atomic(path.string(), format_mtf_csv(curve, mm_per_pixel));
 }
 
 }  // namespace airr::analysis

@@ -10,7 +10,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "airr/analysis/atomic_write.hpp"
+#include "airr/optics/scene_json.hpp"
 
 namespace airr::analysis {
 
@@ -207,7 +207,7 @@ void write_plot_png(const std::filesystem::path& path, const std::vector<plot_se
   std::vector<unsigned char> png;
   if (!cv::imencode(".png", img, png))
     throw std::runtime_error(path.string() + ": PNG encoding failed");
-  write_file_atomic(path, std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
+  airr::write_file_atomic(path.string(), std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
 }
 
 }  // namespace airr::analysis

@@ -19,12 +19,12 @@ std::string read_text_file(const std::string& path) {
   return ss.str();
 }
 
-void write_file_atomic(const std::string& path, const std::string& text) {
+void write_file_atomic(const std::string& path, std::string_view bytes) {
   const std::string tmp = path + ".tmp" + std::to_string(::getpid());
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) throw input_error(path + ": cannot write (temporary file " + tmp + ")");
-    out << text;
+    out.write(bytes.data(), std::streamsize(bytes.size()));
     out.flush();
     if (!out) {
       std::remove(tmp.c_str());

@@ -3,6 +3,7 @@
 // values are errors naming the file and the field), exact round trips, atomic saves.
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "airr/optics/scene.hpp"
@@ -41,7 +42,7 @@ scene parse_scene(const std::string& text, const std::string& origin, const std:
 void save_scene(const scene& s, const std::string& path);
 
 // Writes text to path atomically (temporary file, then rename). Throws input_error.
-void write_file_atomic(const std::string& path, const std::string& text);
+void write_file_atomic(const std::string& path, std::string_view bytes);
 std::string read_text_file(const std::string& path);
 
 }  // namespace airr
