@@ -40,7 +40,7 @@ void write_sweep_plot(const std::string& path, const airr::sweep_result& r, cons
   pp.title = d_varies ? "mean MTF over (0, 1] lp/mm against floating distance"
                       : "mean MTF over (0, 1] lp/mm against retroreflector tilt";
   pp.x_title = d_varies ? "floating distance D (mm)" : "retroreflector tilt (deg)";
-  pp.y_title = "mean MTF over (0, 1] lp/mm (1)";
+  pp.y_title = "mean MTF over (0, 1] lp/mm (unitless)";
   pp.y_min = 0.0;
   pp.y_max = 1.0;
   airr::analysis::write_plot_png(path, series, pp);

@@ -10,3 +10,4 @@ void add_mtf_command(CLI::App& app);
 void add_compare_command(CLI::App& app);
 void add_psf_command(CLI::App& app);
 void add_sweep_command(CLI::App& app);
+void add_fit_command(CLI::App& app);

@@ -1,5 +1,6 @@
 #include "sweep.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -133,8 +134,13 @@ sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_pro
       m = psf_route_mtf(psf, make_camera(s).mm_per_pixel);
     } else {
       std::uint64_t gen = 0;
-      if (!session) session = std::make_unique<render_session>(s, session_params{.threads = p.threads, .target_spp = p.spp});
-      else gen = session->edit(s);
+      if (!session) {
+        // No coarse preview: only the finished image is measured.
+        session = std::make_unique<render_session>(
+            s, session_params{.threads = p.threads, .target_spp = p.spp, .preview_stride = 1});
+      } else {
+        gen = session->edit(s);
+      }
       render_snapshot snap;
       while (true) {
         snap = session->snapshot();

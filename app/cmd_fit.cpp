@@ -1,0 +1,204 @@
+// airr fit --data DIR -o preset.json [--samples N] [--seed S]
+// airr fit --synthesise DIR [--preset rf-ay] [--samples N] [--seed S]
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "airr/analysis/fit_data.hpp"
+#include "airr/analysis/mtf_csv.hpp"
+#include "airr/analysis/psf_mtf.hpp"
+#include "airr/analysis/sheet_fit.hpp"
+#include "airr/optics/assets.hpp"
+#include "airr/optics/error.hpp"
+#include "airr/optics/layout.hpp"
+#include "airr/optics/preset.hpp"
+#include "airr/optics/retro_model.hpp"
+#include "airr/optics/scene_json.hpp"
+#include "airr/render/image.hpp"
+#include "commands.hpp"
+#include "progress_bar.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+struct options {
+  std::string data, output, synthesise, preset = "rf-ay";
+  std::uint64_t samples = 0;  // 0: the mode's default
+  std::uint64_t seed = 0;
+};
+
+std::string two_digits(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%02.0f", v);
+  return buf;
+}
+
+void run_fit(const options& opt) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const airr::analysis::fit_data data = airr::analysis::load_fit_data(opt.data);
+  airr::analysis::fit_params p;
+  if (opt.samples) p.psf_samples = opt.samples;
+  if (opt.seed) p.seed = opt.seed;
+
+  progress_bar bar("fit");
+  const auto r = airr::analysis::fit_sheet(data, p, [&](const airr::analysis::fit_progress& f) {
+    if (f.fraction < 1) bar.update(f.fraction, f.stage);
+    else bar.finish(f.stage);
+    return true;
+  });
+  airr::save_preset(r.preset, opt.output);
+
+  const json& rep = r.report;
+  std::printf("fit of %s (%zu tilts, %zu distances, %zu white squares; model PSF, %llu samples, seed %llu)\n",
+              data.dir.c_str(), data.tilt_series.size(), data.distance_series.size(), data.white_squares.size(),
+              static_cast<unsigned long long>(p.psf_samples), static_cast<unsigned long long>(p.seed));
+  std::printf("%8s %10s %11s %9s %11s\n", "tilt_deg", "a_per_mm", "a_loss", "mu", "mu_loss");
+  for (std::size_t i = 0; i < r.preset.theta_deg.size(); ++i) {
+    const json& a = rep["a"][i];
+    const double tilt = r.preset.theta_deg[i];
+    std::string mu_loss = "-";
+    for (const auto& m : rep["mu"]) {
+      if (m["tilt_deg"].get<double>() == tilt) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.3e", m["loss"].get<double>());
+        mu_loss = buf;
+      }
+    }
+    const double mu = r.preset.mu.size() == 1 ? r.preset.mu[0] : r.preset.mu[i];
+    std::printf("%8g %10.5f %11.3e %9.5f %11s%s\n", tilt, a["a_per_mm"].get<double>(), a["loss"].get<double>(), mu,
+                mu_loss.c_str(), a["minimum_checked"].get<bool>() ? "" : "  (warning: a (1 -+ 2%) has a lower loss)");
+    if (a["at_bracket_end"].get<bool>())
+      std::printf("         warning: a at tilt %g lies at the end of the search bracket\n", tilt);
+  }
+  const json& c = rep["c"];
+  const json& check = c["alternation_check"];
+  std::printf("c = %.5f mm, loss %.3e (slope of mean MTF against D: measured %.5g, simulated %.5g per mm; %d trial c "
+              "values with a(0) refitted)\n",
+              c["c_mm"].get<double>(), c["loss"].get<double>(), c["slope_measured_per_mm"].get<double>(),
+              c["slope_simulated_per_mm"].get<double>(), c["trial_c_values"].get<int>());
+  std::printf("alternation check: refitting a(0) given c moves it %.3g%%, c given a(0) moves it %.3g%% (%s %.3g%%)\n",
+              100 * check["a0_relative_change"].get<double>(), 100 * check["c_relative_change"].get<double>(),
+              check["converged"].get<bool>() ? "both below" : "warning: not both below",
+              100 * check["tolerance"].get<double>());
+  if (const std::string bound = c["bound"]; !bound.empty())
+    std::printf("warning: the slope is matched only beyond the %s end of the c bracket; c is clamped there\n", bound.c_str());
+  if (rep.contains("mu_note")) std::printf("%s\n", rep["mu_note"].get<std::string>().c_str());
+  std::printf("wrote %s\n", opt.output.c_str());
+  std::printf("run time: %.2f s (%llu PSF simulations)\n",
+              std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
+              static_cast<unsigned long long>(rep["simulations"].get<std::uint64_t>()));
+}
+
+// A data directory whose measurements the model PSF synthesises from a preset: MTF curves (with
+// the camera pixel's aperture) per tilt and distance, white-square images per tilt.
+void run_synthesise(const options& opt) {
+  const fs::path dir = opt.synthesise;
+  fs::create_directories(dir);
+  const airr::sheet_preset truth = airr::load_preset(opt.preset, fs::current_path().string());
+  const std::uint64_t samples = opt.samples ? opt.samples : 200000, seed = opt.seed ? opt.seed : 7;
+
+  // The setup: the default layout, a 64 x 64 camera of 0.25 mm pixels, a 10 mm white square.
+  airr::scene setup;
+  const std::string panel = fs::relative(fs::path(airr::asset_dir()) / "models/panel.gltf", fs::absolute(dir)).string();
+  setup.source.mesh = setup.half_mirror.mesh = setup.retroreflector.mesh = panel;
+  setup.source.image.clear();
+  setup.camera.width = setup.camera.height = 64;
+  const double pixel_mm = 0.25, square_mm = 10.0;
+  setup.camera.fov_deg = 2.0 * std::atan(0.5 * 64 * pixel_mm / setup.camera.distance_mm) * 180.0 / M_PI;
+  setup.retroreflector.model.reference_distance_mm = truth.reference_distance_mm;
+  setup.base_dir = fs::absolute(dir).string();
+  airr::save_scene(setup, (dir / "setup.json").string());
+  setup = airr::load_scene((dir / "setup.json").string());
+
+  const std::string preset_path = airr::resolve_preset_path(opt.preset, fs::current_path().string());
+  auto truth_psf = [&](double tilt, double d, airr::scene& s) {
+    s = setup;
+    s.retroreflector.tilt_deg = tilt;
+    s.floating_distance_mm = d;
+    s.retroreflector.model = {};
+    s.retroreflector.model.type = airr::retro_model_type::sinc_shift;
+    s.retroreflector.model.preset = fs::absolute(preset_path).string();
+    const auto model = airr::make_retro_model(s.retroreflector.model, s.base_dir);
+    return airr::sample_psf(s, *model, {.samples = samples, .seed = seed});
+  };
+  auto write_csv = [&](const airr::psf_samples& psf, const std::string& name) {
+    const auto c = airr::analysis::psf_mtf(psf, {.max_lp_per_mm = 2.0, .points = 101, .pixel_mm = pixel_mm});
+    airr::analysis::mtf_curve curve;
+    for (std::size_t i = 0; i < c.mtf.size(); ++i) curve.cycles_per_pixel.push_back(c.lp_per_mm[i] * pixel_mm);
+    curve.mtf = c.mtf;
+    airr::write_file_atomic((dir / name).string(), airr::analysis::format_mtf_csv(curve, pixel_mm));
+  };
+
+  json fit = {{"format", airr::analysis::fit_data_format},
+              {"version", airr::analysis::fit_data_version},
+              {"name", "synthetic " + truth.name},
+              {"note", "synthesised by `airr fit --synthesise` from preset " + opt.preset + " with the model PSF (" +
+                           std::to_string(samples) + " samples, seed " + std::to_string(seed) +
+                           "); MTF curves include the 0.25 mm camera pixel's aperture"},
+              {"scene", "setup.json"},
+              {"tilt_series", json::array()},
+              {"distance_series", json::array()},
+              {"white_squares", json::array()}};
+  progress_bar bar("synthesise");
+  const int steps = 10 + 7 + 10;
+  int done = 0;
+  airr::scene s;
+  for (int t = 0; t <= 45; t += 5) {
+    bar.update(double(done++) / steps, "tilt " + std::to_string(t));
+    const auto psf = truth_psf(t, 150, s);
+    const std::string csv = "tilt_" + two_digits(t) + ".csv", white = "white_" + two_digits(t) + ".exr";
+    write_csv(psf, csv);
+    fit["tilt_series"].push_back({{"tilt_deg", t}, {"floating_distance_mm", 150}, {"mtf_csv", csv}});
+
+    bar.update(double(done++) / steps, "white square at tilt " + std::to_string(t));
+    const cv::Mat img = airr::analysis::white_square_image(s, psf, square_mm, square_mm);
+    airr::image_rgb rgb{img.cols, img.rows, std::vector<float>(std::size_t(img.total()) * 3)};
+    for (int y = 0; y < img.rows; ++y)
+      for (int x = 0; x < img.cols; ++x)
+        for (int k = 0; k < 3; ++k) rgb.at(x, y)[k] = float(img.at<double>(y, x));
+    char mm[64];
+    std::snprintf(mm, sizeof mm, "%.17g", airr::make_camera(s).mm_per_pixel);
+    airr::write_image((dir / white).string(), rgb, {{"airr:mm_per_pixel", mm}, {"airr:generator", "airr fit --synthesise"}});
+    fit["white_squares"].push_back({{"tilt_deg", t}, {"image", white}, {"square_mm", square_mm}});
+  }
+  for (int d = 150; d <= 300; d += 25) {
+    bar.update(double(done++) / steps, "D " + std::to_string(d) + " mm");
+    const std::string csv = "distance_" + std::to_string(d) + ".csv";
+    write_csv(truth_psf(0, d, s), csv);
+    fit["distance_series"].push_back({{"floating_distance_mm", d}, {"tilt_deg", 0}, {"mtf_csv", csv}});
+  }
+  airr::write_file_atomic((dir / "fit.json").string(), fit.dump(2) + "\n");
+  bar.finish(std::to_string(steps) + " measurements");
+  std::printf("wrote %s (fit.json, setup.json, 17 MTF CSVs, 10 white-square EXRs) from preset %s\n",
+              dir.string().c_str(), preset_path.c_str());
+}
+
+}  // namespace
+
+void add_fit_command(CLI::App& app) {
+  auto opt = std::make_shared<options>();
+  auto* cmd = app.add_subcommand("fit", "Fit the sinc-shift model's a (per tilt), c and mu (per tilt) to measurements "
+                                        "and write a preset");
+  auto* data = cmd->add_option("--data", opt->data, "Fit data directory holding fit.json (see assets/fit_example)");
+  cmd->add_option("-o,--output", opt->output, "Preset file to write (with --data)");
+  auto* synth = cmd->add_option("--synthesise", opt->synthesise,
+                                "Instead of fitting, write a data directory synthesised from --preset by the model PSF");
+  cmd->add_option("--preset", opt->preset, "With --synthesise: the preset to synthesise from (default rf-ay)");
+  cmd->add_option("--samples", opt->samples,
+                  "PSF samples per simulation (fit default 20000; --synthesise default 200000)")
+      ->check(CLI::Range(std::uint64_t(100), std::uint64_t(100000000)));
+  cmd->add_option("--seed", opt->seed, "Random seed of the PSF samples (fit default 1; --synthesise default 7)");
+  data->excludes(synth);
+  cmd->callback([opt] {
+    if (!opt->synthesise.empty()) return run_synthesise(*opt);
+    if (opt->data.empty()) throw airr::input_error("fit: give --data DIR (or --synthesise DIR)");
+    if (opt->output.empty()) throw airr::input_error("fit: give -o preset.json for the fitted preset");
+    run_fit(*opt);
+  });
+}
