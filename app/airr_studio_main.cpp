@@ -26,6 +26,8 @@ struct options {
   std::string screenshot;
   int bench_edits = 0;
   int threads = 0;
+  std::string fit_dir;
+  std::string save_as;
 };
 
 struct app_state {
@@ -73,6 +75,8 @@ int main(int argc, char** argv) {
   cli.add_option("--bench-edits", opt.bench_edits, "Measure edit-to-image latency over this many edits, then exit")
       ->check(CLI::Range(1, 100000));
   cli.add_option("--threads", opt.threads, "Tracer threads (0: all cores)")->check(CLI::Range(0, 1024));
+  cli.add_option("--fit", opt.fit_dir, "Open the fit window and fit this data directory (scripted runs apply the result)");
+  cli.add_option("--save-as", opt.save_as, "After a scripted run, save the scene to this file");
   CLI11_PARSE(cli, argc, argv);
   if (!opt.screenshot.empty() && opt.frames == 0) opt.frames = 60;
 
@@ -139,6 +143,16 @@ int main(int argc, char** argv) {
   airr::ui::studio_start(st, as_saved, path);
   st.doc = s;  // --set overrides show as unsaved changes
   st.status = "opened " + path;
+  if (!opt.fit_dir.empty()) {
+    st.show_fit = true;
+    st.fit_dir = opt.fit_dir;
+    try {
+      st.fit_job_ = std::make_unique<airr::ui::fit_job>(opt.fit_dir);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return 1;
+    }
+  }
 
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
@@ -146,6 +160,7 @@ int main(int argc, char** argv) {
   std::vector<double> frame_ms;
   int frame = 0, edits_done = 0;
   bool screenshot_pending = !opt.screenshot.empty();
+  int settle_frames = 0;
   int exit_code = 0;
 
   while (true) {
@@ -178,11 +193,27 @@ int main(int argc, char** argv) {
     ++frame;
 
     if (opt.frames > 0 && frame >= opt.frames) {
+      if (st.fit_job_ && st.fit_job_->running()) {
+        glfwSwapBuffers(window);  // a scripted fit runs to its end before the run finishes
+        continue;
+      }
+      if (st.fit_job_ && !st.fit_applied) {
+        st.fit_applied = true;
+        if (const auto r = st.fit_job_->result()) {
+          airr::ui::apply_fitted_preset(st, r->preset);
+        } else {
+          std::fprintf(stderr, "error: fit failed: %s\n", st.fit_job_->error().c_str());
+          exit_code = 1;
+        }
+        glfwSwapBuffers(window);
+        continue;
+      }
       if (screenshot_pending) {
-        // The last frames show the finished plots and at least a few samples of the edited layout.
+        // A few frames after the last edit was applied, showing the finished plots and at least
+        // a few samples of the final layout.
         st.session->wait_for(st.generation, 4);
         st.analysis.wait_idle();
-        if (frame < opt.frames + 3) {
+        if (++settle_frames < 3) {
           glfwSwapBuffers(window);
           continue;
         }
@@ -201,6 +232,10 @@ int main(int argc, char** argv) {
           std::fprintf(stderr, "error: %s\n", e.what());
           exit_code = 1;
         }
+      }
+      if (!opt.save_as.empty() && !airr::ui::studio_save(st, opt.save_as)) {
+        std::fprintf(stderr, "error: %s\n", st.status.c_str());
+        exit_code = 1;
       }
       if (opt.bench_edits == 0) break;
     }

@@ -308,6 +308,8 @@ static void draw_menu(studio& st) {
                         "plots.csv");
     }
     ImGui::Separator();
+    if (ImGui::MenuItem("Fit a sheet preset...")) st.show_fit = true;
+    ImGui::Separator();
     if (ImGui::MenuItem("Quit", "Ctrl+Q")) ask_or_run(st, studio::pending_action::quit);
     ImGui::EndMenu();
   }
@@ -353,6 +355,8 @@ static void handle_dialog(studio& st) {
     case file_purpose::export_render: studio_export_render(st, path); break;
     case file_purpose::export_plots: studio_export_plots(st, path); break;
     case file_purpose::choose_source_image: studio_drop_file(st, path); break;
+    case file_purpose::choose_fit_data: st.fit_dir = fs::path(path).parent_path().string(); break;
+    case file_purpose::save_preset: save_fitted_preset(st, path); break;
   }
 }
 
@@ -386,6 +390,7 @@ void studio_frame(studio& st, double now) {
   draw_side_view(st);
   place(left_w + mid_w, 0, right_w, h);
   draw_plots_panel(st);
+  draw_fit_window(st);
 
   // Status bar.
   ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x, vp->WorkPos.y + vp->WorkSize.y - ImGui::GetFrameHeight()));

@@ -6,7 +6,7 @@
 
 namespace airr::ui {
 
-enum class file_purpose { open_scene, save_scene, export_render, export_plots, choose_source_image };
+enum class file_purpose { open_scene, save_scene, export_render, export_plots, choose_source_image, choose_fit_data, save_preset };
 
 struct file_dialog {
   bool visible = false;

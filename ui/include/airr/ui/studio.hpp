@@ -10,10 +10,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include "airr/optics/preset.hpp"
 #include "airr/optics/scene.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/ui/analysis_worker.hpp"
 #include "airr/ui/file_dialog.hpp"
+#include "airr/ui/fit_job.hpp"
 #include "airr/ui/gl_texture.hpp"
 #include "airr/ui/settings.hpp"
 
@@ -60,6 +62,14 @@ struct studio {
   // Screen rectangles (x0, y0, x1, y1) of what scripted runs check: "render_image", "plot_mtf", ...
   std::map<std::string, std::array<float, 4>> regions;
 
+  // The fit window.
+  bool show_fit = false;
+  std::string fit_dir;
+  std::string fit_error;
+  std::string fit_saved_path;
+  std::unique_ptr<fit_job> fit_job_;
+  bool fit_applied = false;  // scripted runs apply a finished fit once
+
   // Crash recovery: unsaved edits are copied to config_dir()/recovery.json every few seconds.
   bool keep_recovery = true;  // off in scripted runs
   double last_recovery_write = -1;
@@ -100,5 +110,9 @@ void draw_layout_panel(studio& st);
 void draw_side_view(studio& st);
 void draw_render_view(studio& st, double now_seconds);
 void draw_plots_panel(studio& st);
+void draw_fit_window(studio& st);
+void save_fitted_preset(studio& st, const std::string& path);
+// Saves the preset (to config_dir()/presets unless saved already) and points the model at it.
+void apply_fitted_preset(studio& st, const sheet_preset& preset);
 
 }  // namespace airr::ui
