@@ -1,6 +1,7 @@
 // airr bench: tracer rays/s, raw Embree rtcIntersect1 rays/s on the same geometry and ray count,
 // their ratio, and the render session's latency from an edit to its first new image.
 #include <algorithm>
+#include <cmath>
 #include <atomic>
 #include <chrono>
 #include <limits>
@@ -56,6 +57,53 @@ double raw_embree_seconds(const airr::tracer_scene& ts, std::uint64_t ray_count,
   });
   checksum = sum;
   return since(t0);
+}
+
+// Relative RMS difference between two images (relative to the reference's mean).
+double relative_rms(const std::vector<float>& a, const std::vector<float>& ref) {
+  double se = 0, mean = 0;
+  for (std::size_t i = 0; i < ref.size(); ++i) {
+    se += double(a[i] - ref[i]) * (a[i] - ref[i]);
+    mean += ref[i];
+  }
+  mean /= double(ref.size());
+  return mean > 0 ? std::sqrt(se / double(ref.size())) / mean : 0.0;
+}
+
+// Time until a render of the RF-Ay preset scene is within `target` relative RMS of a reference
+// rendered with many more samples (a different seed, so the two are independent).
+void time_to_noise_level(const airr::scene& base, double target) {
+  airr::scene s = base;
+  s.retroreflector.model.type = airr::retro_model_type::sinc_shift;
+  s.retroreflector.model.preset = "rf-ay";
+  s.camera.width = s.camera.height = 64;
+  const std::uint64_t reference_spp = 4096;
+  airr::scene ref_scene = s;
+  ref_scene.seed = s.seed + 1000;
+  const auto r0 = clock_type::now();
+  airr::render_session reference(ref_scene, {.target_spp = reference_spp});
+  std::fprintf(stderr, "noise benchmark: rendering the %llu-spp reference...\n",
+               static_cast<unsigned long long>(reference_spp));
+  const airr::render_snapshot ref = reference.wait_for(0, reference_spp);
+  const double reference_s = since(r0);
+  reference.stop();
+  std::fprintf(stderr, "noise benchmark: reference done in %.1f s; timing a fresh render...\n", reference_s);
+
+  airr::render_session session(s, {.target_spp = reference_spp});
+  const auto t0 = clock_type::now();
+  std::uint64_t spp = 0;
+  double err = 1e9, seconds = 0;
+  while (spp < reference_spp) {
+    const airr::render_snapshot snap = session.wait_for(0, spp + 1);
+    seconds = since(t0);
+    spp = snap.spp;
+    err = relative_rms(*snap.rgb, *ref.rgb);
+    if (err <= target) break;
+  }
+  session.stop();
+  std::printf("noise level:   %.1f%% relative RMS reached after %.2f s at %llu spp (RF-Ay, 64x64; reference %llu spp in %.1f s)\n",
+              100 * err, seconds, static_cast<unsigned long long>(spp), static_cast<unsigned long long>(reference_spp),
+              reference_s);
 }
 
 }  // namespace
@@ -120,6 +168,7 @@ void add_bench_command(CLI::App& app) {
     std::printf("raw embree:    %12.0f rays/s  (%llu rays in %.3f s, checksum %.1f)\n", raw_rate,
                 static_cast<unsigned long long>(raw_rays), raw_s, checksum);
     std::printf("ratio:         %12.3f  (tracer / raw rtcIntersect1)\n", tracer_rate / raw_rate);
+    time_to_noise_level(s, 0.02);
     std::printf("edit latency:  median %.1f ms, min %.1f ms, max %.1f ms over %zu edits (to the first image, a preview)\n",
                 first_images[first_images.size() / 2], first_images.front(), first_images.back(), first_images.size());
     std::printf("               median %.1f ms, min %.1f ms, max %.1f ms (to the first full-resolution 1-spp image)\n",

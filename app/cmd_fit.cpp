@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -29,8 +30,7 @@ using nlohmann::json;
 
 struct options {
   std::string data, output, synthesise, preset = "rf-ay";
-  std::uint64_t samples = 0;  // 0: the mode's default
-  std::uint64_t seed = 0;
+  std::optional<std::uint64_t> samples, seed;  // unset: the mode's default
 };
 
 std::string two_digits(double v) {
@@ -43,8 +43,8 @@ void run_fit(const options& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   const airr::analysis::fit_data data = airr::analysis::load_fit_data(opt.data);
   airr::analysis::fit_params p;
-  if (opt.samples) p.psf_samples = opt.samples;
-  if (opt.seed) p.seed = opt.seed;
+  p.psf_samples = opt.samples.value_or(p.psf_samples);
+  p.seed = opt.seed.value_or(p.seed);
 
   progress_bar bar("fit");
   const auto r = airr::analysis::fit_sheet(data, p, [&](const airr::analysis::fit_progress& f) {
@@ -77,15 +77,14 @@ void run_fit(const options& opt) {
       std::printf("         warning: a at tilt %g lies at the end of the search bracket\n", tilt);
   }
   const json& c = rep["c"];
-  const json& check = c["alternation_check"];
-  std::printf("c = %.5f mm, loss %.3e (slope of mean MTF against D: measured %.5g, simulated %.5g per mm; %d trial c "
-              "values with a(0) refitted)\n",
+  std::printf("c = %.5f mm, loss %.3e (slope of mean MTF against D: measured %.5g, simulated %.5g per mm)\n",
               c["c_mm"].get<double>(), c["loss"].get<double>(), c["slope_measured_per_mm"].get<double>(),
-              c["slope_simulated_per_mm"].get<double>(), c["trial_c_values"].get<int>());
-  std::printf("alternation check: refitting a(0) given c moves it %.3g%%, c given a(0) moves it %.3g%% (%s %.3g%%)\n",
-              100 * check["a0_relative_change"].get<double>(), 100 * check["c_relative_change"].get<double>(),
-              check["converged"].get<bool>() ? "both below" : "warning: not both below",
-              100 * check["tolerance"].get<double>());
+              c["slope_simulated_per_mm"].get<double>());
+  std::printf("c with a(0) refitted at each of %d trial values: the match lies in [%.5f, %.5f] mm, a(0) %.4g .. %.4g "
+              "across it%s\n",
+              c["trial_c_values"].get<int>(), c["bracket_mm"][0].get<double>(), c["bracket_mm"][1].get<double>(),
+              c["a0_at_bracket_ends_per_mm"][0].get<double>(), c["a0_at_bracket_ends_per_mm"][1].get<double>(),
+              c["converged"].get<bool>() ? "" : " (warning: not converged)");
   if (const std::string bound = c["bound"]; !bound.empty())
     std::printf("warning: the slope is matched only beyond the %s end of the c bracket; c is clamped there\n", bound.c_str());
   if (rep.contains("mu_note")) std::printf("%s\n", rep["mu_note"].get<std::string>().c_str());
@@ -95,24 +94,25 @@ void run_fit(const options& opt) {
               static_cast<unsigned long long>(rep["simulations"].get<std::uint64_t>()));
 }
 
-// A data directory whose measurements the model PSF synthesises from a preset: MTF curves (with
-// the camera pixel's aperture) per tilt and distance, white-square images per tilt.
+// A data directory whose measurements the model PSF synthesises from a preset: MTF curves per tilt
+// and distance (with a pixel's aperture), white-square images per tilt.
 void run_synthesise(const options& opt) {
   const fs::path dir = opt.synthesise;
   fs::create_directories(dir);
   const airr::sheet_preset truth = airr::load_preset(opt.preset, fs::current_path().string());
-  const std::uint64_t samples = opt.samples ? opt.samples : 200000, seed = opt.seed ? opt.seed : 7;
+  const std::uint64_t samples = opt.samples.value_or(1000000), seed = opt.seed.value_or(7);
 
-  // The setup: the default layout, a 64 x 64 camera of 0.25 mm pixels, a 10 mm white square.
+  // The setup: the default layout; a 40 x 40 camera of 0.4 mm pixels frames a 10 mm white square.
+  // The MTF curves are measured as with 0.25 mm pixels (their aperture is in the curves).
   airr::scene setup;
   const std::string panel = fs::relative(fs::path(airr::asset_dir()) / "models/panel.gltf", fs::absolute(dir)).string();
   setup.source.mesh = setup.half_mirror.mesh = setup.retroreflector.mesh = panel;
   setup.source.image.clear();
-  setup.camera.width = setup.camera.height = 64;
-  const double pixel_mm = 0.25, square_mm = 10.0;
-  setup.camera.fov_deg = 2.0 * std::atan(0.5 * 64 * pixel_mm / setup.camera.distance_mm) * 180.0 / M_PI;
+  const int camera_pixels = 40;
+  const double camera_mm = 0.4, pixel_mm = 0.25, square_mm = 10.0;
+  setup.camera.width = setup.camera.height = camera_pixels;
+  setup.camera.fov_deg = 2.0 * std::atan(0.5 * camera_pixels * camera_mm / setup.camera.distance_mm) * 180.0 / M_PI;
   setup.retroreflector.model.reference_distance_mm = truth.reference_distance_mm;
-  setup.base_dir = fs::absolute(dir).string();
   airr::save_scene(setup, (dir / "setup.json").string());
   setup = airr::load_scene((dir / "setup.json").string());
 
@@ -128,7 +128,7 @@ void run_synthesise(const options& opt) {
     return airr::sample_psf(s, *model, {.samples = samples, .seed = seed});
   };
   auto write_csv = [&](const airr::psf_samples& psf, const std::string& name) {
-    const auto c = airr::analysis::psf_mtf(psf, {.max_lp_per_mm = 2.0, .points = 101, .pixel_mm = pixel_mm});
+    const auto c = airr::analysis::measured_like_mtf(psf, {.max_lp_per_mm = 2.0, .points = 101, .pixel_mm = pixel_mm}, 0, false);
     airr::analysis::mtf_curve curve;
     for (std::size_t i = 0; i < c.mtf.size(); ++i) curve.cycles_per_pixel.push_back(c.lp_per_mm[i] * pixel_mm);
     curve.mtf = c.mtf;
@@ -140,7 +140,7 @@ void run_synthesise(const options& opt) {
               {"name", "synthetic " + truth.name},
               {"note", "synthesised by `airr fit --synthesise` from preset " + opt.preset + " with the model PSF (" +
                            std::to_string(samples) + " samples, seed " + std::to_string(seed) +
-                           "); MTF curves include the 0.25 mm camera pixel's aperture"},
+                           "); MTF curves include a 0.25 mm pixel's aperture"},
               {"scene", "setup.json"},
               {"tilt_series", json::array()},
               {"distance_series", json::array()},
@@ -191,7 +191,7 @@ void add_fit_command(CLI::App& app) {
                                 "Instead of fitting, write a data directory synthesised from --preset by the model PSF");
   cmd->add_option("--preset", opt->preset, "With --synthesise: the preset to synthesise from (default rf-ay)");
   cmd->add_option("--samples", opt->samples,
-                  "PSF samples per simulation (fit default 20000; --synthesise default 200000)")
+                  "PSF samples per simulation (fit default 200000; --synthesise default 1000000)")
       ->check(CLI::Range(std::uint64_t(100), std::uint64_t(100000000)));
   cmd->add_option("--seed", opt->seed, "Random seed of the PSF samples (fit default 1; --synthesise default 7)");
   data->excludes(synth);

@@ -40,6 +40,14 @@ TEST(Session, CancelMidWaveThenRestartMatchesAFreshRender) {
   EXPECT_TRUE(*restarted.rgb == *fresh.rgb);
 }
 
+TEST(Session, ManyWavesKeepAddingSamples) {
+  // 200 waves of one sample each: far more waves than the growth sequence has doublings.
+  scene s = test::uniform_source_scene(20.0, 8);
+  render_session session(s, {.threads = 1, .target_spp = 200, .max_wave_spp = 1});
+  const render_snapshot snap = session.wait_for(0, 200);
+  EXPECT_EQ(snap.spp, 200u);
+}
+
 TEST(Session, SnapshotsAreWholeWavesOfOneGeneration) {
   scene a = test::uniform_source_scene(20.0, 48);
   render_session session(a, {.threads = 2, .target_spp = 1 << 20, .max_wave_spp = 8});

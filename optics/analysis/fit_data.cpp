@@ -145,7 +145,11 @@ void read_edge_measurement(object_reader& r, mtf_measurement& m) {
 }
 
 void read_csv_measurement(object_reader& r, mtf_measurement& m) {
-  read_mtf_csv(m.file, m);
+  try {
+    read_mtf_csv(m.file, m);
+  } catch (const input_error& e) {
+    r.fail("mtf_csv", e.what());
+  }
   if (const auto p = r.optional_number("pixel_mm")) {
     if (*p < 0) r.fail("pixel_mm", "must not be negative (0: the curve holds no pixel aperture)");
     m.pixel_mm = *p;

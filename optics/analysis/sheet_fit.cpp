@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <numbers>
 
 #include "airr/analysis/psf_mtf.hpp"
@@ -184,13 +185,23 @@ class sheet_fitter {
     bool minimum_checked = false, at_bracket_end = false;
   };
 
+  double a_loss(const mtf_target& t, double a, double c) { return mse(simulate(t, a, c), t.measured); }
+
+  // The minimum holds when the loss at a (1 -+ 2%) is not lower.
+  void check_minimum(const mtf_target& t, double c, a_fit& r) {
+    r.loss_minus = a_loss(t, r.a * 0.98, c);
+    r.loss_plus = a_loss(t, r.a * 1.02, c);
+    r.evaluations += 2;
+    r.minimum_checked = r.loss_minus >= r.loss && r.loss_plus >= r.loss;
+  }
+
   // Without a guess: a scan of log a over the whole bracket picks the neighbourhood. With one
   // (a nearby solution): steps downhill from it until the loss rises on both sides.
-  a_fit fit_a(const mtf_target& t, double c, std::optional<double> guess = std::nullopt) {
+  a_fit fit_a(const mtf_target& t, double c, std::optional<double> guess = std::nullopt, bool check = true) {
     a_fit r;
     auto loss = [&](double log_a) {
       ++r.evaluations;
-      return mse(simulate(t, std::exp(log_a), c), t.measured);
+      return a_loss(t, std::exp(log_a), c);
     };
     const double lo = std::log(p_.a_min_per_mm), hi = std::log(p_.a_max_per_mm);
     double left = lo, right = hi, x0 = 0, f0 = 0;
@@ -227,9 +238,7 @@ class sheet_fitter {
     const auto [x, fx] = brent_minimum(loss, left, right, x0, f0, p_.a_tolerance);
     r.a = std::exp(x);
     r.loss = fx;
-    r.loss_minus = loss(std::log(r.a * 0.98));
-    r.loss_plus = loss(std::log(r.a * 1.02));
-    r.minimum_checked = r.loss_minus >= r.loss && r.loss_plus >= r.loss;
+    if (check) check_minimum(t, c, r);
     r.at_bracket_end = x - lo < 2 * p_.a_tolerance || hi - x < 2 * p_.a_tolerance;
     return r;
   }
@@ -245,64 +254,69 @@ class sheet_fitter {
   }
 
   struct c_root {
-    double c = 0;
+    double c = 0;                        // the end of the final bracket with the smaller mismatch
+    double lo = 0, hi = 0, g_lo = 0, g_hi = 0;  // the final bracket and the mismatch at its ends
     int evaluations = 0;
     std::string bound;  // "lower" or "upper" when the root lies outside [0, c_max] and c is clamped
   };
 
   // The root of g on [0, c_max] (g rises with c: a larger corner blurs independently of D and
-  // flattens the slope of mean MTF against D) by Illinois regula falsi.
+  // flattens the slope of mean MTF against D) by Illinois regula falsi, down to a bracket
+  // c_tolerance wide.
   template <class G>
   c_root find_c(G&& g) {
     c_root r;
-    double lo = 0, hi = p_.c_max_mm, g_lo = g(lo), g_hi = 0;
+    r.g_lo = r.g_hi = g(0.0);
     r.evaluations = 1;
-    if (g_lo >= 0) {
+    if (r.g_lo >= 0) {
       r.bound = "lower";  // even without a shift the simulated slope is no steeper than measured
       return r;
     }
+    r.hi = p_.c_max_mm;
+    r.g_hi = g(r.hi);
     ++r.evaluations;
-    if ((g_hi = g(hi)) <= 0) {
+    if (r.g_hi <= 0) {
       r.bound = "upper";
-      r.c = hi;
+      r.c = r.lo = r.hi;
+      r.g_lo = r.g_hi;
       return r;
     }
     int side = 0;
-    double c = lo, c_prev = hi;
-    while (r.evaluations < 60 && std::abs(c - c_prev) > p_.c_tolerance_mm && hi - lo > p_.c_tolerance_mm) {
-      c_prev = c;
-      c = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+    double f_lo = r.g_lo, f_hi = r.g_hi;  // the end values regula falsi uses, halved when stale
+    while (r.evaluations < 60 && r.hi - r.lo > p_.c_tolerance_mm) {
+      double c = (r.lo * f_hi - r.hi * f_lo) / (f_hi - f_lo);
+      if (!(c > r.lo && c < r.hi)) c = 0.5 * (r.lo + r.hi);
       const double gc = g(c);
       ++r.evaluations;
-      if (gc == 0) break;
-      if ((gc > 0) == (g_hi > 0)) {
-        hi = c, g_hi = gc;
-        if (side == -1) g_lo /= 2;  // the same end moved twice: halve the stale one's value
+      if (gc > 0) {
+        r.hi = c, r.g_hi = f_hi = gc;
+        if (side == -1) f_lo /= 2;
         side = -1;
       } else {
-        lo = c, g_lo = gc;
-        if (side == 1) g_hi /= 2;
+        r.lo = c, r.g_lo = f_lo = gc;
+        if (side == 1) f_hi /= 2;
         side = 1;
       }
     }
-    r.c = c;
+    r.c = std::abs(r.g_lo) <= std::abs(r.g_hi) ? r.lo : r.hi;
     return r;
   }
 
-  // c with a(0) held.
-  c_root c_given_a0(const std::vector<mtf_target>& ts, double slope_real, double a0) {
-    return find_c([&](double c) { return distance_means(ts, a0, c).second - slope_real; });
-  }
-
   // c with a(0) refitted at every trial c: the fixed point that alternating the two fits seeks.
-  c_root c_with_a0_refitted(const mtf_target& t0, const std::vector<mtf_target>& ts, double slope_real, json& history) {
+  // Returns the root and a(0)'s fit at every trial c.
+  std::pair<c_root, std::map<double, a_fit>> c_with_a0_refitted(const mtf_target& t0, const std::vector<mtf_target>& ts,
+                                                                double slope_real, json& history) {
+    std::map<double, a_fit> fits;
     std::optional<double> a0;
-    return find_c([&](double c) {
-      a0 = fit_a(t0, c, a0).a;
-      const double sl = distance_means(ts, *a0, c).second;
-      history.push_back({{"c_mm", c}, {"a0_per_mm", *a0}, {"slope_simulated_per_mm", sl}});
+    const c_root r = find_c([&](double c) {
+      const a_fit f = fit_a(t0, c, a0, false);
+      fits[c] = f;
+      a0 = f.a;
+      const double sl = distance_means(ts, f.a, c).second;
+      history.push_back({{"c_mm", c}, {"a0_per_mm", f.a}, {"slope_simulated_per_mm", sl}});
       return sl - slope_real;
     });
+    return {r, std::move(fits)};
   }
 
   std::uint64_t simulations() const { return simulations_; }
@@ -471,39 +485,35 @@ fit_result fit_sheet(const fit_data& d, const fit_params& p, const fit_progress_
   for (const auto& m : d.distance_series) distances.push_back(make_target(m, p.frequencies));
   const mtf_target& tilt0 = tilts.front();
 
-  // Planned simulations: a cold a fit takes about scan + 20, a warm one 20; a c root about 12 trials.
-  const double a_units = p.a_scan_points + 20.0, c_units = 12.0 * double(distances.size());
+  // Planned simulations: a scan, a warm a fit about 20, the coupled c root about 15 trials.
+  const double a_units = 20.0;
   const double after_alternation = double(tilts.size() - 1) * a_units + double(d.white_squares.size());
-  progress_meter meter(progress, 12 * (20.0 + double(distances.size())) + 20 + c_units + after_alternation);
+  progress_meter meter(progress, p.a_scan_points + 15 * (a_units + double(distances.size())) + after_alternation);
   sheet_fitter fitter(d, p, meter);
 
   std::vector<double> d_values, d_means;
   for (const auto& t : distances) d_values.push_back(t.m->floating_distance_mm), d_means.push_back(t.mean);
   const double slope_real = slope(d_values, d_means);
 
-  // Alternating "a(0) given c" and "c given a(0)" can oscillate when the corner's blur dominates
-  // (RF-Ay does: c jumps between 0 and 2.9 mm). So c is solved with a(0) refitted at every trial
-  // c, and one alternation step from the result checks that neither value moves any more.
+  // Alternating "a(0) given c" and "c given a(0)" oscillates when the corner's blur dominates
+  // (RF-Ay: c jumps between 0 and 2.9 mm, as a(0) reacts about ten times as strongly as c). So c
+  // is the root of the slope mismatch with a(0) refitted at every trial c, the alternation's
+  // fixed point; its final bracket shows how far that point is pinned down.
   meter.set_stage("c with a(0) refitted at each trial c");
   json history = json::array();
-  const auto coupled = fitter.c_with_a0_refitted(tilt0, distances, slope_real, history);
+  const auto [coupled, a0_fits] = fitter.c_with_a0_refitted(tilt0, distances, slope_real, history);
   const double c = coupled.c;
-  const double a0_coupled = history.empty() ? 0.0 : history.back()["a0_per_mm"].get<double>();
-  meter.plan_remaining(a_units + c_units + after_alternation);
-  meter.set_stage("check: a(0) given c = " + std::to_string(c) + " mm");
-  const auto a0 = fitter.fit_a(tilt0, c, a0_coupled > 0 ? std::optional(a0_coupled) : std::nullopt);
-  meter.set_stage("check: c given a(0) = " + std::to_string(a0.a));
-  const auto c_check = fitter.c_given_a0(distances, slope_real, a0.a);
-  const double a0_change = a0_coupled > 0 ? std::abs(a0.a - a0_coupled) / a0.a : 0.0;
-  const double c_change = std::abs(c_check.c - c) / std::max(c, 10 * p.c_tolerance_mm);
-  const bool converged = a0_change < p.alternation_tolerance && c_change < p.alternation_tolerance;
-  meter.plan_remaining(after_alternation);
+  auto a0 = a0_fits.at(c);
+  fitter.check_minimum(tilt0, c, a0);
+  const bool converged = coupled.bound.empty() && coupled.hi - coupled.lo <= p.alternation_tolerance * c;
+  meter.plan_remaining(double(distances.size()) + after_alternation);
   const auto [sim_means, slope_sim] = fitter.distance_means(distances, a0.a, c);
 
+  // Each further tilt starts from its neighbour's a (a varies smoothly with tilt).
   std::vector<sheet_fitter::a_fit> a_fits = {a0};
   for (std::size_t i = 1; i < tilts.size(); ++i) {
     meter.set_stage("a at tilt " + deg_text(tilts[i].m->tilt_deg) + " deg");
-    a_fits.push_back(fitter.fit_a(tilts[i], c));
+    a_fits.push_back(fitter.fit_a(tilts[i], c, a_fits.back().a));
   }
   auto a_at = [&](double tilt) {
     for (std::size_t i = 0; i < tilts.size(); ++i)
@@ -586,13 +596,13 @@ fit_result fit_sheet(const fit_data& d, const fit_params& p, const fit_progress_
                    {"method", "root of d_sim(c) = d_real in [0, c_max], a(0) refitted at every trial c"},
                    {"trial_c_values", coupled.evaluations},
                    {"bound", coupled.bound},
-                   {"alternation_check",
-                    {{"a0_refitted_at_c_per_mm", a0.a},
-                     {"a0_relative_change", a0_change},
-                     {"c_given_a0_mm", c_check.c},
-                     {"c_relative_change", c_change},
-                     {"tolerance", p.alternation_tolerance},
-                     {"converged", converged}}},
+                   {"bracket_mm", {coupled.lo, coupled.hi}},
+                   {"a0_at_bracket_ends_per_mm", {a0_fits.count(coupled.lo) ? a0_fits.at(coupled.lo).a : a0.a,
+                                                  a0_fits.count(coupled.hi) ? a0_fits.at(coupled.hi).a : a0.a}},
+                   {"slope_mismatch_at_bracket_ends_per_mm", {coupled.g_lo, coupled.g_hi}},
+                   {"converged", converged},
+                   {"convergence", "the bracket holding the sign change of d_sim - d_real is narrower than " +
+                                       std::to_string(p.alternation_tolerance) + " c"},
                    {"history", history},
                    {"mean_mtf", means}};
 
@@ -611,8 +621,10 @@ fit_result fit_sheet(const fit_data& d, const fit_params& p, const fit_progress_
                    {"c_tolerance_mm", p.c_tolerance_mm},
                    {"alternation_tolerance", p.alternation_tolerance},
                    {"method",
-                    "a: log-a scan then Brent minimum of the MTF MSE over (0, 1] lp/mm, checked at a (1 -+ 2%); "
-                    "c: Illinois root of d_sim(c) = d_real with a(0) held, alternated with a(0); "
+                    "a: log-a scan (first fit) or downhill steps from the neighbouring tilt's a, then Brent's minimum "
+                    "of the MTF MSE over (0, 1] lp/mm, checked at a (1 -+ 2%); "
+                    "c: Illinois root of d_sim(c) = d_real on [0, c_max] with a(0) refitted at every trial c (the "
+                    "fixed point of alternating the two fits); "
                     "mu: closed-form least squares on the white-square images, clamped to [0, 1]; "
                     "simulation: model PSF (no tracer), common random numbers"}}},
                  {"a", a_report},

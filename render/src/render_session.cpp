@@ -219,7 +219,7 @@ void render_session::run() {
     spp += count;
     rays += wave_rays;
     seconds += std::chrono::duration<double>(clock::now() - t0).count();
-    next_wave *= 2;
+    next_wave = std::min(2 * next_wave, params_.max_wave_spp);  // capped: doubling forever would overflow
     publish(gen, spp, sums, rays, seconds);
   }
 }

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "airr/optics/low_discrepancy.hpp"
 #include "airr/optics/random.hpp"
 #include "airr/optics/scene_json.hpp"
 
@@ -71,8 +72,15 @@ struct path_state {
 
 glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index, std::uint64_t& rays) {
   const pinhole_camera& cam = ts.camera;
+  // The pixel's own rotation of the R6 sequence, then this sample's point of it: dimensions are
+  // pixel jitter (2), the first retroreflection's lobe cell and azimuth, shift bin and direction.
+  pcg32 pixel_rng = sample_rng(std::uint64_t(py) * cam.width + px, 0, ts.layout.seed ^ 0x5eedu);
+  std::array<double, 6> rotation;
+  for (double& r : rotation) r = pixel_rng.next_double();
+  const std::array<double, 6> q = r6_point(sample_index, rotation);
   pcg32 rng = sample_rng(std::uint64_t(py) * cam.width + px, sample_index, ts.layout.seed);
-  const double jx = rng.next_double(), jy = rng.next_double();
+  const double jx = q[0], jy = q[1];
+  bool first_retro = true;
   const auto& hm = ts.layout.half_mirror;
   const double hm_total = hm.reflectance + hm.transmittance;
 
@@ -130,6 +138,13 @@ glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sam
       const glm::dvec3 wi(-glm::dot(p.dir, f.u), -glm::dot(p.dir, f.v), -cos_n);
       retro_randoms r;
       for (auto& u : r.u) u = rng.next_double();
+      if (first_retro) {
+        r.u[0] = q[2];  // lobe cell (radius)
+        r.u[2] = q[3];  // lobe azimuth
+        r.u[4] = q[4];  // shift bin
+        r.u[6] = q[5];  // shift direction
+        first_retro = false;
+      }
       const retro_sample rs = ts.retro->sample(wi, r);
       if (!(rs.weight > 0)) break;
       p.dir = glm::normalize(rs.wo.x * f.u + rs.wo.y * f.v + rs.wo.z * f.n);

@@ -1,0 +1,27 @@
+#pragma once
+// A progressive 6-D low-discrepancy sequence (the Kronecker sequence R6: x_i = frac(i * alpha),
+// alpha_k = phi^-k, phi the positive root of x^7 = x + 1). Any prefix of it covers the cube
+// evenly; a random per-pixel rotation (Cranley-Patterson) keeps each point uniform, so estimates
+// stay unbiased while samples of one pixel stratify each other.
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+namespace airr {
+
+inline std::array<double, 6> r6_point(std::uint64_t i, const std::array<double, 6>& rotation) {
+  static constexpr std::array<double, 6> alpha = {0.8986537126286992, 0.8075784952213447, 0.7257334129697596,
+                                                  0.6521830259439715, 0.5860866975779692, 0.5266889867007356};
+  std::array<double, 6> u{};
+  for (int k = 0; k < 6; ++k) {
+    // i * alpha mod 1 without losing precision for large i: split i into high and low parts.
+    const double hi = std::fmod(double(i >> 26) * 67108864.0 * alpha[k], 1.0);
+    const double lo = std::fmod(double(i & 67108863u) * alpha[k], 1.0);
+    double v = hi + lo + rotation[k];
+    v -= std::floor(v);
+    u[k] = v;
+  }
+  return u;
+}
+
+}  // namespace airr
