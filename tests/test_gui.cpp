@@ -151,3 +151,24 @@ TEST(Gui, FontsAndSizesFollowTheContentScale) {
     EXPECT_NEAR(w2 / w1, 2.0, 0.1) << name;
   }
 }
+
+TEST(Gui, FitFromTheDesignerAppliesThePreset) {
+  // The designer runs the fit on the shipped example (RF-Ay's synthetic measurements), applies
+  // the result and saves the scene: the scene's model now points at a preset close to Table 2.
+  test::temp_dir dir;
+  const std::string scene_out = dir.file("fitted.json");
+  const std::string cmd = "XDG_CONFIG_HOME=" + dir.file("config") + " xvfb-run -a -s '-screen 0 1600x1000x24' " +
+                          std::string(AIRR_STUDIO) + " " + default_scene_path() + " --fit " + asset_dir() +
+                          "/fit_example --frames 5 --save-as " + scene_out + " > " + dir.file("log.txt") + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  std::ifstream log(dir.file("log.txt"));
+  const std::string log_text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(status, 0) << log_text;
+  const auto scene_json = nlohmann::json::parse(std::ifstream(scene_out));
+  const auto& model = scene_json.at("retroreflector").at("model");
+  EXPECT_EQ(model.at("type"), "sinc_shift");
+  const auto preset = nlohmann::json::parse(std::ifstream(model.at("preset").get<std::string>()));
+  EXPECT_NEAR(preset.at("c_mm").get<double>(), 0.94966, 0.05 * 0.94966);
+  EXPECT_NEAR(preset.at("a_per_mm")[0].get<double>(), 9.93020, 0.05 * 9.93020);
+  EXPECT_NEAR(preset.at("mu")[9].get<double>(), 0.10973, 0.05 * 0.10973);
+}
