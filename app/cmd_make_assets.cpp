@@ -23,7 +23,7 @@ void add_make_assets_command(CLI::App& app) {
     airr::write_image(*dir + "/charts/test_chart.png", airr::make_test_chart(), meta);
     airr::write_image(*dir + "/charts/slanted_edge.png", airr::make_slanted_edge_chart(), meta);
     fs::create_directories(fs::path(*dir) / "scenes");
-    airr::scene s;  // the canonical layout of the paper: D = 150 mm, tilt 0
+    airr::scene s;  // the reference layout: D = 150 mm, tilt 0
     s.source.image = "../charts/test_chart.png";
     airr::save_scene(s, *dir + "/scenes/default.json");
     std::fprintf(stderr,

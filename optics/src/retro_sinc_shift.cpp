@@ -41,8 +41,8 @@ retro_sample sinc_shift_retro::sample(const glm::dvec3& wi, const retro_randoms&
   const double phi = 2.0 * std::numbers::pi * r.u[2];
 
   // Rotate the retro direction (wo = wi) by delta at azimuth phi.
-  const glm::dvec3 helper = std::abs(wi.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
-  const glm::dvec3 t1 = glm::normalize(glm::cross(helper, wi));
+  const glm::dvec3 axis = std::abs(wi.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
+  const glm::dvec3 t1 = glm::normalize(glm::cross(axis, wi));
   const glm::dvec3 t2 = glm::cross(wi, t1);
   retro_sample s;
   s.wo = std::cos(delta) * wi + std::sin(delta) * (std::cos(phi) * t1 + std::sin(phi) * t2);
