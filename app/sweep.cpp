@@ -1,5 +1,7 @@
 #include "sweep.hpp"
 
+#include "airr/analysis/mtf_metrics.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -71,17 +73,6 @@ std::vector<double> sweep_values(const sweep_axis& a) {
   std::vector<double> v;
   for (int i = 0; i < n; ++i) v.push_back(a.start + i * a.step);
   return v;
-}
-
-double least_squares_slope(const std::vector<double>& x, const std::vector<double>& y) {
-  const std::size_t n = std::min(x.size(), y.size());
-  if (n < 2) return 0;
-  double mx = 0, my = 0;
-  for (std::size_t i = 0; i < n; ++i) mx += x[i], my += y[i];
-  mx /= double(n), my /= double(n);
-  double sxy = 0, sxx = 0;
-  for (std::size_t i = 0; i < n; ++i) sxy += (x[i] - mx) * (y[i] - my), sxx += (x[i] - mx) * (x[i] - mx);
-  return sxx > 0 ? sxy / sxx : 0;
 }
 
 sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_progress& progress) {
@@ -168,7 +159,7 @@ sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_pro
     for (std::size_t t = 0; t < tilts.size(); ++t) {
       std::vector<double> y;
       for (std::size_t k = 0; k < distances.size(); ++k) y.push_back(r.points[t * distances.size() + k].mean_mtf);
-      r.slopes.push_back({tilts[t], least_squares_slope(distances, y)});
+      r.slopes.push_back({tilts[t], analysis::least_squares_slope(distances, y)});
     }
   }
   return r;

@@ -62,6 +62,5 @@ sweep_result run_sweep(const scene& s, const sweep_params& p, const sweep_progre
 // not reached is an empty field.
 std::string sweep_csv(const sweep_result& r);
 
-double least_squares_slope(const std::vector<double>& x, const std::vector<double>& y);
 
 }  // namespace airr

@@ -19,6 +19,7 @@
 #include "mtf_routes.hpp"
 #include "sweep.hpp"
 #include "test_charts.hpp"
+#include "airr/analysis/mtf_metrics.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -264,7 +265,7 @@ TEST(PsfCommand, CsvStartsAtOneAndFallsAndTheIdealRadiusIsZero) {
     EXPECT_DOUBLE_EQ(f.front(), 0.0);
     EXPECT_DOUBLE_EQ(mtf.front(), 1.0);
     // Non-increasing on average: a negative least-squares slope, and no value above the first.
-    EXPECT_LT(least_squares_slope(f, mtf), 0.0);
+    EXPECT_LT(analysis::least_squares_slope(f, mtf), 0.0);
     for (double v : mtf) EXPECT_LE(v, 1.0 + 1e-12);
 
     const double r50 = printed_value(r.out, R"(50%-energy radius: (\S+) mm)");

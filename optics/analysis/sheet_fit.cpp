@@ -6,6 +6,7 @@
 #include <map>
 #include <numbers>
 
+#include "airr/analysis/mtf_metrics.hpp"
 #include "airr/analysis/psf_mtf.hpp"
 #include "airr/optics/error.hpp"
 #include "airr/optics/layout.hpp"
@@ -64,12 +65,6 @@ double mse(const std::vector<double>& a, const std::vector<double>& b) {
   double s = 0;
   for (std::size_t i = 0; i < a.size(); ++i) s += (a[i] - b[i]) * (a[i] - b[i]);
   return a.empty() ? 0.0 : s / double(a.size());
-}
-
-double slope(const std::vector<double>& x, const std::vector<double>& y) {
-  double mx = mean_of(x), my = mean_of(y), sxy = 0, sxx = 0;
-  for (std::size_t i = 0; i < x.size(); ++i) sxy += (x[i] - mx) * (y[i] - my), sxx += (x[i] - mx) * (x[i] - mx);
-  return sxx > 0 ? sxy / sxx : 0.0;
 }
 
 // Brent's minimiser (golden section with parabolic steps) of f on [lo, hi], starting from a
@@ -250,7 +245,7 @@ class sheet_fitter {
       d.push_back(t.m->floating_distance_mm);
       m.push_back(mean_of(simulate(t, a0, c)));
     }
-    return {m, slope(d, m)};
+    return {m, least_squares_slope(d, m)};
   }
 
   struct c_root {
@@ -493,7 +488,7 @@ fit_result fit_sheet(const fit_data& d, const fit_params& p, const fit_progress_
 
   std::vector<double> d_values, d_means;
   for (const auto& t : distances) d_values.push_back(t.m->floating_distance_mm), d_means.push_back(t.mean);
-  const double slope_real = slope(d_values, d_means);
+  const double slope_real = least_squares_slope(d_values, d_means);
 
   // Alternating "a(0) given c" and "c given a(0)" oscillates when the corner's blur dominates
   // (RF-Ay: c jumps between 0 and 2.9 mm, as a(0) reacts about ten times as strongly as c). So c

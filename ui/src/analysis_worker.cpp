@@ -5,6 +5,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "airr/analysis/mtf_metrics.hpp"
 #include "airr/analysis/psf_mtf.hpp"
 #include "airr/analysis/slanted_edge_mtf.hpp"
 #include "airr/optics/layout.hpp"
@@ -117,20 +118,7 @@ measured_plots measure_render_mtf(const render_snapshot& snap, const scene& s) {
       out.lp_per_mm = analysis::to_lp_per_mm(curve.cycles_per_pixel, snap.mm_per_pixel);
       out.mtf = curve.mtf;
       out.edge_angle_deg = curve.edge_angle_deg;
-      double sum = 0;
-      int n = 0;
-      for (int i = 1; i <= 40; ++i) {
-        const double f = i / 40.0;
-        for (std::size_t k = 1; k < out.lp_per_mm.size(); ++k) {
-          if (out.lp_per_mm[k] >= f) {
-            const double t = (f - out.lp_per_mm[k - 1]) / (out.lp_per_mm[k] - out.lp_per_mm[k - 1]);
-            sum += out.mtf[k - 1] + t * (out.mtf[k] - out.mtf[k - 1]);
-            ++n;
-            break;
-          }
-        }
-      }
-      out.mean_mtf = n ? sum / n : 0;
+      out.mean_mtf = analysis::mean_mtf(curve, snap.mm_per_pixel, {.max_lp_per_mm = 1.0, .samples = 40}).value;
       return out;
     } catch (const std::exception& e) {
       out.note = e.what();

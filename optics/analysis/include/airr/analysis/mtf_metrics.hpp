@@ -31,6 +31,9 @@ std::optional<mtf50_result> mtf50(const mtf_curve& curve, double mm_per_pixel = 
 
 // Mean of the MTF over (0, max_lp_per_mm] lp/mm on a uniform grid, cut at the Nyquist frequency
 // (0.5 cycles/pixel) when that is lower.
+// Slope of the least-squares line through (x, y); 0 with fewer than two points.
+double least_squares_slope(const std::vector<double>& x, const std::vector<double>& y);
+
 mean_mtf_result mean_mtf(const mtf_curve& curve, double mm_per_pixel,
                          const mean_mtf_params& params = {});
 
