@@ -1,5 +1,7 @@
 #include "airr/analysis/image_read.hpp"
 
+#include "airr/optics/srgb.hpp"
+
 #include <charconv>
 #include <cmath>
 #include <stdexcept>
@@ -49,15 +51,9 @@ std::optional<double> read_mm_per_pixel(const std::filesystem::path& path,
 
 }  // namespace
 
-double srgb_to_linear(double code) {
-  if (code <= 0.04045) return code / 12.92;
-  return std::pow((code + 0.055) / 1.055, 2.4);
-}
+double srgb_to_linear(double code) { return srgb_decode(code); }
 
-double linear_to_srgb(double linear) {
-  if (linear <= 0.0031308) return 12.92 * linear;
-  return 1.055 * std::pow(linear, 1.0 / 2.4) - 0.055;
-}
+double linear_to_srgb(double linear) { return srgb_encode(linear); }
 
 cv::Mat rec709_luminance(const cv::Mat& rgb) {
   if (rgb.channels() != 3) throw std::runtime_error("rec709_luminance needs a three-channel image");

@@ -5,6 +5,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "airr/optics/error.hpp"
+#include "airr/optics/srgb.hpp"
 #include "airr/render/image.hpp"
 
 namespace airr {
@@ -12,13 +13,8 @@ namespace airr {
 namespace fs = std::filesystem;
 using namespace OIIO;
 
-float srgb_to_linear(float v) {
-  return v <= 0.04045f ? v / 12.92f : std::pow((v + 0.055f) / 1.055f, 2.4f);
-}
-float linear_to_srgb(float v) {
-  v = std::clamp(v, 0.0f, 1.0f);
-  return v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f;
-}
+float srgb_to_linear(float v) { return float(srgb_decode(v)); }
+float linear_to_srgb(float v) { return float(srgb_encode(std::clamp(v, 0.0f, 1.0f))); }
 
 static bool is_float_format(TypeDesc t) { return t.basetype == TypeDesc::FLOAT || t.basetype == TypeDesc::HALF || t.basetype == TypeDesc::DOUBLE; }
 

@@ -70,13 +70,22 @@ struct path_state {
 };
 }  // namespace
 
-glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index, std::uint64_t& rays) {
-  const pinhole_camera& cam = ts.camera;
-  // The pixel's own rotation of the R6 sequence, then this sample's point of it: dimensions are
-  // pixel jitter (2), the first retroreflection's lobe cell and azimuth, shift bin and direction.
-  pcg32 pixel_rng = sample_rng(std::uint64_t(py) * cam.width + px, 0, ts.layout.seed ^ 0x5eedu);
+std::array<double, 6> pixel_sequence_rotation(const tracer_scene& ts, int px, int py) {
+  pcg32 pixel_rng = sample_rng(std::uint64_t(py) * ts.camera.width + px, 0, ts.layout.seed ^ 0x5eedu);
   std::array<double, 6> rotation;
   for (double& r : rotation) r = pixel_rng.next_double();
+  return rotation;
+}
+
+glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index, std::uint64_t& rays) {
+  return trace_sample(ts, px, py, sample_index, pixel_sequence_rotation(ts, px, py), rays);
+}
+
+glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
+                       const std::array<double, 6>& rotation, std::uint64_t& rays) {
+  const pinhole_camera& cam = ts.camera;
+  // This sample's point of the pixel's rotated R6 sequence: dimensions are pixel jitter (2), the
+  // first retroreflection's lobe cell and azimuth, shift bin and direction.
   const std::array<double, 6> q = r6_point(sample_index, rotation);
   pcg32 rng = sample_rng(std::uint64_t(py) * cam.width + px, sample_index, ts.layout.seed);
   const double jx = q[0], jy = q[1];
@@ -162,8 +171,9 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
     if (cancel.load(std::memory_order_relaxed)) return false;
     for (int x = 0; x < w; ++x) {
       double* acc = sums.data() + 3 * (std::size_t(y) * w + x);
+      const std::array<double, 6> rotation = pixel_sequence_rotation(ts, x, y);
       for (std::uint64_t i = first; i < first + count; ++i) {
-        const glm::vec3 L = trace_sample(ts, x, y, i, rays);
+        const glm::vec3 L = trace_sample(ts, x, y, i, rotation, rays);
         acc[0] += L.x;
         acc[1] += L.y;
         acc[2] += L.z;

@@ -17,16 +17,7 @@ namespace at = airr::analysis::testing;
 
 namespace {
 
-// The message of the std::runtime_error thrown by f, or "" when none is thrown.
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  return "";
-}
+using at::error_of;
 
 std::string mtf_error(const cv::Mat& img, const aa::slanted_edge_params& p = {}) {
   return error_of([&] { aa::slanted_edge_mtf(img, p); });

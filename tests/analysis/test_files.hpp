@@ -2,6 +2,7 @@
 // Scratch directories and hand-written image files for the analysis tests.
 #include <filesystem>
 #include <optional>
+#include <stdexcept>
 #include <string>
 
 #include <opencv2/core.hpp>
@@ -17,6 +18,17 @@ struct scratch_dir {
   scratch_dir& operator=(const scratch_dir&) = delete;
   std::filesystem::path operator/(const std::string& name) const { return path / name; }
 };
+
+// The message of the std::runtime_error thrown by f, or "" when none is thrown.
+template <class F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
 
 enum class attribute_kind { none, string, floating };
 

@@ -13,6 +13,7 @@
 
 namespace aa = airr::analysis;
 namespace at = airr::analysis::testing;
+using at::error_of;
 namespace onnx = airr::analysis::testing::onnx;
 
 namespace {
@@ -40,15 +41,6 @@ double expected_distance(const cv::Mat& a, const cv::Mat& b) {
   return sum / (a.total() * 3.0);
 }
 
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 }  // namespace
 

@@ -32,7 +32,12 @@ struct tracer_scene {
 // their files did not change, and moved parts only get new instance transforms).
 void build_tracer_scene(tracer_scene& ts, const embree_device& device, const scene& s);
 
+// The pixel's random rotation of the low-discrepancy sequence its samples share.
+std::array<double, 6> pixel_sequence_rotation(const tracer_scene& ts, int px, int py);
+
 // Radiance along one camera sample of pixel (px, py); `rays` counts intersection queries.
+glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
+                       const std::array<double, 6>& rotation, std::uint64_t& rays);
 glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index, std::uint64_t& rays);
 
 // Accumulates samples [first, first + count) of every pixel in rows [y0, y1) into `sums`
