@@ -54,44 +54,42 @@ void run_fit(const options& opt) {
   });
   airr::save_preset(r.preset, opt.output);
 
-  const json& rep = r.report;
+  const airr::analysis::fit_report& rep = r.report;
   std::printf("fit of %s (%zu tilts, %zu distances, %zu white squares; model PSF, %llu samples, seed %llu)\n",
               data.dir.c_str(), data.tilt_series.size(), data.distance_series.size(), data.white_squares.size(),
               static_cast<unsigned long long>(p.psf_samples), static_cast<unsigned long long>(p.seed));
   std::printf("%8s %10s %11s %9s %11s\n", "tilt_deg", "a_per_mm", "a_loss", "mu", "mu_loss");
   for (std::size_t i = 0; i < r.preset.theta_deg.size(); ++i) {
-    const json& a = rep["a"][i];
+    const airr::analysis::fit_a_entry& a = rep.a[i];
     const double tilt = r.preset.theta_deg[i];
     std::string mu_loss = "-";
-    for (const auto& m : rep["mu"]) {
-      if (m["tilt_deg"].get<double>() == tilt) {
+    for (const auto& m : rep.mu) {
+      if (m.tilt_deg == tilt) {
         char buf[32];
-        std::snprintf(buf, sizeof buf, "%.3e", m["loss"].get<double>());
+        std::snprintf(buf, sizeof buf, "%.3e", m.loss);
         mu_loss = buf;
       }
     }
     const double mu = r.preset.mu.size() == 1 ? r.preset.mu[0] : r.preset.mu[i];
-    std::printf("%8g %10.5f %11.3e %9.5f %11s%s\n", tilt, a["a_per_mm"].get<double>(), a["loss"].get<double>(), mu,
-                mu_loss.c_str(), a["minimum_checked"].get<bool>() ? "" : "  (warning: a (1 -+ 2%) has a lower loss)");
-    if (a["at_bracket_end"].get<bool>())
-      std::printf("         warning: a at tilt %g lies at the end of the search bracket\n", tilt);
+    std::printf("%8g %10.5f %11.3e %9.5f %11s%s\n", tilt, a.a_per_mm, a.loss, mu, mu_loss.c_str(),
+                a.minimum_checked ? "" : "  (warning: a (1 -+ 2%) has a lower loss)");
+    if (a.at_bracket_end) std::printf("         warning: a at tilt %g lies at the end of the search bracket\n", tilt);
   }
-  const json& c = rep["c"];
-  std::printf("c = %.5f mm, loss %.3e (slope of mean MTF against D: measured %.5g, simulated %.5g per mm)\n",
-              c["c_mm"].get<double>(), c["loss"].get<double>(), c["slope_measured_per_mm"].get<double>(),
-              c["slope_simulated_per_mm"].get<double>());
+  const airr::analysis::fit_c_entry& c = rep.c;
+  std::printf("c = %.5f mm, loss %.3e (slope of mean MTF against D: measured %.5g, simulated %.5g per mm)\n", c.c_mm,
+              c.loss, c.slope_measured_per_mm, c.slope_simulated_per_mm);
   std::printf("c with a(0) refitted at each of %d trial values: the match lies in [%.5f, %.5f] mm, a(0) %.4g .. %.4g "
               "across it%s\n",
-              c["trial_c_values"].get<int>(), c["bracket_mm"][0].get<double>(), c["bracket_mm"][1].get<double>(),
-              c["a0_at_bracket_ends_per_mm"][0].get<double>(), c["a0_at_bracket_ends_per_mm"][1].get<double>(),
-              c["converged"].get<bool>() ? "" : " (warning: not converged)");
-  if (const std::string bound = c["bound"]; !bound.empty())
-    std::printf("warning: the slope is matched only beyond the %s end of the c bracket; c is clamped there\n", bound.c_str());
-  if (rep.contains("mu_note")) std::printf("%s\n", rep["mu_note"].get<std::string>().c_str());
+              c.trial_c_values, c.bracket_mm[0], c.bracket_mm[1], c.a0_at_bracket_ends_per_mm[0],
+              c.a0_at_bracket_ends_per_mm[1], c.converged ? "" : " (warning: not converged)");
+  if (c.bound != airr::analysis::root_bound::none)
+    std::printf("warning: the slope is matched only beyond the %s end of the c bracket; c is clamped there\n",
+                airr::analysis::to_string(c.bound));
+  if (rep.mu_note) std::printf("%s\n", rep.mu_note->c_str());
   std::printf("wrote %s\n", opt.output.c_str());
   std::printf("run time: %.2f s (%llu PSF simulations)\n",
               std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(),
-              static_cast<unsigned long long>(rep["simulations"].get<std::uint64_t>()));
+              static_cast<unsigned long long>(rep.simulations));
 }
 
 // A data directory whose measurements the model PSF synthesises from a preset: MTF curves per tilt

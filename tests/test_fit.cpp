@@ -186,14 +186,14 @@ TEST(SheetFit, RenderedMeasurementsFitBack) {
                 100 * (a_fit / a_true - 1), 0.25, mu_fit, 100 * (mu_fit / 0.25 - 1));
     EXPECT_NEAR(a_fit, a_true, 0.05 * a_true) << "tilt " << truth.theta_deg[i];
     EXPECT_NEAR(mu_fit, 0.25, 0.05 * 0.25) << "tilt " << truth.theta_deg[i];
-    EXPECT_TRUE(r.report["a"][i]["minimum_checked"].get<bool>()) << "tilt " << truth.theta_deg[i];
+    EXPECT_TRUE(r.report.a[i].minimum_checked) << "tilt " << truth.theta_deg[i];
   }
   std::printf("c: true 0.5 mm, fitted %.4f mm (%+.2f%%)\n", r.preset.c_mm, 100 * (r.preset.c_mm / 0.5 - 1));
   std::printf("renders %.1f s, fit %.1f s (%llu PSF samples, %llu simulations)\n", render_seconds, fit_seconds,
               static_cast<unsigned long long>(p.psf_samples),
-              static_cast<unsigned long long>(r.report["simulations"].get<std::uint64_t>()));
+              static_cast<unsigned long long>(r.report.simulations));
   EXPECT_NEAR(r.preset.c_mm, 0.5, 0.05);
-  EXPECT_TRUE(r.report["c"]["converged"].get<bool>());
+  EXPECT_TRUE(r.report.c.converged);
 
   // The written preset drives the sinc-shift model.
   save_preset(r.preset, dir.file("fitted.json"));
@@ -407,9 +407,9 @@ TEST(FitData, WithoutWhiteSquaresMuIsTakenFromFitJson) {
   });
   EXPECT_GT(calls, 10);
   EXPECT_EQ(r.preset.mu, std::vector<double>{0.3});
-  EXPECT_NE(r.report["mu_note"].get<std::string>().find("not fitted"), std::string::npos);
+  EXPECT_NE(r.report.mu_note.value_or("").find("not fitted"), std::string::npos);
   EXPECT_EQ(r.preset.theta_deg, (std::vector<double>{0, 20}));
-  EXPECT_EQ(r.report["a"].size(), 2u);
+  EXPECT_EQ(r.report.a.size(), 2u);
 }
 
 TEST(FitData, FitCancels) {

@@ -122,7 +122,7 @@ void draw_fit_window(studio& st) {
       ImGui::EndTable();
     }
     if (ImGui::TreeNode("Losses and inputs")) {
-      ImGui::TextUnformatted(result->report.dump(2).c_str());
+      ImGui::TextUnformatted(analysis::to_json(result->report).dump(2).c_str());
       ImGui::TreePop();
     }
     if (ImGui::Button("Save preset...")) request_fit_preset_save(st);
