@@ -13,6 +13,7 @@
 #include "airr/optics/random.hpp"
 #include "airr/optics/retro_microfacet.hpp"
 #include "chi_square.hpp"
+#include "test_helpers.hpp"
 
 namespace airr::test {
 
@@ -25,13 +26,7 @@ inline glm::dvec3 direction(double theta_deg, double phi_deg) {
   return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
 }
 
-inline retro_samples next_randoms(pcg32& rng) {
-  retro_samples u;
-  u.lobe = {rng.next_double(), rng.next_double()};
-  u.shift = {rng.next_double(), rng.next_double()};
-  u.more = rng.split();
-  return u;
-}
+inline retro_samples next_randoms(pcg32& rng) { return random_retro_samples(rng); }
 
 // Integrates f(m) over the part of the hemisphere about +z with tan(theta_m) / alpha in [q0, q1]
 // and azimuth in [p0, p1] (composite Simpson in q and phi).

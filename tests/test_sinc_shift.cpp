@@ -110,11 +110,7 @@ TEST(SincShift, NeverReturnsMoreEnergyThanItReceives) {
     double sum = 0;
     const int n = 50000;
     for (int i = 0; i < n; ++i) {
-      retro_samples u;
-      u.lobe = {rng.next_double(), rng.next_double()};
-      u.shift = {rng.next_double(), rng.next_double()};
-      u.more = rng.split();
-      const retro_sample s = model.sample(wi, u);
+      const retro_sample s = model.sample(wi, test::random_retro_samples(rng));
       EXPECT_LE(s.weight, 1.0);
       if (s.weight > 0) {
         EXPECT_GT(s.wo.z, 0.0);
@@ -166,11 +162,7 @@ TEST(SincShift, SampledDirectionsFollowTheModelsPdfByChiSquare) {
   EXPECT_GT(expected.back(), 0.05 * n);  // the absorbed share is substantial
   pcg32 rng(11, 5);
   for (int k = 0; k < n; ++k) {
-    retro_samples u;
-    u.lobe = {rng.next_double(), rng.next_double()};
-    u.shift = {rng.next_double(), rng.next_double()};
-    u.more = rng.split();
-    const retro_sample s = model.sample(wi, u);
+    const retro_sample s = model.sample(wi, test::random_retro_samples(rng));
     if (!(s.weight > 0)) {
       observed.back() += 1;
       continue;
