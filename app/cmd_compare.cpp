@@ -13,7 +13,7 @@
 void add_compare_command(CLI::App& app) {
   struct options {
     std::string a, b, lpips_model;
-    bool linear_input = false;
+    airr::image_encoding encoding = airr::image_encoding::automatic;
     double data_range = 0;
   };
   auto opt = std::make_shared<options>();
@@ -23,14 +23,12 @@ void add_compare_command(CLI::App& app) {
   cmd->add_option("b", opt->b, "Second image, same size")->required();
   cmd->add_option("--lpips-model", opt->lpips_model,
                   "ONNX LPIPS network taking two 1x3xHxW inputs in [-1, 1] (sRGB-encoded)");
-  cmd->add_flag("--linear-input", opt->linear_input,
-                "Treat 8/16-bit code values as linear; by default they are decoded with the sRGB "
-                "curve (float EXR/TIFF are always taken as linear)");
+  add_image_encoding_flags(cmd, opt->encoding);
   cmd->add_option("--data-range", opt->data_range,
                   "Dynamic range L of the linear luminance for SSIM; default: max - min over both images");
   cmd->callback([opt] {
     if (opt->data_range < 0) throw std::runtime_error("--data-range must be positive");
-    const airr::analysis::image_read_params read{.linear_input = opt->linear_input};
+    const airr::analysis::image_read_params read{.encoding = opt->encoding};
     const auto a = airr::analysis::read_linear_image(opt->a, read);
     const auto b = airr::analysis::read_linear_image(opt->b, read);
     if (a.luminance.size() != b.luminance.size())

@@ -19,7 +19,7 @@
 #include "airr/optics/preset.hpp"
 #include "airr/optics/retro_model.hpp"
 #include "airr/optics/scene_json.hpp"
-#include "airr/render/image.hpp"
+#include "airr/optics/image.hpp"
 #include "commands.hpp"
 #include "progress_bar.hpp"
 

@@ -6,7 +6,7 @@
 #include "airr/optics/scene_json.hpp"
 #include "airr/optics/assets.hpp"
 #include "commands.hpp"
-#include "test_charts.hpp"
+#include "airr/measure/test_charts.hpp"
 
 void add_make_assets_command(CLI::App& app) {
   auto dir = std::make_shared<std::string>(airr::asset_dir());

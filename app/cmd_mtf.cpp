@@ -40,7 +40,7 @@ void add_mtf_command(CLI::App& app) {
   struct options {
     std::string image, csv, plot, roi;
     std::optional<double> pixel_mm;
-    bool linear_input = false;
+    airr::image_encoding encoding = airr::image_encoding::automatic;
   };
   auto opt = std::make_shared<options>();
   auto* cmd = app.add_subcommand("mtf", "Measure the slanted-edge MTF of an image (edge about 5 deg "
@@ -50,16 +50,14 @@ void add_mtf_command(CLI::App& app) {
   cmd->add_option("--pixel-mm", opt->pixel_mm,
                   "Pixel size in mm on the measured plane; default: the image's airr:mm_per_pixel");
   cmd->add_option("--roi", opt->roi, "Region x,y,w,h in pixels around the edge; default: whole image");
-  cmd->add_flag("--linear-input", opt->linear_input,
-                "Treat 8/16-bit code values as linear; by default they are decoded with the sRGB "
-                "curve (float EXR/TIFF are always taken as linear)");
+  add_image_encoding_flags(cmd, opt->encoding);
   cmd->add_option("--plot", opt->plot, "Also write a PNG plot of the MTF");
   cmd->callback([opt] {
     airr::analysis::slanted_edge_params params;
     if (!opt->roi.empty()) params.roi = parse_roi(opt->roi);
     if (opt->pixel_mm && !(*opt->pixel_mm > 0))
       throw std::runtime_error("--pixel-mm must be positive");
-    const auto result = airr::analysis::measure_edge_file(opt->image, params, {.linear_input = opt->linear_input});
+    const auto result = airr::analysis::measure_edge_file(opt->image, params, {.encoding = opt->encoding});
 
     std::string pixel_source = "--pixel-mm";
     double mm = 0;

@@ -11,7 +11,7 @@
 #include "airr/optics/layout.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "commands.hpp"
-#include "mtf_routes.hpp"
+#include "airr/measure/mtf_routes.hpp"
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include "airr/optics/scene_json.hpp"
 #include "commands.hpp"
 #include "progress_bar.hpp"
-#include "sweep.hpp"
+#include "airr/measure/sweep.hpp"
 
 namespace {
 

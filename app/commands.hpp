@@ -2,6 +2,8 @@
 // The subcommands of the `airr` command line; each registers itself on the app.
 #include <CLI/CLI.hpp>
 
+#include "airr/optics/image.hpp"
+
 void add_render_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
 void add_make_assets_command(CLI::App& app);
@@ -11,3 +13,15 @@ void add_compare_command(CLI::App& app);
 void add_psf_command(CLI::App& app);
 void add_sweep_command(CLI::App& app);
 void add_fit_command(CLI::App& app);
+
+// --linear-input / --srgb-input: how integer image files are decoded (default: the loader's rule).
+inline void add_image_encoding_flags(CLI::App* cmd, airr::image_encoding& encoding) {
+  auto* linear = cmd->add_flag_callback(
+      "--linear-input", [&encoding] { encoding = airr::image_encoding::linear; },
+      "Take every file's code values as linear (default: 8-bit files are sRGB-decoded unless tagged linear; "
+      "16-bit and float files are linear)");
+  auto* srgb = cmd->add_flag_callback(
+      "--srgb-input", [&encoding] { encoding = airr::image_encoding::srgb; },
+      "Decode every file's code values with the sRGB curve (e.g. a 16-bit sRGB-encoded PNG)");
+  linear->excludes(srgb);
+}

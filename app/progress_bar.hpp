@@ -1,5 +1,6 @@
 #pragma once
 // A one-line progress bar with elapsed time and ETA on stderr (redrawn in place on a terminal).
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <string>

@@ -9,7 +9,7 @@ packages=(
   libopenimageio-dev openimageio-tools libtinygltf-dev nlohmann-json3-dev libcli11-dev
   libopencv-dev
   libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri xvfb xauth x11-xserver-utils fonts-dejavu-core
-  libgtest-dev libgmock-dev
+  libgtest-dev libgmock-dev clang-format python3
 )
 
 missing=()

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "airr/optics/scene_json.hpp"
-#include "airr/render/image.hpp"
+#include "airr/optics/image.hpp"
 #include "airr/optics/assets.hpp"
 #include "test_helpers.hpp"
 
@@ -118,7 +118,7 @@ TEST(CliRender, WritesImageWithMetadata) {
     EXPECT_EQ(layout.retroreflector.tilt_deg, 10);
     EXPECT_EQ(layout.camera.width, 48);
     EXPECT_NEAR(std::stod(meta.at("airr:mm_per_pixel")), 2 * 300 * std::tan(7 * M_PI / 180) / 40, 1e-12);
-    const image_rgb img = load_image_linear(out);
+    const image_rgb img = load_image(out).pixels;
     EXPECT_EQ(img.width, 48);
     EXPECT_EQ(img.height, 40);
   }

@@ -26,7 +26,7 @@
 #include "airr/optics/retro_sinc_shift.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "airr/render/render_metadata.hpp"
-#include "test_charts.hpp"
+#include "airr/measure/test_charts.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -118,10 +118,11 @@ TEST(SheetFit, RenderedMeasurementsFitBack) {
 
   // 0.1 mm pixels (Nyquist 5 lp/mm). The edges get 192 rows: the SNR-50 noise moves a single
   // tilt's a by about +-3% with 128 rows, +-2% with 192 (spread over noise seeds), while Monte
-  // Carlo noise at 128 spp moves it by about 1%.
+  // Carlo noise at 128 spp moves it by about 1% (and c by about 1%, which moves the small tilts' a by
+  // several %), so the edges get 256 spp.
   const int size = 128, edge_rows = 192;
   const double pixel_mm = 0.1, square_mm = 10.0;
-  const std::uint64_t edge_spp = 128, white_spp = 32;
+  const std::uint64_t edge_spp = 256, white_spp = 32;
   auto fov_for = [&](int rows) { return 2.0 * std::atan(0.5 * rows * pixel_mm / 300.0) * 180.0 / M_PI; };
   scene setup = test::uniform_source_scene(50.0, size);
   setup.camera.fov_deg = fov_for(size);

@@ -3,11 +3,22 @@
 #include <filesystem>
 #include <string>
 
+#include "airr/optics/random.hpp"
+#include "airr/optics/retro_model.hpp"
 #include "airr/optics/scene.hpp"
-#include "airr/render/image.hpp"
+#include "airr/optics/image.hpp"
 #include "airr/render/render_session.hpp"
 
 namespace airr::test {
+
+// A retroreflection's named samples, all drawn from one generator.
+inline retro_samples random_retro_samples(pcg32& rng) {
+  retro_samples u;
+  u.lobe = {rng.next_double(), rng.next_double()};
+  u.shift = {rng.next_double(), rng.next_double()};
+  u.more = rng.split();
+  return u;
+}
 
 // A fresh empty directory under the system temp dir, removed when the object dies.
 struct temp_dir {

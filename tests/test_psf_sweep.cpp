@@ -16,9 +16,9 @@
 #include "airr/optics/layout.hpp"
 #include "airr/optics/preset.hpp"
 #include "airr/optics/scene_json.hpp"
-#include "mtf_routes.hpp"
-#include "sweep.hpp"
-#include "test_charts.hpp"
+#include "airr/measure/mtf_routes.hpp"
+#include "airr/measure/sweep.hpp"
+#include "airr/measure/test_charts.hpp"
 #include "airr/analysis/mtf_metrics.hpp"
 #include "test_helpers.hpp"
 

@@ -1,5 +1,6 @@
 // The sinc-shift model: its angular lobe against the density by chi-square, its energy, the blur
 // it predicts (linear in distance, 1/a), and the shipped presets' trends.
+#include <algorithm>
 #include <fstream>
 #include <numbers>
 
@@ -109,9 +110,7 @@ TEST(SincShift, NeverReturnsMoreEnergyThanItReceives) {
     double sum = 0;
     const int n = 50000;
     for (int i = 0; i < n; ++i) {
-      retro_randoms r;
-      for (auto& u : r.u) u = rng.next_double();
-      const retro_sample s = model.sample(wi, r);
+      const retro_sample s = model.sample(wi, test::random_retro_samples(rng));
       EXPECT_LE(s.weight, 1.0);
       if (s.weight > 0) {
         EXPECT_GT(s.wo.z, 0.0);
@@ -123,6 +122,63 @@ TEST(SincShift, NeverReturnsMoreEnergyThanItReceives) {
       EXPECT_NEAR(sum / n, 0.9, 0.01);  // a wide lobe still stays above the sheet
     }
   }
+}
+
+// The model's own pdf against its sampler: directions binned by deviation and azimuth about wi
+// (a basis built here), absorbed samples in a bin of their own, expected counts from integrating
+// pdf over each bin. A grazing wi and a wide lobe put a good share below the sheet.
+TEST(SincShift, SampledDirectionsFollowTheModelsPdfByChiSquare) {
+  const sinc_shift_retro model({.theta_deg = {}, .a_per_mm = {0.01}, .mu = {0.7}, .c_mm = 0.0, .reference_distance_mm = 300.0},
+                               nullptr);
+  const double theta = 60 * std::numbers::pi / 180;
+  const glm::dvec3 wi(std::sin(theta), 0, std::cos(theta));
+  const glm::dvec3 e1 = glm::normalize(glm::cross(glm::dvec3(0, 1, 0), wi)), e2 = glm::cross(wi, e1);
+  const int n_delta = 12, n_phi = 8;
+  const double delta_max = std::numbers::pi / 2;
+  auto delta_edge = [&](int i) { return delta_max * std::pow(double(i) / n_delta, 1.5); };
+  auto direction = [&](double delta, double phi) {
+    return std::cos(delta) * wi + std::sin(delta) * (std::cos(phi) * e1 + std::sin(phi) * e2);
+  };
+  const int n = 300000;
+  std::vector<double> expected(n_delta * n_phi + 1, 0.0), observed(n_delta * n_phi + 1, 0.0);
+  double covered = 0;
+  for (int i = 0; i < n_delta; ++i) {
+    for (int j = 0; j < n_phi; ++j) {
+      const double d0 = delta_edge(i), d1 = delta_edge(i + 1);
+      const double p0 = 2 * std::numbers::pi * j / n_phi, p1 = 2 * std::numbers::pi * (j + 1) / n_phi;
+      const int m = 48;  // midpoint rule: the pdf diverges like 1 / sin(delta) on the axis
+      double sum = 0;
+      for (int a = 0; a < m; ++a) {
+        for (int b = 0; b < m; ++b) {
+          const double delta = d0 + (a + 0.5) * (d1 - d0) / m, phi = p0 + (b + 0.5) * (p1 - p0) / m;
+          sum += model.pdf(wi, direction(delta, phi)).value() * std::sin(delta);
+        }
+      }
+      expected[i * n_phi + j] = sum * (d1 - d0) / m * (p1 - p0) / m * n;
+      covered += expected[i * n_phi + j];
+    }
+  }
+  expected.back() = n - covered;
+  EXPECT_GT(expected.back(), 0.05 * n);  // the absorbed share is substantial
+  pcg32 rng(11, 5);
+  for (int k = 0; k < n; ++k) {
+    const retro_sample s = model.sample(wi, test::random_retro_samples(rng));
+    if (!(s.weight > 0)) {
+      observed.back() += 1;
+      continue;
+    }
+    EXPECT_NEAR(*model.eval(wi, s.wo), 0.7 * *model.pdf(wi, s.wo), 1e-12 * *model.pdf(wi, s.wo));
+    const double delta = std::acos(std::clamp(glm::dot(s.wo, wi), -1.0, 1.0));
+    double phi = std::atan2(glm::dot(s.wo, e2), glm::dot(s.wo, e1));
+    if (phi < 0) phi += 2 * std::numbers::pi;
+    int i = 0;
+    while (i + 1 < n_delta && delta >= delta_edge(i + 1)) ++i;
+    const int j = std::min(n_phi - 1, int(phi / (2 * std::numbers::pi) * n_phi));
+    observed[i * n_phi + j] += 1;
+  }
+  const auto r = test::chi_square(observed, expected);
+  EXPECT_GT(r.p_value, 1e-3) << "chi2=" << r.statistic << " dof=" << r.dof;
+  EXPECT_FALSE(ideal_retro(1.0).pdf(wi, wi).has_value());  // a delta has no density
 }
 
 TEST(SincShift, LobeBlurGrowsLinearlyWithDistanceAndAsOneOverA) {

@@ -12,6 +12,8 @@
 #include "airr/analysis/edge_file.hpp"
 #include "airr/analysis/image_read.hpp"
 #include "airr/optics/error.hpp"
+#include "airr/optics/files.hpp"
+#include "airr/optics/json_reader.hpp"
 #include "airr/optics/layout.hpp"
 #include "airr/optics/scene_json.hpp"
 
@@ -28,60 +30,10 @@ std::string number_text(double v) {
   return s.str();
 }
 
-// Strict reading of one JSON object of fit.json; errors read "fit.json: field.key: problem".
-class object_reader {
- public:
-  object_reader(const json& j, std::string origin, std::string field)
-      : j_(j), origin_(std::move(origin)), field_(std::move(field)) {
-    if (!j_.is_object()) throw input_error(origin_ + ": " + (field_.empty() ? "top level" : field_) + ": must be a JSON object");
-  }
-  [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
-    throw input_error(origin_ + ": " + name(key) + ": " + problem);
-  }
-  std::string name(const std::string& key) const { return field_.empty() ? key : field_ + "." + key; }
-  bool has(const std::string& key) {
-    seen_.insert(key);
-    return j_.contains(key);
-  }
-  const json& raw(const std::string& key) {
-    seen_.insert(key);
-    return j_.at(key);
-  }
-  double number(const std::string& key) {
-    if (!has(key)) fail(key, "missing");
-    const json& v = j_.at(key);
-    if (!v.is_number()) fail(key, "must be a number");
-    const double x = v.get<double>();
-    if (!std::isfinite(x)) fail(key, "must be finite");
-    return x;
-  }
-  std::optional<double> optional_number(const std::string& key) {
-    if (!has(key)) return std::nullopt;
-    return number(key);
-  }
-  std::string string(const std::string& key) {
-    if (!has(key)) fail(key, "missing");
-    const json& v = j_.at(key);
-    if (!v.is_string() || v.get<std::string>().empty()) fail(key, "must be a non-empty string");
-    return v.get<std::string>();
-  }
-  void finish() const {
-    for (const auto& [key, value] : j_.items()) {
-      if (!seen_.count(key)) fail(key, "unknown key");
-    }
-  }
-
- private:
-  const json& j_;
-  std::string origin_, field_;
-  std::set<std::string> seen_;
-};
-
-std::string resolve_file(object_reader& r, const std::string& dir, const std::string& key) {
+std::string resolve_file(json_reader& r, const std::string& dir, const std::string& key) {
   const std::string name = r.string(key);
-  const fs::path p = fs::path(name).is_absolute() ? fs::path(name) : fs::path(dir) / name;
-  const std::string path = p.lexically_normal().string();
-  if (!fs::is_regular_file(path)) r.fail(key, "file '" + name + "' not found (" + path + ")");
+  const std::string path = resolve_path(name, dir);
+  if (!fs::is_regular_file(path)) r.fail(r.field(key), "file '" + name + "' not found (" + path + ")");
   return path;
 }
 
@@ -105,37 +57,37 @@ void check_entry_layout(const scene& setup, double tilt_deg, double d_mm, const 
   check_layout(s, origin);
 }
 
-double tilt_of(object_reader& r, const std::string& key = "tilt_deg") {
+double tilt_of(json_reader& r, const std::string& key = "tilt_deg") {
   const double t = r.number(key);
-  if (t < 0 || t >= 90) r.fail(key, "must be in [0, 90) degrees, got " + number_text(t));
+  if (t < 0 || t >= 90) r.fail(r.field(key), "must be in [0, 90) degrees, got " + number_text(t));
   return t;
 }
 
-double distance_of(object_reader& r, double fallback, bool required) {
+double distance_of(json_reader& r, double fallback, bool required) {
   const std::optional<double> d = required ? std::optional(r.number("floating_distance_mm")) : r.optional_number("floating_distance_mm");
   const double v = d.value_or(fallback);
-  if (!(v > 0)) r.fail("floating_distance_mm", "must be positive, got " + number_text(v));
+  if (!(v > 0)) r.fail(r.field("floating_distance_mm"), "must be positive, got " + number_text(v));
   return v;
 }
 
-void read_edge_measurement(object_reader& r, mtf_measurement& m) {
+void read_edge_measurement(json_reader& r, mtf_measurement& m) {
   slanted_edge_params params;
   if (r.has("roi")) {
     const json& v = r.raw("roi");
     if (!v.is_array() || v.size() != 4 || !std::all_of(v.begin(), v.end(), [](const json& e) { return e.is_number_integer(); }))
-      r.fail("roi", "must be [x, y, width, height] in pixels");
+      r.fail(r.field("roi"), "must be [x, y, width, height] in pixels");
     params.roi = cv::Rect(v[0].get<int>(), v[1].get<int>(), v[2].get<int>(), v[3].get<int>());
   }
   edge_file_result e;
   try {
     e = measure_edge_file(m.file, params);
   } catch (const std::runtime_error& err) {
-    r.fail("edge_image", err.what());
+    r.fail(r.field("edge_image"), err.what());
   }
   const std::optional<double> given = r.optional_number("pixel_mm");
-  if (given && !(*given > 0)) r.fail("pixel_mm", "must be positive for an edge image");
+  if (given && !(*given > 0)) r.fail(r.field("pixel_mm"), "must be positive for an edge image");
   if (!given && !e.image.mm_per_pixel)
-    r.fail("pixel_mm", std::string("missing, and ") + m.file + " carries no " + mm_per_pixel_attribute +
+    r.fail(r.field("pixel_mm"), std::string("missing, and ") + m.file + " carries no " + mm_per_pixel_attribute +
                            " attribute: give the pixel's size on the aerial-image plane in mm");
   m.pixel_mm = given ? *given : *e.image.mm_per_pixel;
   m.lp_per_mm = to_lp_per_mm(e.curve.cycles_per_pixel, m.pixel_mm);
@@ -144,40 +96,40 @@ void read_edge_measurement(object_reader& r, mtf_measurement& m) {
   m.along_y = e.curve.orientation == edge_orientation::near_horizontal;
 }
 
-void read_csv_measurement(object_reader& r, mtf_measurement& m) {
+void read_csv_measurement(json_reader& r, mtf_measurement& m) {
   try {
     read_mtf_csv(m.file, m);
   } catch (const input_error& e) {
-    r.fail("mtf_csv", e.what());
+    r.fail(r.field("mtf_csv"), e.what());
   }
   if (const auto p = r.optional_number("pixel_mm")) {
-    if (*p < 0) r.fail("pixel_mm", "must not be negative (0: the curve holds no pixel aperture)");
+    if (*p < 0) r.fail(r.field("pixel_mm"), "must not be negative (0: the curve holds no pixel aperture)");
     m.pixel_mm = *p;
   } else if (m.pixel_mm == 0) {
-    r.fail("pixel_mm", "missing, and " + m.file +
+    r.fail(r.field("pixel_mm"), "missing, and " + m.file +
                            " has no cycles_per_pixel column to derive it from: give the measuring pixel's size on "
                            "the aerial-image plane in mm (0: the curve holds no pixel aperture)");
   }
   if (const auto w = r.optional_number("lsf_window_mm")) {
-    if (!(*w > 0)) r.fail("lsf_window_mm", "must be positive (leave it out when the LSF was not windowed)");
+    if (!(*w > 0)) r.fail(r.field("lsf_window_mm"), "must be positive (leave it out when the LSF was not windowed)");
     m.window_half_width_mm = *w;
   }
 }
 
 // One entry of tilt_series or distance_series.
 mtf_measurement read_measurement(const json& j, const fit_data& d, const std::string& field, bool distance_series) {
-  object_reader r(j, d.fit_json, field);
+  json_reader r(j, d.fit_json, field);
   mtf_measurement m;
   m.origin = d.fit_json + ": " + field;
   if (distance_series) {
     m.tilt_deg = r.has("tilt_deg") ? tilt_of(r) : 0.0;
-    if (m.tilt_deg != 0) r.fail("tilt_deg", "the distance series is measured at tilt 0 (c is fitted there)");
+    if (m.tilt_deg != 0) r.fail(r.field("tilt_deg"), "the distance series is measured at tilt 0 (c is fitted there)");
   } else {
     m.tilt_deg = tilt_of(r);
   }
   m.floating_distance_mm = distance_of(r, d.setup.floating_distance_mm, distance_series);
   const bool csv = r.has("mtf_csv"), edge = r.has("edge_image");
-  if (csv == edge) r.fail(csv ? "edge_image" : "mtf_csv", csv ? "give mtf_csv or edge_image, not both" : "missing (give mtf_csv or edge_image)");
+  if (csv == edge) r.fail(r.field(csv ? "edge_image" : "mtf_csv"), csv ? "give mtf_csv or edge_image, not both" : "missing (give mtf_csv or edge_image)");
   m.kind = csv ? "mtf_csv" : "edge_image";
   m.file = resolve_file(r, d.dir, m.kind);
   if (csv) read_csv_measurement(r, m);
@@ -186,13 +138,13 @@ mtf_measurement read_measurement(const json& j, const fit_data& d, const std::st
 
   const auto in_range = std::count_if(m.lp_per_mm.begin(), m.lp_per_mm.end(), [](double f) { return f > 0 && f <= 1.0; });
   if (in_range < 2)
-    r.fail(m.kind, m.file + ": the curve has " + std::to_string(in_range) + " frequencies in (0, 1] lp/mm; need at least 2");
+    r.fail(r.field(m.kind), m.file + ": the curve has " + std::to_string(in_range) + " frequencies in (0, 1] lp/mm; need at least 2");
   check_entry_layout(d.setup, m.tilt_deg, m.floating_distance_mm, m.origin);
   return m;
 }
 
 white_square read_white_square(const json& j, const fit_data& d, const std::string& field) {
-  object_reader r(j, d.fit_json, field);
+  json_reader r(j, d.fit_json, field);
   white_square w;
   w.origin = d.fit_json + ": " + field;
   w.tilt_deg = tilt_of(r);
@@ -204,10 +156,10 @@ white_square read_white_square(const json& j, const fit_data& d, const std::stri
     std::vector<double> size;
     if (v.is_number()) size = {v.get<double>(), v.get<double>()};
     else if (v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number()) size = {v[0].get<double>(), v[1].get<double>()};
-    else r.fail("square_mm", "must be a side length or [width, height] in mm");
+    else r.fail(r.field("square_mm"), "must be a side length or [width, height] in mm");
     if (!(size[0] > 0) || !(size[1] > 0) || !std::isfinite(size[0]) || !std::isfinite(size[1]))
-      r.fail("square_mm", "must be positive and finite");
-    if (size[0] > w.width_mm || size[1] > w.height_mm) r.fail("square_mm", "is larger than the setup scene's source");
+      r.fail(r.field("square_mm"), "must be positive and finite");
+    if (size[0] > w.width_mm || size[1] > w.height_mm) r.fail(r.field("square_mm"), "is larger than the setup scene's source");
     w.width_mm = size[0];
     w.height_mm = size[1];
   }
@@ -218,17 +170,17 @@ white_square read_white_square(const json& j, const fit_data& d, const std::stri
   try {
     img = read_linear_image(w.file);
   } catch (const std::runtime_error& err) {
-    r.fail("image", err.what());
+    r.fail(r.field("image"), err.what());
   }
   if (img.luminance.cols != d.setup.camera.width || img.luminance.rows != d.setup.camera.height)
-    r.fail("image", w.file + " is " + std::to_string(img.luminance.cols) + "x" + std::to_string(img.luminance.rows) +
+    r.fail(r.field("image"), w.file + " is " + std::to_string(img.luminance.cols) + "x" + std::to_string(img.luminance.rows) +
                         ", but the setup scene's camera is " + std::to_string(d.setup.camera.width) + "x" +
                         std::to_string(d.setup.camera.height) + " (white squares are framed by that camera)");
   for (int y = 0; y < img.luminance.rows; ++y) {
     for (int x = 0; x < img.luminance.cols; ++x) {
       const double v = img.luminance.at<double>(y, x);
       if (!std::isfinite(v))
-        r.fail("image", w.file + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is " +
+        r.fail(r.field("image"), w.file + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is " +
                             (std::isnan(v) ? "NaN" : "infinite"));
     }
   }
@@ -237,14 +189,14 @@ white_square read_white_square(const json& j, const fit_data& d, const std::stri
   return w;
 }
 
-const json& array_of(object_reader& r, const std::string& key, bool required) {
+const json& array_of(json_reader& r, const std::string& key, bool required) {
   static const json empty = json::array();
   if (!r.has(key)) {
-    if (required) r.fail(key, "missing");
+    if (required) r.fail(r.field(key), "missing");
     return empty;
   }
   const json& v = r.raw(key);
-  if (!v.is_array() || v.empty()) r.fail(key, "must be a non-empty array");
+  if (!v.is_array() || v.empty()) r.fail(r.field(key), "must be a non-empty array");
   return v;
 }
 
@@ -328,16 +280,11 @@ fit_data load_fit_data(const std::string& dir_text) {
   d.fit_json = (fs::path(d.dir) / "fit.json").string();
   if (!fs::is_regular_file(d.fit_json))
     throw input_error(d.fit_json + ": missing (a fit data directory needs fit.json; see assets/fit_example/README.md)");
-  json j;
-  try {
-    j = json::parse(read_text_file(d.fit_json));
-  } catch (const json::exception& e) {
-    throw input_error(d.fit_json + ": malformed JSON: " + e.what());
-  }
-  object_reader r(j, d.fit_json, "");
-  if (r.string("format") != fit_data_format) r.fail("format", std::string("expected \"") + fit_data_format + "\"");
+  const json j = read_json_file(d.fit_json);
+  json_reader r(j, d.fit_json, "");
+  if (r.string("format") != fit_data_format) r.fail(r.field("format"), std::string("expected \"") + fit_data_format + "\"");
   const double version = r.number("version");
-  if (version != fit_data_version) r.fail("version", "unsupported version " + number_text(version));
+  if (version != fit_data_version) r.fail(r.field("version"), "unsupported version " + number_text(version));
   d.name = r.has("name") ? r.string("name") : fs::path(d.dir).filename().string();
   if (r.has("note")) d.note = r.string("note");
 
@@ -356,8 +303,8 @@ fit_data load_fit_data(const std::string& dir_text) {
       d.white_squares.push_back(read_white_square(whites[i], d, "white_squares[" + std::to_string(i) + "]"));
   }
   d.mu = r.optional_number("mu");
-  if (d.mu && (*d.mu < 0 || *d.mu > 1)) r.fail("mu", "must be in [0, 1]");
-  if (d.mu && !d.white_squares.empty()) r.fail("mu", "give white_squares (mu is fitted) or mu (mu is fixed), not both");
+  if (d.mu && (*d.mu < 0 || *d.mu > 1)) r.fail(r.field("mu"), "must be in [0, 1]");
+  if (d.mu && !d.white_squares.empty()) r.fail(r.field("mu"), "give white_squares (mu is fitted) or mu (mu is fixed), not both");
   r.finish();
 
   auto by_tilt = [](const auto& a, const auto& b) { return a.tilt_deg < b.tilt_deg; };
@@ -367,20 +314,20 @@ fit_data load_fit_data(const std::string& dir_text) {
                    [](const auto& a, const auto& b) { return a.floating_distance_mm < b.floating_distance_mm; });
   for (std::size_t i = 1; i < d.tilt_series.size(); ++i) {
     if (d.tilt_series[i].tilt_deg == d.tilt_series[i - 1].tilt_deg)
-      r.fail("tilt_series", "tilt " + number_text(d.tilt_series[i].tilt_deg) + " deg appears twice");
+      r.fail(r.field("tilt_series"), "tilt " + number_text(d.tilt_series[i].tilt_deg) + " deg appears twice");
   }
   if (d.tilt_series.front().tilt_deg != 0)
-    r.fail("tilt_series", "no measurement at tilt 0 (a(0) and c are fitted there)");
+    r.fail(r.field("tilt_series"), "no measurement at tilt 0 (a(0) and c are fitted there)");
   std::set<double> distinct;
   for (const auto& m : d.distance_series) distinct.insert(m.floating_distance_mm);
   if (distinct.size() < 2)
-    r.fail("distance_series", "needs at least 2 different floating distances for the slope of mean MTF (has " +
+    r.fail(r.field("distance_series"), "needs at least 2 different floating distances for the slope of mean MTF (has " +
                                   std::to_string(distinct.size()) + ")");
   for (std::size_t i = 0; i < d.white_squares.size(); ++i) {
     const double t = d.white_squares[i].tilt_deg;
-    if (i > 0 && t == d.white_squares[i - 1].tilt_deg) r.fail("white_squares", "tilt " + number_text(t) + " deg appears twice");
+    if (i > 0 && t == d.white_squares[i - 1].tilt_deg) r.fail(r.field("white_squares"), "tilt " + number_text(t) + " deg appears twice");
     if (std::none_of(d.tilt_series.begin(), d.tilt_series.end(), [&](const auto& m) { return m.tilt_deg == t; }))
-      r.fail("white_squares", "tilt " + number_text(t) + " deg has no tilt_series entry (the preset tabulates mu at the tilt series' angles)");
+      r.fail(r.field("white_squares"), "tilt " + number_text(t) + " deg has no tilt_series entry (the preset tabulates mu at the tilt series' angles)");
   }
   return d;
 }

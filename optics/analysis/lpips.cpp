@@ -1,3 +1,5 @@
+#include "airr/optics/error.hpp"
+#include "airr/optics/color.hpp"
 #include "airr/analysis/lpips.hpp"
 
 #include <algorithm>
@@ -36,7 +38,7 @@ cv::Mat to_blob(const cv::Mat& rgb, cv::Size size) {
     auto* dst = encoded.ptr<cv::Vec3f>(y);
     for (int x = 0; x < linear.cols; ++x)
       for (int c = 0; c < 3; ++c) {
-        const double v = linear_to_srgb(std::clamp(src[x][c], 0.0, 1.0));
+        const double v = srgb_encode(std::clamp(src[x][c], 0.0, 1.0));
         dst[x][c] = static_cast<float>(2.0 * v - 1.0);
       }
   }
@@ -47,11 +49,11 @@ cv::Mat to_blob(const cv::Mat& rgb, cv::Size size) {
 
 lpips_result lpips(const cv::Mat& a_rgb, const cv::Mat& b_rgb,
                    const std::filesystem::path& model_path) {
-  if (a_rgb.empty() || b_rgb.empty()) throw std::runtime_error("cannot compare an empty image");
+  if (a_rgb.empty() || b_rgb.empty()) throw measurement_error("cannot compare an empty image");
   if (a_rgb.channels() != 3 || b_rgb.channels() != 3)
-    throw std::runtime_error("LPIPS compares three-channel RGB images");
+    throw measurement_error("LPIPS compares three-channel RGB images");
   if (a_rgb.size() != b_rgb.size())
-    throw std::runtime_error("images differ in size: " + std::to_string(a_rgb.cols) + "x" +
+    throw measurement_error("images differ in size: " + std::to_string(a_rgb.cols) + "x" +
                              std::to_string(a_rgb.rows) + " vs " + std::to_string(b_rgb.cols) +
                              "x" + std::to_string(b_rgb.rows));
 
@@ -60,7 +62,7 @@ lpips_result lpips(const cv::Mat& a_rgb, const cv::Mat& b_rgb,
   if (inputs.size() != 2) {
     std::string names;
     for (const auto& in : inputs) names += (names.empty() ? "" : ", ") + in.name + " " + shape_text(in);
-    throw std::runtime_error(where + "an LPIPS model takes two images (N x 3 x H x W), this one has " +
+    throw measurement_error(where + "an LPIPS model takes two images (N x 3 x H x W), this one has " +
                              std::to_string(inputs.size()) + " input(s)" +
                              (names.empty() ? std::string() : ": " + names));
   }
@@ -71,7 +73,7 @@ lpips_result lpips(const cv::Mat& a_rgb, const cv::Mat& b_rgb,
                       (in.shape.size() == 4 && (in.shape[0] == -1 || in.shape[0] == 1) &&
                        (in.shape[1] == -1 || in.shape[1] == 3));
     if (!nchw)
-      throw std::runtime_error(where + "input '" + in.name + "' has shape " + shape_text(in) +
+      throw measurement_error(where + "input '" + in.name + "' has shape " + shape_text(in) +
                                ", expected N x 3 x H x W with N = 1");
     if (in.shape_known && in.shape[2] > 0 && in.shape[3] > 0)
       result.input_size = cv::Size(static_cast<int>(in.shape[3]), static_cast<int>(in.shape[2]));
@@ -82,9 +84,9 @@ lpips_result lpips(const cv::Mat& a_rgb, const cv::Mat& b_rgb,
   try {
     net = cv::dnn::readNetFromONNX(model_path.string());
   } catch (const cv::Exception& e) {
-    throw std::runtime_error(where + "the model cannot be loaded: " + e.err);
+    throw measurement_error(where + "the model cannot be loaded: " + e.err);
   }
-  if (net.empty()) throw std::runtime_error(where + "the model cannot be loaded");
+  if (net.empty()) throw measurement_error(where + "the model cannot be loaded");
 
   cv::Mat out;
   try {
@@ -92,16 +94,16 @@ lpips_result lpips(const cv::Mat& a_rgb, const cv::Mat& b_rgb,
     net.setInput(to_blob(b_rgb, result.input_size), inputs[1].name);
     out = net.forward();
   } catch (const cv::Exception& e) {
-    throw std::runtime_error(where + "running the model failed: " + e.err);
+    throw measurement_error(where + "running the model failed: " + e.err);
   }
   if (out.empty() || out.depth() != CV_32F)
-    throw std::runtime_error(where + "the model returned no float output");
+    throw measurement_error(where + "the model returned no float output");
   // A spatial distance map is averaged to one value.
   const auto* v = out.ptr<float>();
   double sum = 0;
   for (size_t i = 0; i < out.total(); ++i) sum += v[i];
   result.value = sum / static_cast<double>(out.total());
-  if (!std::isfinite(result.value)) throw std::runtime_error(where + "the model returned NaN or inf");
+  if (!std::isfinite(result.value)) throw measurement_error(where + "the model returned NaN or inf");
   return result;
 }
 

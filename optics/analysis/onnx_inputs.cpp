@@ -1,3 +1,4 @@
+#include "airr/optics/error.hpp"
 #include "airr/analysis/onnx_inputs.hpp"
 
 #include <fstream>
@@ -116,12 +117,12 @@ std::vector<onnx_input> read_onnx_inputs(const std::filesystem::path& path) {
   const std::string where = path.string() + ": ";
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
-    throw std::runtime_error(where + (std::filesystem::exists(path, ec) ? "is not a regular file"
+    throw input_error(where + (std::filesystem::exists(path, ec) ? "is not a regular file"
                                                                         : "no such file"));
   std::ifstream file(path, std::ios::binary);
-  if (!file) throw std::runtime_error(where + "cannot open file");
+  if (!file) throw input_error(where + "cannot open file");
   const std::string data{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-  if (data.empty()) throw std::runtime_error(where + "file is empty, not an ONNX model");
+  if (data.empty()) throw input_error(where + "file is empty, not an ONNX model");
 
   std::vector<onnx_input> inputs;
   try {
@@ -146,10 +147,10 @@ std::vector<onnx_input> read_onnx_inputs(const std::filesystem::path& path) {
       }
     }
     if (!has_ir_version || !has_graph)
-      throw std::runtime_error(where + "not an ONNX model (no IR version or graph)");
+      throw input_error(where + "not an ONNX model (no IR version or graph)");
     std::erase_if(inputs, [&](const onnx_input& in) { return initializers.count(in.name) > 0; });
   } catch (const malformed& m) {
-    throw std::runtime_error(where + "not an ONNX model (malformed protobuf at byte " +
+    throw input_error(where + "not an ONNX model (malformed protobuf at byte " +
                              std::to_string(m.offset) + ")");
   }
   return inputs;

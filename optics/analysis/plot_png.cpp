@@ -1,3 +1,4 @@
+#include "airr/optics/error.hpp"
 #include "airr/analysis/plot_png.hpp"
 
 #include <algorithm>
@@ -95,11 +96,11 @@ cv::Scalar plot_palette_colour(int index) {
 
 cv::Mat render_plot(const std::vector<plot_series>& series, const plot_params& params) {
   if (params.width < 200 || params.height < 150)
-    throw std::runtime_error("plot must be at least 200x150 pixels");
+    throw measurement_error("plot must be at least 200x150 pixels");
   double xlo = std::numeric_limits<double>::infinity(), xhi = -xlo, ylo = xlo, yhi = -xlo;
   for (const auto& s : series) {
     if (s.x.size() != s.y.size())
-      throw std::runtime_error("plot series '" + s.label + "' has different x and y lengths");
+      throw measurement_error("plot series '" + s.label + "' has different x and y lengths");
     for (size_t i = 0; i < s.x.size(); ++i) {
       if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
       xlo = std::min(xlo, s.x[i]);
@@ -206,7 +207,7 @@ void write_plot_png(const std::filesystem::path& path, const std::vector<plot_se
   const cv::Mat img = render_plot(series, params);
   std::vector<unsigned char> png;
   if (!cv::imencode(".png", img, png))
-    throw std::runtime_error(path.string() + ": PNG encoding failed");
+    throw input_error(path.string() + ": PNG encoding failed");
   airr::write_file_atomic(path.string(), std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
 }
 

@@ -3,6 +3,9 @@
 #include <cmath>
 #include <numbers>
 
+#include "airr/analysis/mtf_metrics.hpp"
+#include "airr/optics/interpolate.hpp"
+
 namespace airr::analysis {
 
 static double mtf_at(const psf_samples& psf, double f, double pixel_mm) {
@@ -33,18 +36,9 @@ psf_mtf_curve psf_mtf(const psf_samples& psf, const psf_mtf_params& p) {
 }
 
 double psf_mean_mtf(const psf_samples& psf, double max_lp_per_mm, double pixel_mm, int samples) {
-  double sum = 0;
-  for (int i = 1; i <= samples; ++i) sum += mtf_at(psf, max_lp_per_mm * i / samples, pixel_mm);
-  return sum / samples;
+  return grid_mean(max_lp_per_mm, samples, [&](double f) { return mtf_at(psf, f, pixel_mm); });
 }
 
-double psf_mtf50(const psf_mtf_curve& c) {
-  for (std::size_t i = 1; i < c.mtf.size(); ++i) {
-    if (c.mtf[i - 1] >= 0.5 && c.mtf[i] < 0.5) {
-      return c.lp_per_mm[i - 1] + (c.mtf[i - 1] - 0.5) / (c.mtf[i - 1] - c.mtf[i]) * (c.lp_per_mm[i] - c.lp_per_mm[i - 1]);
-    }
-  }
-  return 0.0;
-}
+double psf_mtf50(const psf_mtf_curve& c) { return first_crossing(c.lp_per_mm, c.mtf, 0.5).value_or(0.0); }
 
 }  // namespace airr::analysis

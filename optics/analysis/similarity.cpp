@@ -1,3 +1,4 @@
+#include "airr/optics/error.hpp"
 #include "airr/analysis/similarity.hpp"
 
 #include <algorithm>
@@ -17,18 +18,18 @@ std::string size_text(const cv::Mat& m) {
 }
 
 void check_pair(const cv::Mat& a, const cv::Mat& b, const ssim_params& params) {
-  if (a.empty() || b.empty()) throw std::runtime_error("cannot compare an empty image");
+  if (a.empty() || b.empty()) throw measurement_error("cannot compare an empty image");
   if (a.channels() != 1 || b.channels() != 1)
-    throw std::runtime_error("SSIM compares single-channel (luminance) images");
+    throw measurement_error("SSIM compares single-channel (luminance) images");
   if (a.size() != b.size())
-    throw std::runtime_error("images differ in size: " + size_text(a) + " vs " + size_text(b));
+    throw measurement_error("images differ in size: " + size_text(a) + " vs " + size_text(b));
   if (params.window < 3 || params.window % 2 == 0 || !(params.sigma > 0))
-    throw std::runtime_error("SSIM window must be odd and at least 3 with a positive sigma");
+    throw measurement_error("SSIM window must be odd and at least 3 with a positive sigma");
   if (a.cols < params.window || a.rows < params.window)
-    throw std::runtime_error("images of " + size_text(a) + " are smaller than the " +
+    throw measurement_error("images of " + size_text(a) + " are smaller than the " +
                              std::to_string(params.window) + "-pixel SSIM window");
   if (!cv::checkRange(a) || !cv::checkRange(b))
-    throw std::runtime_error("images hold NaN or infinite values");
+    throw measurement_error("images hold NaN or infinite values");
 }
 
 struct ssim_means {

@@ -9,13 +9,16 @@
 
 #include <opencv2/core.hpp>
 
+#include "airr/optics/error.hpp"
+#include "airr/optics/geometry.hpp"
+
 namespace airr::analysis {
 
 namespace {
 
 constexpr int min_region_size = 20;
 
-[[noreturn]] void fail(const std::string& problem) { throw std::runtime_error(problem); }
+[[noreturn]] void fail(const std::string& problem) { throw measurement_error(problem); }
 
 std::string fmt(double v, int precision = 3) {
   std::ostringstream s;
@@ -332,7 +335,7 @@ mtf_curve slanted_edge_mtf(const cv::Mat& image, const slanted_edge_params& para
   if (std::abs(line.slope) * (region.rows - 1) < 1.0)
     fail("the edge is only " + fmt(std::atan(std::abs(line.slope)) * 180 / std::numbers::pi) +
          " deg from the pixel axis; tilt it 2 to 10 degrees so the rows sample every phase");
-  curve.edge_angle_deg = std::atan(line.slope) * 180.0 / std::numbers::pi;
+  curve.edge_angle_deg = degrees(std::atan(line.slope));
 
   const esf_profile esf = bin_esf(region, line, polarity, params.oversampling);
   const int n = static_cast<int>(esf.values.size());
@@ -380,7 +383,7 @@ mtf_curve slanted_edge_mtf(const cv::Mat& image, const slanted_edge_params& para
 
 std::vector<double> to_lp_per_mm(const std::vector<double>& cycles_per_pixel, double mm_per_pixel) {
   if (!(mm_per_pixel > 0) || !std::isfinite(mm_per_pixel))
-    throw std::runtime_error("pixel size must be a positive number of mm, got " + fmt(mm_per_pixel));
+    throw measurement_error("pixel size must be a positive number of mm, got " + fmt(mm_per_pixel));
   std::vector<double> out;
   out.reserve(cycles_per_pixel.size());
   for (double f : cycles_per_pixel) out.push_back(f / mm_per_pixel);

@@ -1,13 +1,10 @@
 #include "airr/optics/layout.hpp"
 
 #include <cmath>
-#include <numbers>
 
 #include "airr/optics/error.hpp"
 
 namespace airr {
-
-static constexpr double deg = std::numbers::pi / 180.0;
 
 glm::dmat4 part_transform(const part_frame& f) {
   glm::dmat4 m(1.0);
@@ -16,11 +13,6 @@ glm::dmat4 part_transform(const part_frame& f) {
   m[2] = glm::dvec4(f.n, 0);
   m[3] = glm::dvec4(f.center, 1);
   return m;
-}
-
-glm::dvec2 part_local(const part_frame& f, const glm::dvec3& p) {
-  const glm::dvec3 d = p - f.center;
-  return {glm::dot(d, f.u), glm::dot(d, f.v)};
 }
 
 part_frame source_frame(const scene& s) {
@@ -46,7 +38,7 @@ part_frame half_mirror_frame(const scene& s) {
 }
 
 part_frame retroreflector_frame(const scene& s) {
-  const double t = s.retroreflector.tilt_deg * deg;
+  const double t = radians(s.retroreflector.tilt_deg);
   part_frame f;
   f.center = {0, 0, -s.retroreflector.distance_mm};
   f.n = {0, std::sin(t), std::cos(t)};
@@ -59,14 +51,13 @@ part_frame retroreflector_frame(const scene& s) {
 
 glm::dvec3 aerial_image_center(const scene& s) {
   const part_frame hm = half_mirror_frame(s);
-  const glm::dvec3 c = source_frame(s).center;
-  return c - 2.0 * glm::dot(c - hm.center, hm.n) * hm.n;
+  return mirror_point(source_frame(s).center, hm.center, hm.n);
 }
 
 // ---------------------------------------------------------------- intersection
 
 static glm::dvec3 corner(const part_frame& f, double su, double sv) {
-  return f.center + su * 0.5 * f.width * f.u + sv * 0.5 * f.height * f.v;
+  return part_point(f, su * 0.5 * f.width, sv * 0.5 * f.height);
 }
 
 // Whether segment p-q meets the rectangle f.
@@ -76,8 +67,7 @@ static bool segment_hits(const part_frame& f, const glm::dvec3& p, const glm::dv
   if ((dp > 0 && dq > 0) || (dp < 0 && dq < 0)) return false;
   if (dp == dq) return false;  // parallel in the plane: caught by the other part's edges
   const glm::dvec3 x = p + (q - p) * (dp / (dp - dq));
-  const glm::dvec2 l = part_local(f, x);
-  return std::abs(l.x) <= 0.5 * f.width && std::abs(l.y) <= 0.5 * f.height;
+  return inside_part(f, part_local(f, x));
 }
 
 static bool edges_hit(const part_frame& a, const part_frame& b) {
@@ -109,7 +99,7 @@ pinhole_camera make_camera(const scene& s) {
   // Framed on the canonical aerial-image centre, so a source offset shows as a moved image.
   const glm::dvec3 target(0, 0, s.floating_distance_mm);
   c.position = target + glm::dvec3(0, 0, s.camera.distance_mm);
-  c.tan_half_fov = std::tan(0.5 * s.camera.fov_deg * deg);
+  c.tan_half_fov = std::tan(radians(0.5 * s.camera.fov_deg));
   c.width = s.camera.width;
   c.height = s.camera.height;
   c.mm_per_pixel = 2.0 * s.camera.distance_mm * c.tan_half_fov / c.height;

@@ -2,47 +2,39 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
+#include <mutex>
 
 #include "airr/optics/assets.hpp"
 #include "airr/optics/error.hpp"
-#include "airr/optics/scene_json.hpp"
-#include "json_reader.hpp"
+#include "airr/optics/files.hpp"
+#include "airr/optics/interpolate.hpp"
+#include "airr/optics/json_reader.hpp"
 
 namespace airr {
 
 using nlohmann::json;
 
+bool is_preset_path(const std::string& name_or_path) {
+  return name_or_path.find('/') != std::string::npos || std::filesystem::path(name_or_path).extension() == ".json";
+}
+
 std::string resolve_preset_path(const std::string& name_or_path, const std::string& base_dir) {
-  const bool is_path = name_or_path.find('/') != std::string::npos ||
-                       std::filesystem::path(name_or_path).extension() == ".json";
-  if (!is_path) return asset_dir() + "/presets/" + name_or_path + ".json";
-  if (std::filesystem::path(name_or_path).is_absolute() || base_dir.empty()) return name_or_path;
-  return (std::filesystem::path(base_dir) / name_or_path).lexically_normal().string();
+  if (!is_preset_path(name_or_path)) return asset_dir() + "/presets/" + name_or_path + ".json";
+  return resolve_path(name_or_path, base_dir);
 }
 
 // A number or an array of numbers.
-static std::vector<double> read_values(detail::json_reader& r, const std::string& key) {
-  if (!r.has(key)) r.fail(key, "missing");
+static std::vector<double> read_values(json_reader& r, const std::string& key) {
+  r.require(key);
   const json& v = r.raw(key);
-  std::vector<double> out;
-  if (v.is_number()) {
-    out.push_back(v.get<double>());
-  } else if (v.is_array() && !v.empty()) {
-    for (const auto& e : v) {
-      if (!e.is_number()) r.fail(key, "must be a number or an array of numbers");
-      out.push_back(e.get<double>());
-    }
-  } else {
-    r.fail(key, "must be a number or a non-empty array of numbers");
-  }
-  for (double x : out) {
-    if (!std::isfinite(x)) r.fail(key, "must be finite");
-  }
-  return out;
+  if (v.is_number()) return {r.number(key)};
+  if (!v.is_array() || v.empty()) r.fail(key, "must be a number or a non-empty array of numbers");
+  return r.number_array(key);
 }
 
 sheet_preset preset_from_json(const json& j, const std::string& origin) {
-  detail::json_reader r(j, origin, "");
+  json_reader r(j, origin, "");
   sheet_preset p;
   std::string format;
   r.string("format", format);
@@ -57,8 +49,7 @@ sheet_preset preset_from_json(const json& j, const std::string& origin) {
   if (r.has("tilt_deg")) p.theta_deg = read_values(r, "tilt_deg");
   p.a_per_mm = read_values(r, "a_per_mm");
   p.mu = read_values(r, "mu");
-  if (!r.has("c_mm")) r.fail("c_mm", "missing");
-  r.number("c_mm", p.c_mm);
+  p.c_mm = r.number("c_mm");
   r.number("reference_distance_mm", p.reference_distance_mm);
   if (r.has("provenance")) p.provenance = r.raw("provenance");
   r.finish();
@@ -86,14 +77,29 @@ sheet_preset preset_from_json(const json& j, const std::string& origin) {
 
 sheet_preset load_preset(const std::string& name_or_path, const std::string& base_dir) {
   const std::string path = resolve_preset_path(name_or_path, base_dir);
-  const std::string text = read_text_file(path);
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::exception& e) {
-    throw input_error(path + ": malformed JSON: " + e.what());
+  // Cached by path, modification time and size, so the designer's frame loop does not re-read it;
+  // a changed file is read again.
+  struct entry {
+    std::filesystem::file_time_type mtime;
+    std::uintmax_t size = 0;
+    sheet_preset preset;
+  };
+  static std::mutex mutex;
+  static std::map<std::string, entry> cache;
+  std::error_code ec_time, ec_size;
+  const auto mtime = std::filesystem::last_write_time(path, ec_time);
+  const auto size = std::filesystem::file_size(path, ec_size);
+  if (!ec_time && !ec_size) {
+    std::lock_guard lock(mutex);
+    const auto it = cache.find(path);
+    if (it != cache.end() && it->second.mtime == mtime && it->second.size == size) return it->second.preset;
   }
-  return preset_from_json(j, path);
+  sheet_preset preset = preset_from_json(read_json_file(path), path);
+  if (!ec_time && !ec_size) {
+    std::lock_guard lock(mutex);
+    cache[path] = {mtime, size, preset};
+  }
+  return preset;
 }
 
 static json values_to_json(const std::vector<double>& v) { return v.size() == 1 ? json(v[0]) : json(v); }
@@ -115,13 +121,7 @@ json preset_to_json(const sheet_preset& p) {
 void save_preset(const sheet_preset& p, const std::string& path) { write_file_atomic(path, preset_to_json(p).dump(2) + "\n"); }
 
 double interpolate_by_angle(const std::vector<double>& theta_deg, const std::vector<double>& values, double theta) {
-  if (values.size() == 1 || theta_deg.empty()) return values.front();
-  if (theta <= theta_deg.front()) return values.front();
-  if (theta >= theta_deg.back()) return values.back();
-  const auto hi = std::upper_bound(theta_deg.begin(), theta_deg.end(), theta) - theta_deg.begin();
-  const auto lo = hi - 1;
-  const double t = (theta - theta_deg[lo]) / (theta_deg[hi] - theta_deg[lo]);
-  return values[lo] + t * (values[hi] - values[lo]);
+  return interpolate_linear(theta_deg, values, theta);
 }
 
 }  // namespace airr

@@ -1,35 +1,16 @@
 #include "airr/optics/psf.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <numbers>
-#include <optional>
 
 #include "airr/optics/error.hpp"
+#include "airr/optics/geometry.hpp"
 #include "airr/optics/layout.hpp"
+#include "airr/optics/low_discrepancy.hpp"
 #include "airr/optics/random.hpp"
 
 namespace airr {
-
-namespace {
-
-// Where the ray meets the part's plane (ahead of the origin), if inside the rectangle.
-std::optional<glm::dvec3> hit_part(const part_frame& f, const glm::dvec3& o, const glm::dvec3& d, bool bounded = true) {
-  const double denom = glm::dot(d, f.n);
-  if (std::abs(denom) < 1e-15) return std::nullopt;
-  const double t = glm::dot(f.center - o, f.n) / denom;
-  if (t <= 1e-9) return std::nullopt;
-  const glm::dvec3 p = o + t * d;
-  if (bounded) {
-    const glm::dvec2 l = part_local(f, p);
-    if (std::abs(l.x) > 0.5 * f.width || std::abs(l.y) > 0.5 * f.height) return std::nullopt;
-  }
-  return p;
-}
-
-glm::dvec3 reflect(const glm::dvec3& d, const glm::dvec3& n) { return d - 2.0 * glm::dot(d, n) * n; }
-
-}  // namespace
 
 double psf_samples::brightness() const {
   double sum = 0;
@@ -59,19 +40,27 @@ psf_samples sample_psf(const scene& s, const retro_model& model, const psf_param
   psf_samples out;
   out.launched = p.samples;
   out.rr_distance_mm = glm::length(*p2 - aerial_point);
-  const glm::dvec3 wi(-glm::dot(d0, rr.u), -glm::dot(d0, rr.v), -glm::dot(d0, rr.n));
-  out.incidence_deg = std::acos(std::clamp(wi.z, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  const glm::dvec3 wi = -to_local(rr, d0);
+  out.incidence_deg = polar_angle_deg(wi);
   out.offset_mm.reserve(p.samples);
   out.weight.reserve(p.samples);
   const double hm_factor = s.half_mirror.reflectance * s.half_mirror.transmittance;
 
+  std::array<double, 6> rotation;
+  pcg32 rotation_rng = sample_rng(0, 0, p.seed ^ 0x5eedu);
+  for (double& r : rotation) r = rotation_rng.next_double();
   for (std::uint64_t i = 0; i < p.samples; ++i) {
+    // The lobe and shift samples stratify each other across the PSF's samples (a rotated R6
+    // sequence, as the tracer's pixels use); the rest comes from the per-sample generator.
+    const std::array<double, 6> q = r6_point(i, rotation);
     pcg32 rng = sample_rng(i, 0, p.seed);
-    retro_randoms r;
-    for (auto& u : r.u) u = rng.next_double();
-    const retro_sample rs = model.sample(wi, r);
+    retro_samples u;
+    u.lobe = {q[2], q[3]};
+    u.shift = {q[4], q[5]};
+    u.more = rng.split();
+    const retro_sample rs = model.sample(wi, u);
     if (!(rs.weight > 0)) continue;
-    const glm::dvec3 dir = rs.wo.x * rr.u + rs.wo.y * rr.v + rs.wo.z * rr.n;
+    const glm::dvec3 dir = to_world(rr, rs.wo);
     const glm::dvec3 origin = *p2 + rs.shift_mm.x * rr.u + rs.shift_mm.y * rr.v;
     const auto a = hit_part(hm, origin, dir);
     if (!a) continue;

@@ -25,26 +25,10 @@
 #include <string>
 
 #include "airr/optics/error.hpp"
+#include "airr/optics/geometry.hpp"
 
 namespace airr {
 namespace {
-
-constexpr double pi = 3.14159265358979323846;
-constexpr double deg = 180.0 / pi;
-
-// An orthonormal frame with n as its z axis.
-struct frame {
-  glm::dvec3 t, b, n;
-  explicit frame(const glm::dvec3& normal) : n(normal) {
-    const double s = std::copysign(1.0, n.z);
-    const double a = -1.0 / (s + n.z);
-    const double c = n.x * n.y * a;
-    t = {1 + s * n.x * n.x * a, s * c, -s * n.x};
-    b = {c, s + n.y * n.y * a, -n.y};
-  }
-  glm::dvec3 to_local(const glm::dvec3& v) const { return {glm::dot(v, t), glm::dot(v, b), glm::dot(v, n)}; }
-  glm::dvec3 to_world(const glm::dvec3& v) const { return v.x * t + v.y * b + v.z * n; }
-};
 
 // Refracts the propagation direction d at a surface with normal m facing against d;
 // ratio = n_incident / n_transmitted. Empty on total internal reflection.
@@ -186,21 +170,20 @@ microfacet_retro::microfacet_retro(const retro_model_params& p)
   check("eta", eta_, 1, 3);
 }
 
-retro_sample microfacet_retro::sample(const glm::dvec3& wi, const retro_randoms& r) const {
-  return trace(wi, r).sample;
-}
+retro_sample microfacet_retro::sample(const glm::dvec3& wi, retro_samples u) const { return trace(wi, u).sample; }
 
-microfacet_trace microfacet_retro::trace(const glm::dvec3& wi, const retro_randoms& r) const {
+microfacet_trace microfacet_retro::trace(const glm::dvec3& wi, retro_samples u) const {
   microfacet_trace out;
   if (wi.z <= 0) return out;
-  const auto& u = r.u;
+  pcg32& more = u.more;
 
   // Front surface: reflect or refract in.
-  const glm::dvec3 m = sample_beckmann_visible(wi, alpha_surface_, u[0], u[1]);
+  const double entry_u1 = more.next_double(), entry_u2 = more.next_double();
+  const glm::dvec3 m = sample_beckmann_visible(wi, alpha_surface_, entry_u1, entry_u2);
   const double cos_i = glm::dot(wi, m);
-  if (u[2] < fresnel_dielectric(cos_i, eta_)) {
+  if (u.lobe.x < fresnel_dielectric(cos_i, eta_)) {
     out.branch = microfacet_branch::surface;
-    const glm::dvec3 wo = 2 * cos_i * m - wi;
+    const glm::dvec3 wo = reflect(-wi, m);
     if (wo.z > 0) out.sample = {wo, {0, 0}, mu_};
     return out;
   }
@@ -208,24 +191,27 @@ microfacet_trace microfacet_retro::trace(const glm::dvec3& wi, const retro_rando
   if (!in || in->z >= 0) return out;
   glm::dvec3 d = *in;
 
-  const double x_deg = std::acos(std::clamp(-d.z, -1.0, 1.0)) * deg;
-  const double phi_deg = std::atan2(-d.y, -d.x) * deg;
+  const double x_deg = polar_angle_deg(-d);
+  const double phi_deg = degrees(std::atan2(-d.y, -d.x));
   const double p_retro = std::min(1.0, era(x_deg, phi_deg) * internal_reflectance_);
-  if (u[3] >= p_retro) {
+  if (u.lobe.y >= p_retro) {
     out.branch = microfacet_branch::diffuse;
-    const double s = std::sqrt(u[4]);
-    const double phi = 2 * pi * u[5];
-    out.sample = {{s * std::cos(phi), s * std::sin(phi), std::sqrt(std::max(0.0, 1 - u[4]))}, {0, 0}, mu_};
+    const double s = std::sqrt(u.shift.x);
+    const double phi = 2 * pi * u.shift.y;
+    out.sample = {{s * std::cos(phi), s * std::sin(phi), std::sqrt(std::max(0.0, 1 - u.shift.x))}, {0, 0}, mu_};
     return out;
   }
 
   // Cube corner: three reflections, the face order drawn by projected cosine.
   out.branch = microfacet_branch::retro;
-  const std::array<glm::dvec3, 3> faces = cube_faces(u[4] < 0.5);
+  const std::array<glm::dvec3, 3> faces = cube_faces(u.shift.x < 0.5);
   std::array<int, 3> left{0, 1, 2};
   int n_left = 3;
-  const std::array<double, 2> face_u{u[5], u[8]};
-  const std::array<std::array<double, 2>, 3> facet_u{{{u[6], u[7]}, {u[9], u[10]}, {u[11], u[12]}}};
+  std::array<double, 2> face_u{u.shift.y, 0};
+  std::array<std::array<double, 2>, 3> facet_u{};
+  facet_u[0] = {more.next_double(), more.next_double()};
+  face_u[1] = more.next_double();
+  for (int k = 1; k < 3; ++k) facet_u[k] = {more.next_double(), more.next_double()};
   for (int step = 0; step < 3; ++step) {
     std::array<double, 3> w{};
     double total = 0;
@@ -240,10 +226,10 @@ microfacet_trace microfacet_retro::trace(const glm::dvec3& wi, const retro_rando
     }
     if (w[pick] <= 0) return out;  // the last face is turned away from the ray
     const glm::dvec3 n = faces[left[pick]];
-    const frame f(n);
+    const basis f = make_basis(n);
     const glm::dvec3 mf =
         f.to_world(sample_beckmann_visible(f.to_local(-d), alpha_internal_, facet_u[step][0], facet_u[step][1]));
-    d -= 2 * glm::dot(d, mf) * mf;
+    d = reflect(d, mf);
     if (glm::dot(d, n) <= 0) return out;
     left[pick] = left[--n_left];
   }
@@ -251,7 +237,8 @@ microfacet_trace microfacet_retro::trace(const glm::dvec3& wi, const retro_rando
 
   // Exit through the front surface; the facet normal faces into the sheet (-z).
   const glm::dvec3 v = -d;
-  const glm::dvec3 mv = sample_beckmann_visible({v.x, v.y, -v.z}, alpha_surface_, u[13], u[14]);
+  const double exit_u1 = more.next_double(), exit_u2 = more.next_double();
+  const glm::dvec3 mv = sample_beckmann_visible({v.x, v.y, -v.z}, alpha_surface_, exit_u1, exit_u2);
   const glm::dvec3 m_in{mv.x, mv.y, -mv.z};
   const double f_out = fresnel_dielectric(glm::dot(v, m_in), 1 / eta_);
   const auto wo = refract(d, m_in, eta_);

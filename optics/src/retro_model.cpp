@@ -1,10 +1,10 @@
 #include "airr/optics/retro_model.hpp"
 
-#include <filesystem>
 #include <map>
 #include <mutex>
 
 #include "airr/optics/error.hpp"
+#include "airr/optics/files.hpp"
 #include "airr/optics/retro_microfacet.hpp"
 #include "airr/optics/retro_sinc_shift.hpp"
 #include "airr/optics/scene.hpp"
@@ -21,6 +21,9 @@ static std::shared_ptr<const shift_table> cached_shift_table(const std::string& 
   return entry;
 }
 
+std::optional<double> retro_model::pdf(const glm::dvec3&, const glm::dvec3&) const { return std::nullopt; }
+std::optional<double> retro_model::eval(const glm::dvec3&, const glm::dvec3&) const { return std::nullopt; }
+
 std::unique_ptr<retro_model> make_retro_model(const retro_model_params& p, const std::string& base_dir) {
   switch (p.type) {
     case retro_model_type::ideal:
@@ -29,11 +32,8 @@ std::unique_ptr<retro_model> make_retro_model(const retro_model_params& p, const
       sinc_shift_params sp = resolve_sinc_shift_params(p, base_dir);
       std::shared_ptr<const shift_table> shifts;
       if (sp.c_mm > 0) {
-        std::string path = p.shift_table.empty() ? default_shift_table_path() : p.shift_table;
-        if (!p.shift_table.empty() && !std::filesystem::path(path).is_absolute() && !base_dir.empty()) {
-          path = (std::filesystem::path(base_dir) / path).lexically_normal().string();
-        }
-        shifts = cached_shift_table(path);
+        shifts = cached_shift_table(p.shift_table.empty() ? default_shift_table_path()
+                                                          : resolve_path(p.shift_table, base_dir));
       }
       return std::make_unique<sinc_shift_retro>(std::move(sp), std::move(shifts));
     }

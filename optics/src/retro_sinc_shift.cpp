@@ -1,9 +1,10 @@
 #include "airr/optics/retro_sinc_shift.hpp"
 
+#include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "airr/optics/error.hpp"
+#include "airr/optics/geometry.hpp"
 #include "airr/optics/sinc_lobe.hpp"
 
 namespace airr {
@@ -33,28 +34,43 @@ sinc_shift_retro::sinc_shift_retro(sinc_shift_params p, std::shared_ptr<const sh
 double sinc_shift_retro::a_at(double theta_deg) const { return interpolate_by_angle(p_.theta_deg, p_.a_per_mm, theta_deg); }
 double sinc_shift_retro::mu_at(double theta_deg) const { return interpolate_by_angle(p_.theta_deg, p_.mu, theta_deg); }
 
-retro_sample sinc_shift_retro::sample(const glm::dvec3& wi, const retro_randoms& r) const {
+retro_sample sinc_shift_retro::sample(const glm::dvec3& wi, retro_samples u) const {
   if (wi.z <= 0) return {};
-  const double theta_deg = std::acos(std::min(1.0, wi.z)) * 180.0 / std::numbers::pi;
+  const double theta_deg = polar_angle_deg(wi);
   const double k = a_at(theta_deg) * p_.reference_distance_mm;
-  const double delta = sinc_lobe::instance().sample_delta(k, r.u[0], r.u[1]);
-  const double phi = 2.0 * std::numbers::pi * r.u[2];
+  const double delta = sinc_lobe::instance().sample_delta(k, u.lobe.x, u.more.next_double());
+  const double phi = 2.0 * pi * u.lobe.y;
 
   // Rotate the retro direction (wo = wi) by delta at azimuth phi.
-  const glm::dvec3 axis = std::abs(wi.z) < 0.9 ? glm::dvec3(0, 0, 1) : glm::dvec3(1, 0, 0);
-  const glm::dvec3 t1 = glm::normalize(glm::cross(axis, wi));
-  const glm::dvec3 t2 = glm::cross(wi, t1);
+  const basis b = make_basis(wi);
   retro_sample s;
-  s.wo = std::cos(delta) * wi + std::sin(delta) * (std::cos(phi) * t1 + std::sin(phi) * t2);
+  s.wo = b.to_world({std::sin(delta) * std::cos(phi), std::sin(delta) * std::sin(phi), std::cos(delta)});
   if (s.wo.z <= 0) return {};  // sent below the sheet: absorbed
 
   if (p_.c_mm > 0 && shifts_) {
-    const double shift = sample_shift(*shifts_, theta_deg, r.u[3], r.u[4], r.u[5]) * p_.c_mm;
-    const double psi = 2.0 * std::numbers::pi * r.u[6];
+    const double pick = u.more.next_double();
+    const double shift = sample_shift(*shifts_, theta_deg, pick, u.shift.x, u.more.next_double()) * p_.c_mm;
+    const double psi = 2.0 * pi * u.shift.y;
     s.shift_mm = {shift * std::cos(psi), shift * std::sin(psi)};
   }
   s.weight = mu_at(theta_deg);
   return s;
+}
+
+std::optional<double> sinc_shift_retro::pdf(const glm::dvec3& wi, const glm::dvec3& wo) const {
+  if (wi.z <= 0 || wo.z <= 0) return 0.0;
+  const double cos_delta = std::clamp(glm::dot(wi, wo), -1.0, 1.0);
+  const double sin_delta = std::sqrt(std::max(0.0, 1 - cos_delta * cos_delta));
+  if (sin_delta <= 0) return std::nullopt;  // the lobe's axis: a density per steradian diverges there
+  const double k = a_at(polar_angle_deg(wi)) * p_.reference_distance_mm;
+  // p(delta) d(delta) spread uniformly over the azimuth: d(omega) = sin(delta) d(delta) d(phi).
+  return sinc_lobe::pdf(std::acos(cos_delta), k) / (2.0 * pi * sin_delta);
+}
+
+std::optional<double> sinc_shift_retro::eval(const glm::dvec3& wi, const glm::dvec3& wo) const {
+  const auto p = pdf(wi, wo);
+  if (!p) return p;
+  return *p * mu_at(polar_angle_deg(wi));
 }
 
 }  // namespace airr

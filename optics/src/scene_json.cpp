@@ -6,17 +6,27 @@
 
 #include "airr/optics/error.hpp"
 #include "airr/optics/layout.hpp"
+#include "airr/optics/preset.hpp"
 #include "airr/optics/retro_model.hpp"
-#include "json_reader.hpp"
+#include "airr/optics/json_reader.hpp"
 
 namespace airr {
 
 using nlohmann::json;
-using detail::json_reader;
 
-std::string resolve_scene_path(const scene& s, const std::string& path) {
-  if (path.empty() || std::filesystem::path(path).is_absolute() || s.base_dir.empty()) return path;
-  return (std::filesystem::path(s.base_dir) / path).lexically_normal().string();
+std::string resolve_scene_path(const scene& s, const std::string& path) { return resolve_path(path, s.base_dir); }
+
+scene rebase_scene_paths(const scene& s, const std::string& new_dir) {
+  scene out = s;
+  auto rebase = [&](std::string& p) { p = rebase_path(p, s.base_dir, new_dir); };
+  rebase(out.source.image);
+  rebase(out.source.mesh);
+  rebase(out.half_mirror.mesh);
+  rebase(out.retroreflector.mesh);
+  rebase(out.retroreflector.model.shift_table);
+  if (is_preset_path(out.retroreflector.model.preset)) rebase(out.retroreflector.model.preset);
+  out.base_dir = new_dir;
+  return out;
 }
 
 // ---------------------------------------------------------------- writing
@@ -89,11 +99,11 @@ static void read_model(json_reader r, retro_model_params& m) {
     }
   }
   if (!known) r.fail(r.field("type"), "unknown model '" + type + "' (ideal, sinc_shift, microfacet)");
-  r.optional_number("mu", m.mu);
+  r.nullable_number("mu", m.mu);
   r.string("preset", m.preset);
-  r.optional_number("a_per_mm", m.a_per_mm);
-  r.optional_number("c_mm", m.c_mm);
-  r.optional_number("reference_distance_mm", m.reference_distance_mm);
+  r.nullable_number("a_per_mm", m.a_per_mm);
+  r.nullable_number("c_mm", m.c_mm);
+  r.nullable_number("reference_distance_mm", m.reference_distance_mm);
   r.string("shift_table", m.shift_table);
   r.number("alpha_surface", m.alpha_surface);
   r.number("alpha_internal", m.alpha_internal);
@@ -240,20 +250,17 @@ void validate_scene_files(const scene& s, const std::string& origin) {
   };
   need("source.image", s.source.image);
   need("retroreflector.model.shift_table", s.retroreflector.model.shift_table);
-  if (s.source.mesh.empty()) throw input_error(origin + ": source.mesh: must name a glTF file");
   need("source.mesh", s.source.mesh);
-  if (s.half_mirror.mesh.empty()) throw input_error(origin + ": half_mirror.mesh: must name a glTF file");
   need("half_mirror.mesh", s.half_mirror.mesh);
-  if (s.retroreflector.mesh.empty()) throw input_error(origin + ": retroreflector.mesh: must name a glTF file");
   need("retroreflector.mesh", s.retroreflector.mesh);
 }
 
-void check_scene(const scene& s, const std::string& origin) {
+std::shared_ptr<const retro_model> check_scene(const scene& s, const std::string& origin) {
   validate_scene(s, origin);
   validate_scene_files(s, origin);
   check_layout(s, origin);
   try {
-    make_retro_model(s.retroreflector.model, s.base_dir);  // presets and tables load, values resolve
+    return make_retro_model(s.retroreflector.model, s.base_dir);  // presets and tables load, values resolve
   } catch (const input_error& e) {
     const std::string what = e.what();
     throw input_error(what.rfind("retroreflector.", 0) == 0 ? origin + ": " + what : what);
@@ -307,15 +314,7 @@ void apply_overrides(json& j, const std::vector<scene_override>& overrides) {
 
 scene parse_scene(const std::string& text, const std::string& origin, const std::string& base_dir,
                   const std::vector<scene_override>& overrides) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::exception& e) {
-    std::string what = e.what();
-    const auto p = what.find("] ");  // drop nlohmann's "[json.exception...]" tag
-    throw input_error(origin + ": malformed JSON: " + (p == std::string::npos ? what : what.substr(p + 2)));
-  }
-  scene s = scene_from_json(j, origin);
+  scene s = scene_from_json(parse_json(text, origin), origin);
   const std::string where = overrides.empty() ? origin : origin + " (with --set)";
   if (!overrides.empty()) {
     // Overrides act on the complete form, so they may name fields the file leaves at default.

@@ -7,8 +7,8 @@
 
 #include "airr/optics/assets.hpp"
 #include "airr/optics/error.hpp"
-#include "airr/optics/scene_json.hpp"
-#include "json_reader.hpp"
+#include "airr/optics/files.hpp"
+#include "airr/optics/json_reader.hpp"
 
 namespace airr {
 
@@ -17,21 +17,6 @@ namespace {
 constexpr const char* format_name = "airr-shift-table";
 constexpr int format_version = 1;
 constexpr double row_sum_tolerance = 1e-6;
-
-std::vector<double> read_numbers(detail::json_reader& r, const std::string& key) {
-  if (!r.has(key)) r.fail(r.field(key), "missing");
-  const auto& v = r.raw(key);
-  if (!v.is_array()) r.fail(r.field(key), "must be an array of numbers");
-  std::vector<double> out;
-  out.reserve(v.size());
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const std::string where = r.field(key) + "[" + std::to_string(i) + "]";
-    if (!v[i].is_number()) r.fail(where, "must be a number");
-    out.push_back(v[i].get<double>());
-    if (!std::isfinite(out.back())) r.fail(where, "must be finite");
-  }
-  return out;
-}
 
 std::string number_text(double v) {
   std::ostringstream s;
@@ -68,39 +53,28 @@ void finalize_shift_table(shift_table& table) {
 }
 
 shift_table load_shift_table(const std::string& path) {
-  const std::string text = read_text_file(path);
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    std::string what = e.what();
-    const auto p = what.find("] ");  // drop nlohmann's "[json.exception...]" tag
-    throw input_error(path + ": malformed JSON: " + (p == std::string::npos ? what : what.substr(p + 2)));
-  }
-  detail::json_reader r(j, path, "");
-  auto require = [&](const std::string& key) {
-    if (!r.has(key)) r.fail(key, "missing");
-  };
+  const nlohmann::json j = read_json_file(path);
+  json_reader r(j, path, "");
 
   std::string format;
-  require("format");
+  r.require("format");
   r.string("format", format);
   if (format != format_name) r.fail("format", "must be \"" + std::string(format_name) + "\", not \"" + format + "\"");
   int version = 0;
-  require("version");
+  r.require("version");
   r.integer("version", version);
   if (version != format_version) r.fail("version", "unsupported version " + std::to_string(version) + " (expected 1)");
 
   shift_table t;
-  require("s_max");
+  r.require("s_max");
   r.number("s_max", t.s_max);
   if (!(t.s_max > 0)) r.fail("s_max", "must be positive");
   long long bins = 0;
-  require("bins");
+  r.require("bins");
   r.integer("bins", bins);
   if (bins < 1 || bins > 1000000) r.fail("bins", "must be between 1 and 1000000");
 
-  t.theta_deg = read_numbers(r, "theta_deg");
+  t.theta_deg = r.number_array("theta_deg");
   if (t.theta_deg.empty()) r.fail("theta_deg", "must not be empty");
   for (std::size_t i = 0; i < t.theta_deg.size(); ++i) {
     if (t.theta_deg[i] < 0 || t.theta_deg[i] >= 90) r.fail("theta_deg[" + std::to_string(i) + "]", "must be in [0, 90)");
@@ -110,7 +84,7 @@ shift_table load_shift_table(const std::string& path) {
   }
   const std::size_t rows = t.theta_deg.size();
 
-  require("probability");
+  r.require("probability");
   const auto& pj = r.raw("probability");
   if (!pj.is_array() || pj.size() != rows) {
     r.fail("probability", "must be an array of " + std::to_string(rows) + " rows (one per theta_deg)");
@@ -136,7 +110,7 @@ shift_table load_shift_table(const std::string& path) {
     t.probability.push_back(std::move(row));
   }
 
-  t.retro_fraction = read_numbers(r, "retro_fraction");
+  t.retro_fraction = r.number_array("retro_fraction");
   if (t.retro_fraction.size() != rows) {
     r.fail("retro_fraction", "must have " + std::to_string(rows) + " entries (one per theta_deg), not " +
                                  std::to_string(t.retro_fraction.size()));
@@ -147,7 +121,7 @@ shift_table load_shift_table(const std::string& path) {
     }
   }
 
-  require("provenance");
+  r.require("provenance");
   t.provenance = r.raw("provenance");
   if (!t.provenance.is_object()) r.fail("provenance", "must be a JSON object");
   r.finish();

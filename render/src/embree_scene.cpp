@@ -42,7 +42,7 @@ embree_layout_scene::embree_layout_scene(const embree_device& device,
     : paths_(mesh_paths) {
   for (const auto& path : paths_) {
     if (!prototypes_.count(path)) {
-      prototypes_[path] = std::make_unique<embree_mesh_scene>(device, load_gltf_mesh(path));
+      prototypes_[path] = std::make_unique<embree_mesh_scene>(device, path.empty() ? make_unit_panel() : load_gltf_mesh(path));
     }
   }
   top_ = rtcNewScene(device.get());

@@ -41,9 +41,10 @@ void render_session::stop() {
   if (worker_.joinable()) worker_.join();
 }
 
-std::uint64_t render_session::edit(const scene& s) {
+std::uint64_t render_session::edit(const scene& s, std::shared_ptr<const retro_model> model) {
   std::lock_guard lock(mutex_);
   pending_ = s;
+  pending_model_ = std::move(model);
   cancel_ = true;
   changed_.notify_all();
   return ++generation_;
@@ -178,13 +179,14 @@ void render_session::run() {
       if (stopping_) return;
       if (pending_) {
         const scene s = std::move(*pending_);
+        std::shared_ptr<const retro_model> model = std::move(pending_model_);
         pending_.reset();
         gen = generation_;
         cancel_ = false;
         lock.unlock();
         std::string error;
         try {
-          build_tracer_scene(scene_, device_, s);
+          build_tracer_scene(scene_, device_, s, std::move(model));
         } catch (const std::exception& e) {
           error = e.what();
         }

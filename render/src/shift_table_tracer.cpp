@@ -11,13 +11,13 @@
 #include <tbb/parallel_for.h>
 
 #include "airr/optics/error.hpp"
+#include "airr/optics/geometry.hpp"
 #include "airr/render/embree_scene.hpp"
 
 namespace airr {
 
 namespace {
 
-constexpr double deg = 3.14159265358979323846 / 180.0;
 // How far a reflected ray starts off its mirror, along the mirror normal (edge lengths).
 constexpr double restart_offset = 1e-6;
 // More reflections than this cannot happen in a corner cube; it only guards the loop.
@@ -89,14 +89,14 @@ struct ray_grid {
 };
 
 glm::dvec3 incidence_direction(double theta_deg, double phi_deg) {
-  const double th = theta_deg * deg, ph = phi_deg * deg;
+  const double th = radians(theta_deg), ph = radians(phi_deg);
   const glm::dvec3 u = std::cos(ph) * azimuth_t1 + std::sin(ph) * azimuth_t2;
   return -(std::cos(th) * sheet_normal + std::sin(th) * u);
 }
 
 // Generation-plane axes perpendicular to d (u: the azimuth direction in the aperture plane).
 void plane_axes(double phi_deg, const glm::dvec3& d, glm::dvec3& e1, glm::dvec3& e2) {
-  const double ph = phi_deg * deg;
+  const double ph = radians(phi_deg);
   const glm::dvec3 u = std::cos(ph) * azimuth_t1 + std::sin(ph) * azimuth_t2;
   e1 = glm::cross(sheet_normal, u);
   e2 = glm::cross(d, e1);
@@ -170,7 +170,7 @@ void trace_ray(RTCScene scene, const std::vector<int>& face_of, const glm::dvec3
     faces_hit |= 1u << face_of[rh.hit.primID];
     const glm::dvec3 hit = org + double(rh.ray.tfar) * dir;
     glm::dvec3 normal = glm::normalize(glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
-    dir -= 2.0 * glm::dot(dir, normal) * normal;
+    dir = reflect(dir, normal);
     if (glm::dot(dir, normal) < 0) normal = -normal;
     // Off the mirror along its normal, so that rounding never puts the origin behind it.
     org = hit + restart_offset * normal;

@@ -12,7 +12,8 @@ namespace airr {
 // Surfaces are infinitely thin; new rays start this far along to skip the surface they leave.
 static constexpr float ray_epsilon_mm = 1e-3f;
 
-void build_tracer_scene(tracer_scene& ts, const embree_device& device, const scene& s) {
+void build_tracer_scene(tracer_scene& ts, const embree_device& device, const scene& s,
+                        std::shared_ptr<const retro_model> model) {
   // Everything that can fail is built first, so a bad edit leaves the previous state intact.
   const std::array<std::string, part_count> meshes = {resolve_scene_path(s, s.source.mesh),
                                                       resolve_scene_path(s, s.half_mirror.mesh),
@@ -22,9 +23,9 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   const std::string tex = resolve_scene_path(s, s.source.image);
   std::shared_ptr<const image_rgb> texture = ts.texture;
   if (tex != ts.texture_path || (!tex.empty() && !texture)) {
-    texture = tex.empty() ? nullptr : std::make_shared<const image_rgb>(load_image_linear(tex));
+    texture = tex.empty() ? nullptr : std::make_shared<const image_rgb>(load_image(tex).pixels);
   }
-  std::unique_ptr<retro_model> retro = make_retro_model(s.retroreflector.model, s.base_dir);
+  std::shared_ptr<const retro_model> retro = model ? std::move(model) : make_retro_model(s.retroreflector.model, s.base_dir);
 
   if (embree) ts.embree = std::move(embree);
   ts.texture = std::move(texture);
@@ -84,8 +85,8 @@ glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sam
 glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
                        const std::array<double, 6>& rotation, std::uint64_t& rays) {
   const pinhole_camera& cam = ts.camera;
-  // This sample's point of the pixel's rotated R6 sequence: dimensions are pixel jitter (2), the
-  // first retroreflection's lobe cell and azimuth, shift bin and direction.
+  // This sample's point of the pixel's rotated R6 sequence: dimensions are pixel jitter (2) and
+  // the first retroreflection's lobe and shift samples (2 + 2).
   const std::array<double, 6> q = r6_point(sample_index, rotation);
   pcg32 rng = sample_rng(std::uint64_t(py) * cam.width + px, sample_index, ts.layout.seed);
   const double jx = q[0], jy = q[1];
@@ -130,7 +131,7 @@ glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sam
       }
       if (part == part_half_mirror) {
         if (hm_total <= 0) break;
-        const glm::dvec3 reflected = p.dir - 2.0 * cos_n * f.n;
+        const glm::dvec3 reflected = reflect(p.dir, f.n);
         p.origin = hit;
         if (splits_left > 0) {
           --splits_left;
@@ -144,19 +145,20 @@ glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sam
       }
       // Retroreflector: only its front face retroreflects.
       if (cos_n >= 0) break;
-      const glm::dvec3 wi(-glm::dot(p.dir, f.u), -glm::dot(p.dir, f.v), -cos_n);
-      retro_randoms r;
-      for (auto& u : r.u) u = rng.next_double();
+      const glm::dvec3 wi = -to_local(f, p.dir);
+      retro_samples u;
       if (first_retro) {
-        r.u[0] = q[2];  // lobe cell (radius)
-        r.u[2] = q[3];  // lobe azimuth
-        r.u[4] = q[4];  // shift bin
-        r.u[6] = q[5];  // shift direction
+        u.lobe = {q[2], q[3]};
+        u.shift = {q[4], q[5]};
         first_retro = false;
+      } else {
+        u.lobe = {rng.next_double(), rng.next_double()};
+        u.shift = {rng.next_double(), rng.next_double()};
       }
-      const retro_sample rs = ts.retro->sample(wi, r);
+      u.more = rng.split();
+      const retro_sample rs = ts.retro->sample(wi, u);
       if (!(rs.weight > 0)) break;
-      p.dir = glm::normalize(rs.wo.x * f.u + rs.wo.y * f.v + rs.wo.z * f.n);
+      p.dir = glm::normalize(to_world(f, rs.wo));
       p.origin = hit + rs.shift_mm.x * f.u + rs.shift_mm.y * f.v;
       p.throughput *= float(rs.weight);
     }

@@ -6,6 +6,7 @@
 #include "airr/analysis/edge_file.hpp"
 #include "airr/analysis/image_read.hpp"
 #include "airr/analysis/mtf_metrics.hpp"
+#include "airr/optics/color.hpp"
 #include "synthetic_edge.hpp"
 #include "test_files.hpp"
 
@@ -13,11 +14,11 @@ namespace aa = airr::analysis;
 namespace at = airr::analysis::testing;
 
 TEST(SrgbCurve, KnownValues) {
-  EXPECT_DOUBLE_EQ(aa::srgb_to_linear(0.0), 0.0);
-  EXPECT_NEAR(aa::srgb_to_linear(1.0), 1.0, 1e-12);
-  EXPECT_NEAR(aa::srgb_to_linear(0.5), 0.21404114, 1e-8);
-  EXPECT_NEAR(aa::srgb_to_linear(0.04), 0.04 / 12.92, 1e-12);
-  for (double v : {0.001, 0.01, 0.2, 0.7, 0.99}) EXPECT_NEAR(aa::linear_to_srgb(aa::srgb_to_linear(v)), v, 1e-12);
+  EXPECT_DOUBLE_EQ(airr::srgb_decode(0.0), 0.0);
+  EXPECT_NEAR(airr::srgb_decode(1.0), 1.0, 1e-12);
+  EXPECT_NEAR(airr::srgb_decode(0.5), 0.21404114, 1e-8);
+  EXPECT_NEAR(airr::srgb_decode(0.04), 0.04 / 12.92, 1e-12);
+  for (double v : {0.001, 0.01, 0.2, 0.7, 0.99}) EXPECT_NEAR(airr::srgb_encode(airr::srgb_decode(v)), v, 1e-12);
 }
 
 TEST(ImageRead, ExrIsLinearWithStringPixelSize) {
@@ -71,23 +72,27 @@ TEST(ImageRead, EightBitPngIsSrgbDecodedUnlessLinearInput) {
   at::write_coded(path, codes, "0.04");
   const auto srgb = aa::read_linear_image(path);
   EXPECT_TRUE(srgb.srgb_decoded);
-  EXPECT_NEAR(srgb.luminance.at<double>(1, 1), aa::srgb_to_linear(128.0 / 255.0), 1e-6);
+  EXPECT_NEAR(srgb.luminance.at<double>(1, 1), airr::srgb_decode(128.0 / 255.0), 1e-6);
   EXPECT_NEAR(srgb.luminance.at<double>(0, 0), 1.0, 1e-6);
   ASSERT_TRUE(srgb.mm_per_pixel);
   EXPECT_DOUBLE_EQ(*srgb.mm_per_pixel, 0.04);
-  const auto linear = aa::read_linear_image(path, {.linear_input = true});
+  const auto linear = aa::read_linear_image(path, {.encoding = airr::image_encoding::linear});
   EXPECT_FALSE(linear.srgb_decoded);
   EXPECT_NEAR(linear.luminance.at<double>(1, 1), 128.0 / 255.0, 1e-6);
 }
 
-TEST(ImageRead, SixteenBitPngAndTiff) {
+// The loader's rule: 16-bit files are linear; --srgb-input (image_encoding::srgb) decodes them.
+TEST(ImageRead, SixteenBitPngAndTiffAreLinearUnlessSrgbIsAsked) {
   at::scratch_dir dir("read");
   cv::Mat codes(4, 4, CV_16UC3, cv::Scalar(40000, 40000, 40000));
   for (const char* name : {"grey16.png", "grey16.tif"}) {
     at::write_coded(dir / name, codes, "0.5");
     const auto img = aa::read_linear_image(dir / name);
-    EXPECT_TRUE(img.srgb_decoded) << name;
-    EXPECT_NEAR(img.luminance.at<double>(2, 2), aa::srgb_to_linear(40000.0 / 65535.0), 1e-5) << name;
+    EXPECT_FALSE(img.srgb_decoded) << name;
+    EXPECT_NEAR(img.luminance.at<double>(2, 2), 40000.0 / 65535.0, 1e-5) << name;
+    const auto srgb = aa::read_linear_image(dir / name, {.encoding = airr::image_encoding::srgb});
+    EXPECT_TRUE(srgb.srgb_decoded) << name;
+    EXPECT_NEAR(srgb.luminance.at<double>(2, 2), airr::srgb_decode(40000.0 / 65535.0), 1e-5) << name;
   }
   // PNG keeps the pixel size as a text chunk (TIFF has no place for it).
   const auto png = aa::read_linear_image(dir / "grey16.png");
@@ -100,11 +105,12 @@ TEST(ImageRead, JpegIsDecodedApproximately) {
   cv::Mat codes(32, 32, CV_8UC3, cv::Scalar(200, 200, 200));
   at::write_coded(dir / "grey.jpg", codes);
   const auto img = aa::read_linear_image(dir / "grey.jpg");
-  EXPECT_NEAR(img.luminance.at<double>(16, 16), aa::srgb_to_linear(200.0 / 255.0), 0.01);
+  EXPECT_NEAR(img.luminance.at<double>(16, 16), airr::srgb_decode(200.0 / 255.0), 0.01);
 }
 
 TEST(ImageRead, SrgbPngEdgeMeasuresLikeTheLinearEdge) {
   // An sRGB-encoded 16-bit PNG of an edge must give the linear edge's MTF after decoding.
+  const aa::image_read_params srgb{.encoding = airr::image_encoding::srgb};
   at::scratch_dir dir("read");
   at::synthetic_edge_params p;
   p.sigma_px = 1.5;
@@ -113,16 +119,16 @@ TEST(ImageRead, SrgbPngEdgeMeasuresLikeTheLinearEdge) {
   for (int y = 0; y < linear.rows; ++y)
     for (int x = 0; x < linear.cols; ++x)
       codes.at<unsigned short>(y, x) =
-          static_cast<unsigned short>(std::lround(65535.0 * aa::linear_to_srgb(linear.at<double>(y, x))));
+          static_cast<unsigned short>(std::lround(65535.0 * airr::srgb_encode(linear.at<double>(y, x))));
   const auto path = dir / "edge16.png";
   at::write_coded(path, codes, "0.1");
-  const auto result = aa::measure_edge_file(path);
+  const auto result = aa::measure_edge_file(path, {}, srgb);
   const auto m50 = aa::mtf50(result.curve, *result.image.mm_per_pixel);
   ASSERT_TRUE(m50);
   const double truth = at::analytic_mtf50(1.5, false);
   EXPECT_NEAR(m50->cycles_per_pixel, truth, 0.01 * truth);
   EXPECT_NEAR(m50->lp_per_mm, truth / 0.1, 0.01 * truth / 0.1);
   // Without decoding, the sRGB curve distorts the edge and the MTF50 moves.
-  const auto raw = aa::measure_edge_file(path, {}, {.linear_input = true});
+  const auto raw = aa::measure_edge_file(path, {}, {.encoding = airr::image_encoding::linear});
   EXPECT_GT(std::abs(aa::mtf50(raw.curve)->cycles_per_pixel - truth), 0.01 * truth);
 }

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "airr/optics/color.hpp"
 #include "airr/analysis/image_read.hpp"
 #include "airr/analysis/lpips.hpp"
 #include "airr/analysis/onnx_inputs.hpp"
@@ -34,8 +35,8 @@ double expected_distance(const cv::Mat& a, const cv::Mat& b) {
   for (int y = 0; y < a.rows; ++y)
     for (int x = 0; x < a.cols; ++x)
       for (int c = 0; c < 3; ++c) {
-        const double ea = aa::linear_to_srgb(std::clamp(a.at<cv::Vec3d>(y, x)[c], 0.0, 1.0));
-        const double eb = aa::linear_to_srgb(std::clamp(b.at<cv::Vec3d>(y, x)[c], 0.0, 1.0));
+        const double ea = airr::srgb_encode(std::clamp(a.at<cv::Vec3d>(y, x)[c], 0.0, 1.0));
+        const double eb = airr::srgb_encode(std::clamp(b.at<cv::Vec3d>(y, x)[c], 0.0, 1.0));
         sum += std::pow(2.0 * ea - 2.0 * eb, 2);
       }
   return sum / (a.total() * 3.0);
@@ -94,7 +95,7 @@ TEST(Lpips, FixedModelSizeResizesTheImages) {
   const auto r = aa::lpips(a, b, path);
   EXPECT_TRUE(r.resized);
   EXPECT_EQ(r.input_size, cv::Size(16, 16));
-  const double d = 2.0 * (aa::linear_to_srgb(0.8) - aa::linear_to_srgb(0.2));
+  const double d = 2.0 * (airr::srgb_encode(0.8) - airr::srgb_encode(0.2));
   EXPECT_NEAR(r.value, d * d, 1e-4);
 }
 

@@ -1,5 +1,7 @@
 #include "airr/ui/file_dialog.hpp"
 
+#include "airr/optics/files.hpp"
+
 #include <algorithm>
 #include <filesystem>
 
@@ -78,7 +80,7 @@ std::string file_dialog::draw() {
     const bool enter = ImGui::InputText("##name", &name, ImGuiInputTextFlags_EnterReturnsTrue);
     if (!error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", error.c_str());
     if (ImGui::Button(saving ? "Save" : "Open") || enter) {
-      const fs::path p = fs::path(name).is_absolute() ? fs::path(name) : fs::path(dir) / name;
+      const fs::path p = resolve_path(name, dir);
       if (name.empty()) error = "type a file name";
       else if (!saving && !fs::is_regular_file(p, ec)) error = "no such file: " + p.string();
       else chosen = p.string();

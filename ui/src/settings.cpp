@@ -1,5 +1,8 @@
 #include "airr/ui/settings.hpp"
 
+#include "airr/optics/files.hpp"
+#include "airr/optics/json_reader.hpp"
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -33,7 +36,7 @@ studio_settings load_settings() {
   std::error_code ec;
   if (!fs::exists(path, ec)) return s;
   try {
-    const auto j = nlohmann::json::parse(read_text_file(path));
+    const auto j = read_json_file(path);
     s.recent_files = j.value("recent_files", s.recent_files);
     s.window_width = std::clamp(j.value("window_width", s.window_width), 320, 16384);
     s.window_height = std::clamp(j.value("window_height", s.window_height), 240, 16384);
@@ -60,7 +63,7 @@ void save_settings(const studio_settings& s) {
 }
 
 void add_recent_file(studio_settings& s, const std::string& path) {
-  const std::string abs = fs::absolute(path).lexically_normal().string();
+  const std::string abs = absolute_path(path);
   std::erase(s.recent_files, abs);
   s.recent_files.insert(s.recent_files.begin(), abs);
   if (s.recent_files.size() > 10) s.recent_files.resize(10);

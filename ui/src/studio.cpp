@@ -7,8 +7,9 @@
 
 #include "airr/optics/assets.hpp"
 #include "airr/optics/error.hpp"
+#include "airr/optics/json_reader.hpp"
 #include "airr/optics/scene_json.hpp"
-#include "airr/render/image.hpp"
+#include "airr/optics/image.hpp"
 #include "airr/render/render_metadata.hpp"
 
 namespace airr::ui {
@@ -22,8 +23,8 @@ static std::string display_name(const studio& st) {
 void studio_start(studio& st, const scene& s, const std::string& path) {
   st.doc = s;
   st.doc_path = path;
-  st.saved_json = scene_to_json(s);
-  st.applied_json = st.saved_json;
+  st.saved = s;
+  st.applied = s;
   st.doc_error.clear();
   if (!st.session) {
     st.session = std::make_unique<render_session>(s, st.session_options);
@@ -31,22 +32,22 @@ void studio_start(studio& st, const scene& s, const std::string& path) {
   } else {
     st.generation = st.session->edit(s);
   }
-  st.analysis.submit_scene(s, st.generation);
+  st.analysis.submit_scene(s, st.generation, nullptr);
   st.view.uploaded_generation = ~0ull;
   if (!path.empty()) add_recent_file(st.settings, path);
 }
 
-bool studio_dirty(const studio& st) { return scene_to_json(st.doc) != st.saved_json; }
+bool studio_dirty(const studio& st) { return !st.saved || !(st.doc == *st.saved); }
 
 void studio_apply_edits(studio& st, double now) {
-  const nlohmann::json j = scene_to_json(st.doc);
-  if (j == st.applied_json) return;
-  st.applied_json = j;
+  if (st.doc == st.applied) return;
+  st.applied = st.doc;
   try {
-    check_scene(st.doc, "layout");
+    // The model is built once per accepted edit and shared by the tracer and the plots.
+    const std::shared_ptr<const retro_model> model = check_scene(st.doc, "layout");
     st.doc_error.clear();
-    st.generation = st.session->edit(st.doc);
-    st.analysis.submit_scene(st.doc, st.generation);
+    st.generation = st.session->edit(st.doc, model);
+    st.analysis.submit_scene(st.doc, st.generation, model);
     st.edit_time = now;
   } catch (const std::exception& e) {
     st.doc_error = e.what();
@@ -64,37 +65,15 @@ void studio_open(studio& st, const std::string& path) {
   }
 }
 
-// Relative paths in the scene are rewritten so they still point at the same files from the new
-// location.
-static scene rebase_paths(const scene& s, const std::string& new_dir) {
-  scene out = s;
-  auto rebase = [&](std::string& p) {
-    if (p.empty() || fs::path(p).is_absolute() || s.base_dir.empty()) return;
-    const fs::path abs = (fs::path(s.base_dir) / p).lexically_normal();
-    p = abs.lexically_relative(new_dir).string();
-  };
-  rebase(out.source.image);
-  rebase(out.source.mesh);
-  rebase(out.half_mirror.mesh);
-  rebase(out.retroreflector.mesh);
-  rebase(out.retroreflector.model.shift_table);
-  if (out.retroreflector.model.preset.find('/') != std::string::npos ||
-      fs::path(out.retroreflector.model.preset).extension() == ".json") {
-    rebase(out.retroreflector.model.preset);
-  }
-  out.base_dir = new_dir;
-  return out;
-}
-
 bool studio_save(studio& st, const std::string& path) {
   try {
     const std::string dir = fs::absolute(path).parent_path().string();
-    const scene s = rebase_paths(st.doc, dir);
+    const scene s = rebase_scene_paths(st.doc, dir);
     save_scene(s, path);
     st.doc = s;
     st.doc_path = path;
-    st.saved_json = scene_to_json(s);
-    st.applied_json = st.saved_json;  // same files, same layout: nothing to re-render
+    st.saved = s;
+    st.applied = s;  // same files, same layout: nothing to re-render
     add_recent_file(st.settings, path);
     st.settings.last_dir = dir;
     st.status = "saved " + path;
@@ -119,8 +98,8 @@ void studio_drop_file(studio& st, const std::string& path) {
     return;
   }
   try {
-    load_image_linear(path);  // refuse unreadable images before they reach the layout
-    st.doc.source.image = fs::absolute(path).lexically_normal().string();
+    load_image(path);  // refuse unreadable images before they reach the layout
+    st.doc.source.image = absolute_path(path);
     st.status = "source image: " + path;
   } catch (const std::exception& e) {
     st.status = std::string("not an image: ") + e.what();
@@ -213,12 +192,12 @@ static void draw_recovery_prompt(studio& st) {
     ImGui::TextUnformatted("A previous session ended with unsaved changes.");
     if (ImGui::Button("Recover")) {
       try {
-        const auto j = nlohmann::json::parse(st.recovery_text);
+        const auto j = parse_json(st.recovery_text, recovery_path());
         scene s = scene_from_json(j.at("scene"), recovery_path());
         s.base_dir = j.value("base_dir", std::string());
         st.doc = s;
         st.doc_path = j.value("path", std::string());
-        st.saved_json = nlohmann::json();  // recovered edits are unsaved
+        st.saved.reset();  // recovered edits are unsaved
         st.status = "recovered unsaved changes" + (st.doc_path.empty() ? std::string() : " of " + st.doc_path);
       } catch (const std::exception& e) {
         st.status = std::string("cannot recover: ") + e.what();
@@ -332,7 +311,7 @@ static void draw_save_prompt(studio& st) {
     ImGui::SameLine();
     if (ImGui::Button("Discard")) {
       ImGui::CloseCurrentPopup();
-      st.saved_json = scene_to_json(st.doc);
+      st.saved = st.doc;
       run_pending(st);
     }
     ImGui::SameLine();

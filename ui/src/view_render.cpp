@@ -6,7 +6,8 @@
 #include <imgui.h>
 
 #include "airr/optics/layout.hpp"
-#include "airr/render/image.hpp"
+#include "airr/optics/color.hpp"
+#include "airr/optics/image.hpp"
 #include "airr/render/render_metadata.hpp"
 #include "airr/ui/studio.hpp"
 
@@ -15,7 +16,7 @@ namespace airr::ui {
 static void upload_snapshot(studio& st, const render_snapshot& snap, float exposure) {
   std::vector<std::uint8_t> rgba(std::size_t(snap.width) * snap.height * 4);
   for (std::size_t i = 0; i < std::size_t(snap.width) * snap.height; ++i) {
-    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = std::uint8_t(std::lround(255.0f * linear_to_srgb((*snap.rgb)[3 * i + c] * exposure)));
+    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = std::uint8_t(std::lround(255.0f * float(srgb_encode(std::clamp((*snap.rgb)[3 * i + c] * exposure, 0.0f, 1.0f)))));
     rgba[4 * i + 3] = 255;
   }
   st.view.texture.upload(snap.width, snap.height, rgba);
@@ -64,7 +65,7 @@ void draw_render_view(studio& st, double now) {
     // The 99th percentile of luminance maps to 90% of white.
     std::vector<float> lum(std::size_t(snap.width) * snap.height);
     for (std::size_t i = 0; i < lum.size(); ++i) {
-      lum[i] = 0.2126f * (*snap.rgb)[3 * i] + 0.7152f * (*snap.rgb)[3 * i + 1] + 0.0722f * (*snap.rgb)[3 * i + 2];
+      lum[i] = float(rec709_luminance((*snap.rgb)[3 * i], (*snap.rgb)[3 * i + 1], (*snap.rgb)[3 * i + 2]));
     }
     auto q = lum.begin() + std::ptrdiff_t(0.99 * double(lum.size() - 1));
     std::nth_element(lum.begin(), q, lum.end());

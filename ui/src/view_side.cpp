@@ -8,6 +8,7 @@
 #include <imgui.h>
 #include <imgui_internal.h>
 
+#include "airr/optics/geometry.hpp"
 #include "airr/optics/layout.hpp"
 #include "airr/ui/studio.hpp"
 
@@ -22,26 +23,18 @@ struct view_map {
   glm::dvec2 to_world(ImVec2 p) const { return {(origin.y - p.y) / scale, (p.x - origin.x) / scale}; }  // (y, z)
 };
 
-std::optional<glm::dvec3> hit_plane(const part_frame& f, const glm::dvec3& o, const glm::dvec3& d) {
-  const double denom = glm::dot(d, f.n);
-  if (std::abs(denom) < 1e-12) return std::nullopt;
-  const double t = glm::dot(f.center - o, f.n) / denom;
-  if (t <= 1e-9) return std::nullopt;
-  return o + t * d;
-}
-
 // The ideal light path through an aerial-image point, as a polyline from the camera.
 std::vector<glm::dvec3> ray_path(const scene& s, const glm::dvec3& aerial_point) {
   const part_frame hm = half_mirror_frame(s), rr = retroreflector_frame(s), src = source_frame(s);
   const glm::dvec3 cam = make_camera(s).position;
   std::vector<glm::dvec3> path{cam};
   const glm::dvec3 d = glm::normalize(aerial_point - cam);
-  const auto p1 = hit_plane(hm, cam, d);
+  const auto p1 = hit_part(hm, cam, d, false);
   if (!p1) return path;
-  const auto p2 = hit_plane(rr, *p1, d);
+  const auto p2 = hit_part(rr, *p1, d, false);
   if (!p2) return path;
-  const glm::dvec3 back = -d, down = back - 2.0 * glm::dot(back, hm.n) * hm.n;
-  const auto p3 = hit_plane(src, *p1, down);
+  const glm::dvec3 down = reflect(-d, hm.n);
+  const auto p3 = hit_part(src, *p1, down, false);
   path.insert(path.end(), {*p1, *p2, *p1});
   if (p3) path.push_back(*p3);
   return path;
@@ -71,7 +64,7 @@ void draw_side_view(studio& st) {
   auto ends = [](const part_frame& f) {
     return std::pair{f.center - 0.5 * f.height * f.v, f.center + 0.5 * f.height * f.v};
   };
-  auto mirror = [&](const glm::dvec3& p) { return p - 2.0 * glm::dot(p - hm.center, hm.n) * hm.n; };
+  auto mirror = [&](const glm::dvec3& p) { return mirror_point(p, hm.center, hm.n); };
   const auto [hm0, hm1] = ends(hm);
   const auto [rr0, rr1] = ends(rr);
   const auto [s0, s1] = ends(src);

@@ -1,12 +1,23 @@
 #pragma once
+// The project's error types: every error a user can cause or a measurement can meet is one of
+// these, with a one-line message naming where (file, field, region) and what is wrong.
 #include <stdexcept>
 #include <string>
 
 namespace airr {
 
-// An error in user input (a file, a field, a parameter); the message is one line naming where.
-struct input_error : std::runtime_error {
+struct airr_error : std::runtime_error {
   using std::runtime_error::runtime_error;
+};
+
+// An error in user input (a file, a field, a parameter).
+struct input_error : airr_error {
+  using airr_error::airr_error;
+};
+
+// A measurement that cannot be made on the data given (no edge, a flat region, ...).
+struct measurement_error : airr_error {
+  using airr_error::airr_error;
 };
 
 }  // namespace airr

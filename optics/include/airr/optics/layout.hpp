@@ -4,24 +4,10 @@
 
 #include <glm/glm.hpp>
 
+#include "airr/optics/geometry.hpp"
 #include "airr/optics/scene.hpp"
 
 namespace airr {
-
-// A rectangular part: centre, in-plane unit axes u and v, unit normal n = u x v, full sizes.
-struct part_frame {
-  glm::dvec3 center{0};
-  glm::dvec3 u{1, 0, 0};
-  glm::dvec3 v{0, 1, 0};
-  glm::dvec3 n{0, 0, 1};
-  double width = 1;
-  double height = 1;
-};
-
-// Maps the unit panel (local x, y in [-0.5, 0.5], normal +z) onto the part.
-glm::dmat4 part_transform(const part_frame& f);
-// Local coordinates (mm, relative to the centre along u and v) of a world point.
-glm::dvec2 part_local(const part_frame& f, const glm::dvec3& p);
 
 part_frame source_frame(const scene& s);
 part_frame half_mirror_frame(const scene& s);

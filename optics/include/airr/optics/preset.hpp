@@ -20,6 +20,7 @@ struct sheet_preset {
 
 // A name ("rf-ay") is looked up in assets/presets; anything with a '/' or ending in ".json" is a
 // path, relative to base_dir. Throws input_error naming the file and the field.
+bool is_preset_path(const std::string& name_or_path);
 std::string resolve_preset_path(const std::string& name_or_path, const std::string& base_dir);
 sheet_preset load_preset(const std::string& name_or_path, const std::string& base_dir = "");
 sheet_preset preset_from_json(const nlohmann::json& j, const std::string& origin);

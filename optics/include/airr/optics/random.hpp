@@ -33,6 +33,11 @@ class pcg32 {
     return double(((hi << 32) | lo) >> 11) * 0x1.0p-53;
   }
   float next_float() { return float(next_u32() >> 8) * 0x1.0p-24f; }
+  // An independent generator seeded from this one's next two numbers.
+  pcg32 split() {
+    const std::uint64_t hi = next_u32(), lo = next_u32();
+    return pcg32(mix64((hi << 32) | lo), lo);
+  }
 
  private:
   std::uint64_t state_ = 0;

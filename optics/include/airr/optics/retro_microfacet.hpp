@@ -43,17 +43,17 @@ struct microfacet_trace {
   microfacet_branch branch = microfacet_branch::none;
 };
 
-// Random numbers used per interaction (retro_randoms::u):
-//   0, 1  front-surface microfacet on entry      2  Fresnel reflect / refract
-//   3     retroreflect / Lambertian              diffuse: 4, 5 the cosine-weighted direction
-//   retro: 4 prism orientation, 5 first face, 6-7 its facet, 8 second face, 9-10 its facet,
-//          11-12 third facet, 13-14 front-surface microfacet on exit.
+// Random numbers per interaction (retro_samples):
+//   lobe      x: Fresnel reflect / refract in, y: retroreflect / Lambertian
+//   shift     retro: x the prism orientation, y the first face; diffuse: the cosine-weighted direction
+//   more      in order: the front-surface facet on entry (2); retro: the first facet (2), the second
+//             face (1), the second and third facets (2 + 2), the front-surface facet on exit (2).
 class microfacet_retro final : public retro_model {
  public:
   explicit microfacet_retro(const retro_model_params& p);
-  retro_sample sample(const glm::dvec3& wi, const retro_randoms& r) const override;
+  retro_sample sample(const glm::dvec3& wi, retro_samples u) const override;
   // The same sample, with the branch it took (for tests and analysis).
-  microfacet_trace trace(const glm::dvec3& wi, const retro_randoms& r) const;
+  microfacet_trace trace(const glm::dvec3& wi, retro_samples u) const;
 
  private:
   double alpha_surface_;

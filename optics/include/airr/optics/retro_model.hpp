@@ -1,19 +1,25 @@
 #pragma once
 // The retroreflector model interface. Directions are in the sheet's local frame (normal +z) and
 // point away from the surface: wi towards where the light came from, wo where it leaves.
-#include <array>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <glm/glm.hpp>
 
+#include "airr/optics/random.hpp"
 #include "airr/optics/scene.hpp"
 
 namespace airr {
 
-// Random numbers a model may consume for one interaction, all uniform in [0, 1).
-struct retro_randoms {
-  std::array<double, 16> u{};
+// The random numbers of one interaction, each uniform in [0, 1). A caller may stratify the two
+// named 2-D samples across a pixel's samples; each model documents what they drive. Anything
+// further comes from `more`, in a fixed order; the model draws from its own copy, so a sample is
+// a pure function of wi and these numbers.
+struct retro_samples {
+  glm::dvec2 lobe{0.5, 0.5};   // the model's main choice: where the light goes
+  glm::dvec2 shift{0.5, 0.5};  // the second most important choice (the exit-point shift, ...)
+  pcg32 more{0, 0};
 };
 
 struct retro_sample {
@@ -25,14 +31,20 @@ struct retro_sample {
 class retro_model {
  public:
   virtual ~retro_model() = default;
-  virtual retro_sample sample(const glm::dvec3& wi, const retro_randoms& r) const = 0;
+  virtual retro_sample sample(const glm::dvec3& wi, retro_samples u) const = 0;
+  // Density per steradian of sample's outgoing direction wo (absorbed samples included, so it
+  // integrates to at most 1 over wo.z > 0); empty for a model without one (a delta, or no
+  // closed form).
+  virtual std::optional<double> pdf(const glm::dvec3& wi, const glm::dvec3& wo) const;
+  // Throughput per steradian towards wo: the weight times pdf. Empty where pdf is.
+  virtual std::optional<double> eval(const glm::dvec3& wi, const glm::dvec3& wo) const;
 };
 
 // Sends light exactly back where it came from (wo = wi), no shift, weight mu.
 class ideal_retro final : public retro_model {
  public:
   explicit ideal_retro(double mu) : mu_(mu) {}
-  retro_sample sample(const glm::dvec3& wi, const retro_randoms&) const override {
+  retro_sample sample(const glm::dvec3& wi, retro_samples) const override {
     if (wi.z <= 0) return {};
     return {wi, {0, 0}, mu_};
   }

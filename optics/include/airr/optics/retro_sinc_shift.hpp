@@ -27,7 +27,12 @@ class sinc_shift_retro final : public retro_model {
  public:
   // `shifts` may be null when c is 0.
   sinc_shift_retro(sinc_shift_params p, std::shared_ptr<const shift_table> shifts);
-  retro_sample sample(const glm::dvec3& wi, const retro_randoms& r) const override;
+  // lobe: the deviation's table cell and its azimuth; shift: the shift's bin and direction;
+  // more: the jitter inside the lobe cell, the choice between angle tables, the jitter in the bin.
+  retro_sample sample(const glm::dvec3& wi, retro_samples u) const override;
+  // The lobe's density about the retro direction; the shift does not change directions.
+  std::optional<double> pdf(const glm::dvec3& wi, const glm::dvec3& wo) const override;
+  std::optional<double> eval(const glm::dvec3& wi, const glm::dvec3& wo) const override;
 
   double a_at(double theta_deg) const;
   double mu_at(double theta_deg) const;

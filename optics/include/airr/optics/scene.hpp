@@ -18,19 +18,23 @@ inline constexpr std::array retro_model_type_names = {"ideal", "sinc_shift", "mi
 
 struct source_params {
   std::string image;                      // path relative to the scene file; empty = uniform white
-  std::string mesh = "../models/panel.gltf";
+  std::string mesh;  // glTF file relative to the scene file; empty: the built-in unit panel
   double width_mm = 50.0;
   double height_mm = 50.0;
   double intensity = 10.0;                // radiance = image value x intensity
   std::array<double, 3> offset_mm{0, 0, 0};  // added to the canonical centre (0, -D, 0)
+
+  bool operator==(const source_params&) const = default;
 };
 
 struct half_mirror_params {
-  std::string mesh = "../models/panel.gltf";
+  std::string mesh;  // glTF file relative to the scene file; empty: the built-in unit panel
   double width_mm = 300.0;
   double height_mm = 300.0;
   double reflectance = 0.5;
   double transmittance = 0.5;
+
+  bool operator==(const half_mirror_params&) const = default;
 };
 
 // Parameters of every retroreflector model; each model reads the ones that concern it.
@@ -49,15 +53,19 @@ struct retro_model_params {
   double alpha_internal = 0.0005;
   double internal_reflectance = 0.83;
   double eta = 1.5046;
+
+  bool operator==(const retro_model_params&) const = default;
 };
 
 struct retroreflector_params {
-  std::string mesh = "../models/panel.gltf";
+  std::string mesh;  // glTF file relative to the scene file; empty: the built-in unit panel
   double width_mm = 300.0;
   double height_mm = 300.0;
   double distance_mm = 150.0;  // d_rr: the sheet centre sits at z = -d_rr
   double tilt_deg = 0.0;       // rotation about x; positive leans the top edge away from the mirror
   retro_model_params model;
+
+  bool operator==(const retroreflector_params&) const = default;
 };
 
 struct camera_params {
@@ -65,10 +73,14 @@ struct camera_params {
   double fov_deg = 14.0;       // vertical field of view
   int width = 256;
   int height = 256;
+
+  bool operator==(const camera_params&) const = default;
 };
 
 struct render_params {
   int max_depth = 8;  // surface interactions per path
+
+  bool operator==(const render_params&) const = default;
 };
 
 struct scene {
@@ -81,6 +93,8 @@ struct scene {
   camera_params camera;
   render_params render;
   std::string base_dir;  // directory relative paths resolve against; not saved
+
+  bool operator==(const scene&) const = default;
 };
 
 // Resolves a path from the scene file against the scene's directory.

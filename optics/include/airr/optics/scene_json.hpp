@@ -1,14 +1,19 @@
 #pragma once
 // Versioned JSON form of the layout: strict loading (unknown keys, wrong types and out-of-range
 // values are errors naming the file and the field), exact round trips, atomic saves.
+#include <memory>
+
 #include <nlohmann/json.hpp>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "airr/optics/files.hpp"
 #include "airr/optics/scene.hpp"
 
 namespace airr {
+
+class retro_model;
 
 // A command-line override "dotted.key=value", e.g. "retroreflector.tilt_deg=20".
 struct scene_override {
@@ -29,8 +34,9 @@ void validate_scene(const scene& s, const std::string& origin);
 // Checks that every referenced file exists.
 void validate_scene_files(const scene& s, const std::string& origin);
 
-// All of the above plus the layout and the retroreflector model (presets, tables) resolving.
-void check_scene(const scene& s, const std::string& origin);
+// All of the above plus the layout and the retroreflector model (presets, tables) resolving;
+// returns the model it built, for the caller to share.
+std::shared_ptr<const retro_model> check_scene(const scene& s, const std::string& origin);
 
 // Reads, overrides, validates (values, files and layout). Throws input_error.
 scene load_scene(const std::string& path, const std::vector<scene_override>& overrides = {});
@@ -41,8 +47,7 @@ scene parse_scene(const std::string& text, const std::string& origin, const std:
 // Writes the scene to a temporary file beside `path`, then renames it over `path`.
 void save_scene(const scene& s, const std::string& path);
 
-// Writes text to path atomically (temporary file, then rename). Throws input_error.
-void write_file_atomic(const std::string& path, std::string_view bytes);
-std::string read_text_file(const std::string& path);
+// The scene with its relative paths rewritten to count from new_dir (for saving it there).
+scene rebase_scene_paths(const scene& s, const std::string& new_dir);
 
 }  // namespace airr

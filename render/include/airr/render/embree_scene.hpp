@@ -43,7 +43,7 @@ enum part_id : unsigned { part_source = 0, part_half_mirror = 1, part_retrorefle
 
 class embree_layout_scene {
  public:
-  // Mesh files per part; the same file is built once and instanced.
+  // Mesh files per part (empty: the built-in unit panel); the same file is built once and instanced.
   embree_layout_scene(const embree_device& device, const std::array<std::string, part_count>& mesh_paths);
   ~embree_layout_scene();
   embree_layout_scene(const embree_layout_scene&) = delete;

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "airr/optics/scene_json.hpp"
-#include "airr/render/image.hpp"
+#include "airr/optics/image.hpp"
 #include "airr/render/render_session.hpp"
 
 namespace airr {

@@ -13,7 +13,7 @@
 #include "airr/optics/retro_model.hpp"
 #include "airr/optics/scene.hpp"
 #include "airr/render/embree_scene.hpp"
-#include "airr/render/image.hpp"
+#include "airr/optics/image.hpp"
 
 namespace airr {
 
@@ -24,13 +24,15 @@ struct tracer_scene {
   pinhole_camera camera;
   std::shared_ptr<const image_rgb> texture;  // null: uniform white source
   std::string texture_path;
-  std::unique_ptr<retro_model> retro;
+  std::shared_ptr<const retro_model> retro;
   std::unique_ptr<embree_layout_scene> embree;
 };
 
 // Builds (or, given the previous state, updates in place: meshes and textures are reused when
-// their files did not change, and moved parts only get new instance transforms).
-void build_tracer_scene(tracer_scene& ts, const embree_device& device, const scene& s);
+// their files did not change, and moved parts only get new instance transforms). `model`, when
+// given, is the scene's retroreflector model already built; otherwise it is built here.
+void build_tracer_scene(tracer_scene& ts, const embree_device& device, const scene& s,
+                        std::shared_ptr<const retro_model> model = nullptr);
 
 // The pixel's random rotation of the low-discrepancy sequence its samples share.
 std::array<double, 6> pixel_sequence_rotation(const tracer_scene& ts, int px, int py);

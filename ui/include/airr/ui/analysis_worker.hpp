@@ -10,6 +10,7 @@
 #include <thread>
 #include <vector>
 
+#include "airr/optics/retro_model.hpp"
 #include "airr/optics/scene.hpp"
 #include "airr/render/render_session.hpp"
 
@@ -35,6 +36,12 @@ struct measured_plots {
   std::string note;
 };
 
+// PSF samples for the plots: enough for a smooth MTF, few enough to follow a drag.
+struct predicted_params {
+  std::uint64_t psf_samples = 8000;
+  std::uint64_t sweep_psf_samples = 4000;  // per floating distance of the mean-MTF curve
+};
+
 class analysis_worker {
  public:
   analysis_worker();
@@ -42,7 +49,8 @@ class analysis_worker {
   analysis_worker(const analysis_worker&) = delete;
   analysis_worker& operator=(const analysis_worker&) = delete;
 
-  void submit_scene(const scene& s, std::uint64_t generation);
+  // `model` is the scene's retroreflector model when the caller has built it (else built here).
+  void submit_scene(const scene& s, std::uint64_t generation, std::shared_ptr<const retro_model> model);
   void submit_render(const render_snapshot& snap, const scene& s);
   std::shared_ptr<const predicted_plots> predicted() const;
   std::shared_ptr<const measured_plots> measured() const;
@@ -54,7 +62,12 @@ class analysis_worker {
 
   mutable std::mutex mutex_;
   mutable std::condition_variable changed_;
-  std::optional<std::pair<scene, std::uint64_t>> pending_scene_;
+  struct scene_request {
+    scene layout;
+    std::uint64_t generation = 0;
+    std::shared_ptr<const retro_model> model;
+  };
+  std::optional<scene_request> pending_scene_;
   std::optional<std::pair<render_snapshot, scene>> pending_render_;
   std::shared_ptr<const predicted_plots> predicted_;
   std::shared_ptr<const measured_plots> measured_;
@@ -63,8 +76,10 @@ class analysis_worker {
   std::thread worker_;
 };
 
-// Computes the predicted plots synchronously (what the worker does for one scene).
-predicted_plots compute_predicted(const scene& s, std::uint64_t generation);
+// Computes the predicted plots synchronously (what the worker does for one scene), with the
+// measurement library's functions, so the numbers equal those of `airr psf` and `airr sweep --psf`.
+predicted_plots compute_predicted(const scene& s, std::uint64_t generation, const predicted_params& p = {},
+                                  std::shared_ptr<const retro_model> model = nullptr);
 // Measures the slanted-edge MTF in the render, trying the source's regions in turn.
 measured_plots measure_render_mtf(const render_snapshot& snap, const scene& s);
 

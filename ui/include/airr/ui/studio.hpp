@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
+#include <optional>
 
 #include "airr/optics/preset.hpp"
 #include "airr/optics/scene.hpp"
@@ -38,8 +38,8 @@ struct render_view_state {
 struct studio {
   scene doc;                   // what the panels edit
   std::string doc_path;        // empty: untitled
-  nlohmann::json saved_json;   // the form last loaded or saved, for "unsaved changes"
-  nlohmann::json applied_json; // the form last handed to the session
+  std::optional<scene> saved;  // as last loaded or saved, for "unsaved changes"; empty: never saved
+  scene applied;               // as last handed to the session
   std::string doc_error;       // why the current edit cannot be rendered
   std::uint64_t generation = 0;
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <optional>
+#include <vector>
 
 #include "airr/analysis/slanted_edge_mtf.hpp"
 
@@ -25,15 +26,18 @@ struct mean_mtf_result {
 // MTF linearly interpolated at a frequency in cycles/pixel; 0 beyond the measured range.
 double interpolate_mtf(const mtf_curve& curve, double cycles_per_pixel);
 
+// Where y first falls from >= level to below it, linearly interpolated in x; empty if never.
+std::optional<double> first_crossing(const std::vector<double>& x, const std::vector<double>& y, double level);
+
 // First crossing of 0.5, linearly interpolated; empty when the curve stays above 0.5.
 // mm_per_pixel <= 0 leaves lp_per_mm at 0.
 std::optional<mtf50_result> mtf50(const mtf_curve& curve, double mm_per_pixel = 0);
 
-// Mean of the MTF over (0, max_lp_per_mm] lp/mm on a uniform grid, cut at the Nyquist frequency
-// (0.5 cycles/pixel) when that is lower.
 // Slope of the least-squares line through (x, y); 0 with fewer than two points.
 double least_squares_slope(const std::vector<double>& x, const std::vector<double>& y);
 
+// Mean of the MTF over (0, max_lp_per_mm] lp/mm on a uniform grid, cut at the Nyquist frequency
+// (0.5 cycles/pixel) when that is lower.
 mean_mtf_result mean_mtf(const mtf_curve& curve, double mm_per_pixel,
                          const mean_mtf_params& params = {});
 

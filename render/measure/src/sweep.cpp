@@ -1,4 +1,4 @@
-#include "sweep.hpp"
+#include "airr/measure/sweep.hpp"
 
 #include "airr/analysis/mtf_metrics.hpp"
 
@@ -14,7 +14,7 @@
 #include "airr/optics/layout.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "airr/render/render_session.hpp"
-#include "mtf_routes.hpp"
+#include "airr/measure/mtf_routes.hpp"
 
 namespace airr {
 

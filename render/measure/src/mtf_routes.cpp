@@ -1,4 +1,4 @@
-#include "mtf_routes.hpp"
+#include "airr/measure/mtf_routes.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,14 +8,18 @@
 #include "airr/analysis/psf_mtf.hpp"
 #include "airr/analysis/slanted_edge_mtf.hpp"
 #include "airr/optics/error.hpp"
+#include "airr/optics/geometry.hpp"
 #include "airr/optics/layout.hpp"
 #include "airr/optics/retro_model.hpp"
 
 namespace airr {
 
 psf_samples scene_psf(const scene& s, std::uint64_t samples) {
-  const auto model = make_retro_model(s.retroreflector.model, s.base_dir);
-  return sample_psf(s, *model, {.samples = samples, .seed = s.seed});
+  return scene_psf(s, *make_retro_model(s.retroreflector.model, s.base_dir), samples);
+}
+
+psf_samples scene_psf(const scene& s, const retro_model& model, std::uint64_t samples) {
+  return sample_psf(s, model, {.samples = samples, .seed = s.seed});
 }
 
 mtf_summary psf_route_mtf(const psf_samples& psf, double pixel_mm) {
@@ -36,29 +40,35 @@ scene with_edge_chart(scene s, const std::string& chart_path) {
   return s;
 }
 
-cv::Rect source_image_roi(const scene& s, double fraction) {
+cv::Rect aerial_image_roi(const scene& s, double u0, double v0, double u1, double v1) {
   const part_frame src = source_frame(s), hm = half_mirror_frame(s);
   const pinhole_camera cam = make_camera(s);
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  for (double su : {-1.0, 1.0}) {
-    for (double sv : {-1.0, 1.0}) {
-      const glm::dvec3 c = src.center + su * 0.5 * fraction * src.width * src.u + sv * 0.5 * fraction * src.height * src.v;
-      const glm::dvec3 aerial = c - 2.0 * glm::dot(c - hm.center, hm.n) * hm.n;  // mirror image in the half mirror
-      const glm::dvec2 p = camera_project(cam, aerial);
-      x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+  for (double u : {u0, u1}) {
+    for (double v : {v0, v1}) {
+      const glm::dvec3 p = part_point(src, (u - 0.5) * src.width, (0.5 - v) * src.height);
+      const glm::dvec2 q = camera_project(cam, mirror_point(p, hm.center, hm.n));
+      x0 = std::min(x0, q.x), y0 = std::min(y0, q.y), x1 = std::max(x1, q.x), y1 = std::max(y1, q.y);
     }
   }
   const int left = std::max(0, int(std::ceil(x0))), top = std::max(0, int(std::ceil(y0)));
   const int right = std::min(cam.width, int(std::floor(x1))), bottom = std::min(cam.height, int(std::floor(y1)));
-  if (right - left < 8 || bottom - top < 8)
-    throw input_error("edge MTF: the source's image is not in the camera's view");
-  return {left, top, right - left, bottom - top};
+  return {left, top, std::max(0, right - left), std::max(0, bottom - top)};
+}
+
+cv::Rect source_image_roi(const scene& s, double fraction) {
+  const cv::Rect r = aerial_image_roi(s, 0.5 - 0.5 * fraction, 0.5 - 0.5 * fraction, 0.5 + 0.5 * fraction, 0.5 + 0.5 * fraction);
+  if (r.width < 8 || r.height < 8) throw input_error("edge MTF: the source's image is not in the camera's view");
+  return r;
+}
+
+cv::Mat snapshot_luminance(const render_snapshot& snap) {
+  cv::Mat rgb(snap.height, snap.width, CV_32FC3, const_cast<float*>(snap.rgb->data()));
+  return analysis::rec709_luminance(rgb);
 }
 
 mtf_summary edge_route_mtf(const scene& s, const render_snapshot& snap, double roi_fraction) {
-  cv::Mat rgb(snap.height, snap.width, CV_32FC3, const_cast<float*>(snap.rgb->data()));
-  const cv::Mat luminance = analysis::rec709_luminance(rgb);
-  const auto curve = analysis::slanted_edge_mtf(luminance, {.roi = source_image_roi(s, roi_fraction)});
+  const auto curve = analysis::slanted_edge_mtf(snapshot_luminance(snap), {.roi = source_image_roi(s, roi_fraction)});
   mtf_summary m;
   m.mm_per_pixel = snap.mm_per_pixel;
   m.mean_mtf = analysis::mean_mtf(curve, snap.mm_per_pixel).value;

@@ -8,6 +8,7 @@
 #include <opencv2/core.hpp>
 
 #include "airr/optics/psf.hpp"
+#include "airr/optics/retro_model.hpp"
 #include "airr/optics/scene.hpp"
 #include "airr/render/render_session.hpp"
 
@@ -19,8 +20,10 @@ struct mtf_summary {
   double mm_per_pixel = 0;                // the pixel whose aperture is included; 0: none
 };
 
-// The model PSF of the scene's retroreflector at the aerial-image centre.
+// The model PSF of the scene's retroreflector at the aerial-image centre (seeded by the scene);
+// the second form takes the model already built for the scene.
 psf_samples scene_psf(const scene& s, std::uint64_t samples);
+psf_samples scene_psf(const scene& s, const retro_model& model, std::uint64_t samples);
 
 // MTF of a sampled PSF times a square pixel's aperture (pixel_mm = 0: the optics alone).
 mtf_summary psf_route_mtf(const psf_samples& psf, double pixel_mm);
@@ -28,9 +31,16 @@ mtf_summary psf_route_mtf(const psf_samples& psf, double pixel_mm);
 // The scene with the source showing `chart_path` (an edge chart) instead of its image.
 scene with_edge_chart(scene s, const std::string& chart_path);
 
+// The pixels inside the aerial image of the source region [u0, u1] x [v0, v1] (fractions of its
+// width and height, v down from the image's top), clipped to the frame; may be empty.
+cv::Rect aerial_image_roi(const scene& s, double u0, double v0, double u1, double v1);
+
 // The central `fraction` (per side) of the source's aerial image in camera pixels, clipped to
 // the frame. Throws input_error when nothing of it is in view.
 cv::Rect source_image_roi(const scene& s, double fraction);
+
+// Rec.709 luminance of a render snapshot (CV_64FC1).
+cv::Mat snapshot_luminance(const render_snapshot& snap);
 
 // Slanted-edge MTF of a render's Rec.709 luminance over source_image_roi(s, roi_fraction).
 // Throws std::runtime_error when no usable edge is found.

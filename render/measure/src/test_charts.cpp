@@ -1,4 +1,4 @@
-#include "test_charts.hpp"
+#include "airr/measure/test_charts.hpp"
 
 #include <cmath>
 #include <numbers>

@@ -1,18 +1,29 @@
 #pragma once
-// Strict reading of one JSON object: typed fields, unknown keys reported with their dotted path.
+// Reading JSON files strictly: one parser entry with one "malformed JSON" message, and a reader
+// of one object with typed fields whose errors read "<file>: <dotted.field>: <problem>".
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "airr/optics/error.hpp"
 
-namespace airr::detail {
+namespace airr {
+
+// Parses JSON text; throws input_error "<origin>: malformed JSON: <where and what>".
+nlohmann::json parse_json(std::string_view text, const std::string& origin);
+// Reads and parses a file (errors name the file).
+nlohmann::json read_json_file(const std::string& path);
 
 class json_reader {
  public:
+  const std::string& origin() const { return origin_; }
   json_reader(const nlohmann::json& j, std::string origin, std::string path)
       : j_(j), origin_(std::move(origin)), path_(std::move(path)) {
     if (!j_.is_object()) fail(path_.empty() ? "top level" : path_, "must be a JSON object");
@@ -27,6 +38,45 @@ class json_reader {
     seen_.insert(key);
     return j_.contains(key);
   }
+  // Fails with "missing" unless the key is present.
+  void require(const std::string& key) {
+    if (!has(key)) fail(field(key), "missing");
+  }
+  // A required finite number.
+  double number(const std::string& key) {
+    require(key);
+    double v = 0;
+    number(key, v);
+    return v;
+  }
+  // A finite number, or nothing when the key is absent.
+  std::optional<double> optional_number(const std::string& key) {
+    if (!has(key)) return std::nullopt;
+    return number(key);
+  }
+  // A required non-empty string.
+  std::string string(const std::string& key) {
+    require(key);
+    std::string v;
+    string(key, v);
+    if (v.empty()) fail(field(key), "must be a non-empty string");
+    return v;
+  }
+  // A required array of finite numbers; errors name the element.
+  std::vector<double> number_array(const std::string& key) {
+    require(key);
+    const auto& v = j_.at(key);
+    if (!v.is_array()) fail(field(key), "must be an array of numbers");
+    std::vector<double> out;
+    out.reserve(v.size());
+    for (std::size_t i = 0; i < v.size(); ++i) {
+      const std::string where = field(key) + "[" + std::to_string(i) + "]";
+      if (!v[i].is_number()) fail(where, "must be a number");
+      out.push_back(v[i].get<double>());
+      if (!std::isfinite(out.back())) fail(where, "must be finite");
+    }
+    return out;
+  }
 
   void number(const std::string& key, double& out) {
     if (!has(key)) return;
@@ -35,8 +85,8 @@ class json_reader {
     out = v.get<double>();
     if (!std::isfinite(out)) fail(field(key), "must be finite");
   }
-  // A number, or null for "unset".
-  void optional_number(const std::string& key, std::optional<double>& out) {
+  // A number, or null for "unset"; an absent key leaves out as it is.
+  void nullable_number(const std::string& key, std::optional<double>& out) {
     if (!has(key)) return;
     if (j_.at(key).is_null()) {
       out.reset();
@@ -97,4 +147,4 @@ class json_reader {
   std::set<std::string> seen_;
 };
 
-}  // namespace airr::detail
+}  // namespace airr

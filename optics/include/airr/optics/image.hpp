@@ -1,0 +1,55 @@
+#pragma once
+// The project's image: linear RGB floats, and its one loader and writer (OpenImageIO).
+//
+// Linearity rule for files: float and half files and integer files of more than 8 bits are
+// linear; 8-bit files are sRGB-encoded unless the file tags itself linear (oiio:ColorSpace).
+// A caller may force either reading (image_encoding).
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace airr {
+
+struct image_rgb {
+  int width = 0;
+  int height = 0;
+  std::vector<float> rgb;  // row-major from the top-left, 3 floats per pixel
+
+  float* at(int x, int y) { return rgb.data() + 3 * (std::size_t(y) * width + x); }
+  const float* at(int x, int y) const { return rgb.data() + 3 * (std::size_t(y) * width + x); }
+};
+
+// How a file's code values map to linear values: by the rule above, or forced.
+enum class image_encoding { automatic, srgb, linear };
+
+// Largest image the loader accepts, in pixels (checked before pixels are allocated).
+inline constexpr std::int64_t max_image_pixels = 64LL * 1024 * 1024;
+
+// Name of the metadata attribute the renderer writes with the pixel size on the aerial-image plane.
+inline constexpr const char* mm_per_pixel_attribute = "airr:mm_per_pixel";
+
+struct loaded_image {
+  image_rgb pixels;                    // linear; grey replicated to RGB, alpha and extra channels dropped
+  bool srgb_decoded = false;           // the code values went through the sRGB curve
+  int channels = 0;                    // in the file
+  std::string format;                  // the file's pixel type, e.g. "uint8", "half"
+  std::optional<double> mm_per_pixel;  // from the mm_per_pixel_attribute, if present
+};
+
+// Reads EXR, PNG, TIFF, JPEG, HDR... Throws input_error "<path>: <problem>" for a missing,
+// unreadable or truncated file, an absurd size, non-finite pixels or a bad pixel-size attribute.
+loaded_image load_image(const std::string& path, image_encoding encoding = image_encoding::automatic);
+
+// String metadata written into the file (PNG text chunks, EXR header attributes).
+using image_metadata = std::map<std::string, std::string>;
+
+// Writes EXR (float, linear) or PNG (8-bit sRGB after scaling by `exposure`), chosen by the
+// extension, atomically (temporary file then rename). Throws input_error.
+void write_image(const std::string& path, const image_rgb& img, const image_metadata& meta, float exposure = 1.0f);
+
+// Reads back the string metadata of an image file (only keys starting with "airr:").
+image_metadata read_image_metadata(const std::string& path);
+
+}  // namespace airr

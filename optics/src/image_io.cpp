@@ -1,0 +1,140 @@
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <system_error>
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imageio.h>
+
+#include "airr/optics/error.hpp"
+#include "airr/optics/color.hpp"
+#include "airr/optics/image.hpp"
+
+namespace airr {
+
+namespace fs = std::filesystem;
+using namespace OIIO;
+
+static bool is_float_format(TypeDesc t) {
+  return t.basetype == TypeDesc::FLOAT || t.basetype == TypeDesc::HALF || t.basetype == TypeDesc::DOUBLE;
+}
+
+// The pixel-size attribute, written as a decimal string (or stored as a number).
+static std::optional<double> read_mm_per_pixel(const std::string& path, const ImageSpec& spec) {
+  const ParamValue* p = spec.find_attribute(mm_per_pixel_attribute);
+  if (!p) return std::nullopt;
+  double value = std::nan("");
+  std::string text;
+  if (p->type() == TypeString) {
+    text = p->get_string();
+    const char* begin = text.data();
+    const char* end = begin + text.size();
+    while (begin != end && *begin == ' ') ++begin;
+    while (end != begin && end[-1] == ' ') --end;
+    auto [ptr, ec] = std::from_chars(begin, end, value);
+    if (ec != std::errc{} || ptr != end) value = std::nan("");
+  } else if (p->type().basetype == TypeDesc::FLOAT || p->type().basetype == TypeDesc::DOUBLE ||
+             p->type().basetype == TypeDesc::HALF || p->type().basetype == TypeDesc::INT) {
+    value = p->get_float();
+    text = std::to_string(value);
+  } else {
+    throw input_error(path + ": attribute " + mm_per_pixel_attribute + " has unsupported type " + p->type().c_str());
+  }
+  if (!std::isfinite(value) || value <= 0) {
+    throw input_error(path + ": attribute " + mm_per_pixel_attribute + " is not a positive number ('" + text + "')");
+  }
+  return value;
+}
+
+loaded_image load_image(const std::string& path, image_encoding encoding) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw input_error(path + ": no such file");
+  if (fs::is_directory(path, ec)) throw input_error(path + ": is a directory, not an image");
+  auto in = ImageInput::open(path);
+  if (!in) {
+    std::string why = geterror();
+    throw input_error(path + ": cannot read image: " + (why.empty() ? "unknown format" : why));
+  }
+  const ImageSpec spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) throw input_error(path + ": image has no pixels");
+  if (spec.depth > 1) throw input_error(path + ": volume images are not supported");
+  if (std::int64_t(spec.width) * spec.height > max_image_pixels) {
+    throw input_error(path + ": image too large (" + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                      "; the limit is " + std::to_string(max_image_pixels) + " pixels)");
+  }
+  loaded_image out;
+  out.channels = spec.nchannels;
+  out.format = spec.format.c_str();
+  out.mm_per_pixel = read_mm_per_pixel(path, spec);
+  std::vector<float> px(std::size_t(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, px.data())) {
+    const std::string why = in->geterror();
+    throw input_error(path + ": cannot read pixels: " + (why.empty() ? std::string("truncated or corrupt file") : why));
+  }
+  const bool wide = is_float_format(spec.format) || spec.format.size() > 1;
+  const bool tagged_linear = Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "linear");
+  out.srgb_decoded = encoding == image_encoding::srgb || (encoding == image_encoding::automatic && !wide && !tagged_linear);
+
+  image_rgb& img = out.pixels;
+  img.width = spec.width;
+  img.height = spec.height;
+  img.rgb.resize(std::size_t(spec.width) * spec.height * 3);
+  const int nc = spec.nchannels;
+  for (std::size_t i = 0; i < std::size_t(spec.width) * spec.height; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const float v = px[i * nc + (nc >= 3 ? c : 0)];
+      if (!std::isfinite(v)) {
+        throw input_error(path + ": image contains NaN or infinite values (first at pixel (" +
+                          std::to_string(i % std::size_t(spec.width)) + ", " + std::to_string(i / std::size_t(spec.width)) +
+                          "))");
+      }
+      img.rgb[i * 3 + c] = out.srgb_decoded ? float(srgb_decode(v)) : v;
+    }
+  }
+  return out;
+}
+
+void write_image(const std::string& path, const image_rgb& img, const image_metadata& meta, float exposure) {
+  const fs::path p(path);
+  std::string ext = p.extension().string();
+  for (auto& c : ext) c = char(std::tolower(c));
+  const bool exr = ext == ".exr";
+  if (!exr && ext != ".png") throw input_error(path + ": output must be .exr or .png");
+  ImageSpec spec(img.width, img.height, 3, exr ? TypeDesc::FLOAT : TypeDesc::UINT8);
+  for (const auto& [k, v] : meta) spec.attribute(k, v);
+  spec.attribute("oiio:ColorSpace", exr ? "linear" : "sRGB");
+  if (exr) spec.attribute("compression", "zip");
+
+  std::vector<float> out(img.rgb.size());
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = exr ? img.rgb[i] : float(srgb_encode(std::clamp(img.rgb[i] * exposure, 0.0f, 1.0f)));
+
+  const fs::path tmp = p.parent_path() / (".tmp." + p.stem().string() + ext);
+  auto o = ImageOutput::create(tmp.string());
+  if (!o || !o->open(tmp.string(), spec)) throw input_error(path + ": cannot write image: " + geterror());
+  const bool ok = o->write_image(TypeDesc::FLOAT, out.data());
+  const std::string err = ok ? "" : o->geterror();
+  o->close();
+  if (!ok) {
+    fs::remove(tmp);
+    throw input_error(path + ": cannot write image: " + err);
+  }
+  std::error_code ec;
+  fs::rename(tmp, p, ec);
+  if (ec) {
+    fs::remove(tmp);
+    throw input_error(path + ": cannot replace file: " + ec.message());
+  }
+}
+
+image_metadata read_image_metadata(const std::string& path) {
+  auto in = ImageInput::open(path);
+  if (!in) throw input_error(path + ": cannot read image: " + geterror());
+  image_metadata meta;
+  for (const auto& a : in->spec().extra_attribs) {
+    const std::string name = a.name().string();
+    if (name.rfind("airr:", 0) == 0) meta[name] = a.get_string();
+  }
+  return meta;
+}
+
+}  // namespace airr

@@ -1,0 +1,72 @@
+// The designer and the command line report the same numbers for the same scene: the designer's
+// plots come from the measurement library's functions, not from a copy of them.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "airr/measure/mtf_routes.hpp"
+#include "airr/measure/sweep.hpp"
+#include "airr/optics/layout.hpp"
+#include "airr/optics/scene_json.hpp"
+#include "airr/ui/analysis_worker.hpp"
+#include "test_helpers.hpp"
+
+using namespace airr;
+
+namespace {
+
+scene preset_scene() {
+  scene s = test::uniform_source_scene(50, 256);
+  s.retroreflector.model.type = retro_model_type::sinc_shift;
+  s.retroreflector.model.preset = "rf-ay";
+  return s;
+}
+
+// The number after `label` in the CLI's output.
+double printed_number(const std::string& out, const std::string& label) {
+  const auto at = out.find(label);
+  if (at == std::string::npos) return -1;
+  return std::stod(out.substr(at + label.size()));
+}
+
+}  // namespace
+
+TEST(DesignerNumbers, PredictedPlotsEqualTheMeasurementLibrary) {
+  const scene s = preset_scene();
+  const std::uint64_t samples = 20000;
+  const ui::predicted_plots pred = ui::compute_predicted(s, 1, {.psf_samples = samples, .sweep_psf_samples = samples});
+  ASSERT_TRUE(pred.error.empty()) << pred.error;
+
+  const psf_samples psf = scene_psf(s, samples);
+  const mtf_summary m = psf_route_mtf(psf, make_camera(s).mm_per_pixel);
+  EXPECT_EQ(pred.mean_mtf, m.mean_mtf);
+  EXPECT_EQ(pred.mtf50, m.mtf50_lp_per_mm.value_or(0.0));
+  EXPECT_EQ(pred.r50_mm, energy_radius(psf));
+  EXPECT_EQ(pred.brightness, psf.brightness());
+
+  sweep_params sp;
+  sp.axes = {parse_sweep_axis("floating_distance=150:300:25")};
+  sp.psf_route = true;
+  sp.psf_samples = samples;
+  const sweep_result r = run_sweep(s, sp);
+  ASSERT_EQ(pred.sweep_mean_mtf.size(), r.points.size());
+  for (std::size_t i = 0; i < r.points.size(); ++i) {
+    EXPECT_EQ(pred.sweep_d_mm[i], r.points[i].floating_distance_mm);
+    EXPECT_EQ(pred.sweep_mean_mtf[i], r.points[i].mean_mtf) << "D " << r.points[i].floating_distance_mm;
+  }
+}
+
+TEST(DesignerNumbers, PredictedPlotsEqualAirrPsf) {
+  test::temp_dir dir;
+  const scene s = preset_scene();
+  const std::string path = dir.file("scene.json");
+  save_scene(s, path);
+  const scene loaded = load_scene(path);
+  const ui::predicted_plots pred = ui::compute_predicted(loaded, 1, {.psf_samples = 20000, .sweep_psf_samples = 2000});
+  ASSERT_TRUE(pred.error.empty()) << pred.error;
+  const auto run = test::run_cli("psf " + path + " -o " + dir.file("psf.csv") + " --samples 20000");
+  ASSERT_EQ(run.exit_code, 0) << run.out;
+  EXPECT_NEAR(printed_number(run.out, "mean MTF over (0, 1] lp/mm: "), pred.mean_mtf, 5e-6) << run.out;
+  EXPECT_NEAR(printed_number(run.out, "50%-energy radius: "), pred.r50_mm, 5e-5) << run.out;
+}
