@@ -13,6 +13,7 @@
 #include "airr/analysis/mtf_csv.hpp"
 #include "airr/analysis/psf_mtf.hpp"
 #include "airr/analysis/sheet_fit.hpp"
+#include "airr/optics/geometry.hpp"
 #include "airr/optics/assets.hpp"
 #include "airr/optics/error.hpp"
 #include "airr/optics/layout.hpp"
@@ -109,7 +110,7 @@ void run_synthesise(const options& opt) {
   const int camera_pixels = 40;
   const double camera_mm = 0.4, pixel_mm = 0.25, square_mm = 10.0;
   setup.camera.width = setup.camera.height = camera_pixels;
-  setup.camera.fov_deg = 2.0 * std::atan(0.5 * camera_pixels * camera_mm / setup.camera.distance_mm) * 180.0 / M_PI;
+  setup.camera.fov_deg = airr::degrees(2.0 * std::atan(0.5 * camera_pixels * camera_mm / setup.camera.distance_mm));
   setup.retroreflector.model.reference_distance_mm = truth.reference_distance_mm;
   airr::save_scene(setup, (dir / "setup.json").string());
   setup = airr::load_scene((dir / "setup.json").string());

@@ -19,6 +19,7 @@
 #include "airr/analysis/psf_mtf.hpp"
 #include "airr/analysis/sheet_fit.hpp"
 #include "airr/analysis/slanted_edge_mtf.hpp"
+#include "airr/optics/geometry.hpp"
 #include "airr/optics/error.hpp"
 #include "airr/optics/layout.hpp"
 #include "airr/optics/preset.hpp"
@@ -123,7 +124,7 @@ TEST(SheetFit, RenderedMeasurementsFitBack) {
   const int size = 128, edge_rows = 192;
   const double pixel_mm = 0.1, square_mm = 10.0;
   const std::uint64_t edge_spp = 256, white_spp = 32;
-  auto fov_for = [&](int rows) { return 2.0 * std::atan(0.5 * rows * pixel_mm / 300.0) * 180.0 / M_PI; };
+  auto fov_for = [&](int rows) { return degrees(2.0 * std::atan(0.5 * rows * pixel_mm / 300.0)); };
   scene setup = test::uniform_source_scene(50.0, size);
   setup.camera.fov_deg = fov_for(size);
   save_scene(setup, dir.file("setup.json"));

@@ -1,5 +1,7 @@
 #include "airr/analysis/fit_simulation.hpp"
 
+#include "airr/optics/geometry.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -74,7 +76,7 @@ psf_mtf_curve measured_like_mtf(const psf_samples& psf, const psf_mtf_params& pa
 cv::Mat white_square_image(const scene& s, const psf_samples& psf, double width_mm, double height_mm) {
   const part_frame src = source_frame(s), hm = half_mirror_frame(s);
   const pinhole_camera cam = make_camera(s);
-  auto aerial = [&](const glm::dvec3& p) { return p - 2.0 * glm::dot(p - hm.center, hm.n) * hm.n; };
+  auto aerial = [&](const glm::dvec3& p) { return mirror_point(p, hm.center, hm.n); };
   // The square's ideal image, a rectangle in pixel coordinates (x right, y down).
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
   for (double su : {-0.5, 0.5}) {

@@ -1,5 +1,7 @@
 #include "airr/analysis/sheet_fit.hpp"
 
+#include "airr/optics/interpolate.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -36,19 +38,11 @@ struct mtf_target {
   double mean = 0;
 };
 
-double interpolate(const std::vector<double>& x, const std::vector<double>& y, double at) {
-  if (at <= x.front()) return y.front();
-  if (at >= x.back()) return y.back();
-  const auto hi = std::size_t(std::upper_bound(x.begin(), x.end(), at) - x.begin());
-  const double t = (at - x[hi - 1]) / (x[hi] - x[hi - 1]);
-  return y[hi - 1] + t * (y[hi] - y[hi - 1]);
-}
-
 mtf_target make_target(const mtf_measurement& m, int n) {
   mtf_target t;
   t.m = &m;
   t.f_max = std::min(1.0, m.lp_per_mm.back());
-  for (int i = 1; i <= n; ++i) t.measured.push_back(interpolate(m.lp_per_mm, m.mtf, t.f_max * i / n));
+  for (int i = 1; i <= n; ++i) t.measured.push_back(interpolate_linear(m.lp_per_mm, m.mtf, t.f_max * i / n));
   for (double v : t.measured) t.mean += v;
   t.mean /= n;
   return t;
