@@ -6,11 +6,11 @@
 #include <filesystem>
 #include <numeric>
 
-#include <CLI/CLI.hpp>
 #include <GLFW/glfw3.h>
-#include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
+#include <imgui.h>
+#include <CLI/CLI.hpp>
 
 #include "airr/optics/assets.hpp"
 #include "airr/optics/scene_json.hpp"
@@ -70,12 +70,14 @@ int main(int argc, char** argv) {
   CLI::App cli{"airr-studio: design AIRR optical systems interactively"};
   cli.add_option("scene", opt.scene_path, "Scene JSON file (default: the shipped default scene)");
   cli.add_option("--set", opt.sets, "Override a scene value, e.g. retroreflector.tilt_deg=20");
-  cli.add_option("--frames", opt.frames, "Run this many frames, then exit (scripted run)")->check(CLI::Range(1, 1000000));
+  cli.add_option("--frames", opt.frames, "Run this many frames, then exit (scripted run)")
+      ->check(CLI::Range(1, 1000000));
   cli.add_option("--screenshot", opt.screenshot, "After the scripted frames, save the window as PNG");
   cli.add_option("--bench-edits", opt.bench_edits, "Measure edit-to-image latency over this many edits, then exit")
       ->check(CLI::Range(1, 100000));
   cli.add_option("--threads", opt.threads, "Tracer threads (0: all cores)")->check(CLI::Range(0, 1024));
-  cli.add_option("--fit", opt.fit_dir, "Open the fit window and fit this data directory (scripted runs apply the result)");
+  cli.add_option("--fit", opt.fit_dir,
+                 "Open the fit window and fit this data directory (scripted runs apply the result)");
   cli.add_option("--save-as", opt.save_as, "After a scripted run, save the scene to this file");
   CLI11_PARSE(cli, argc, argv);
   if (!opt.screenshot.empty() && opt.frames == 0) opt.frames = 60;
@@ -104,7 +106,8 @@ int main(int argc, char** argv) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
-  GLFWwindow* window = glfwCreateWindow(st.settings.window_width, st.settings.window_height, "AIRR Studio", nullptr, nullptr);
+  GLFWwindow* window =
+      glfwCreateWindow(st.settings.window_width, st.settings.window_height, "AIRR Studio", nullptr, nullptr);
   if (!window) {
     std::fprintf(stderr, "error: cannot open an OpenGL 3.3 window\n");
     glfwTerminate();
@@ -253,7 +256,8 @@ int main(int argc, char** argv) {
   if (opt.bench_edits > 0) {
     const auto& l = st.edit_latencies_ms;
     std::printf("edit-to-image latency in the window: median %.1f ms, p95 %.1f ms, max %.1f ms over %zu edits\n",
-                percentile(l, 0.5), percentile(l, 0.95), l.empty() ? 0.0 : *std::max_element(l.begin(), l.end()), l.size());
+                percentile(l, 0.5), percentile(l, 0.95), l.empty() ? 0.0 : *std::max_element(l.begin(), l.end()),
+                l.size());
     std::printf("frame time while the tracer runs: median %.1f ms, p95 %.1f ms over %zu frames\n",
                 percentile(frame_ms, 0.5), percentile(frame_ms, 0.95), frame_ms.size());
   }

@@ -1,19 +1,19 @@
 // airr bench: tracer rays/s, raw Embree rtcIntersect1 rays/s on the same geometry and ray count,
 // their ratio, and the render session's latency from an edit to its first new image.
 #include <algorithm>
-#include <cmath>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <limits>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
+#include "airr/optics/assets.hpp"
 #include "airr/optics/random.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/render/tracer.hpp"
-#include "airr/optics/assets.hpp"
 #include "commands.hpp"
 
 namespace {
@@ -101,9 +101,11 @@ void time_to_noise_level(const airr::scene& base, double target) {
     if (err <= target) break;
   }
   session.stop();
-  std::printf("noise level:   %.1f%% relative RMS reached after %.2f s at %llu spp (RF-Ay, 64x64; reference %llu spp in %.1f s)\n",
-              100 * err, seconds, static_cast<unsigned long long>(spp), static_cast<unsigned long long>(reference_spp),
-              reference_s);
+  std::printf(
+      "noise level:   %.1f%% relative RMS reached after %.2f s at %llu spp (RF-Ay, 64x64; reference %llu spp in %.1f "
+      "s)\n",
+      100 * err, seconds, static_cast<unsigned long long>(spp), static_cast<unsigned long long>(reference_spp),
+      reference_s);
 }
 
 }  // namespace
@@ -162,15 +164,17 @@ void add_bench_command(CLI::App& app) {
     std::sort(latencies.begin(), latencies.end());
     std::sort(first_images.begin(), first_images.end());
 
-    std::printf("scene: %s (%dx%d, %llu spp)\n", opt->scene_path.c_str(), w, h, static_cast<unsigned long long>(opt->spp));
+    std::printf("scene: %s (%dx%d, %llu spp)\n", opt->scene_path.c_str(), w, h,
+                static_cast<unsigned long long>(opt->spp));
     std::printf("tracer:        %12.0f rays/s  (%llu rays in %.3f s)\n", tracer_rate,
                 static_cast<unsigned long long>(rays.load()), tracer_s);
     std::printf("raw embree:    %12.0f rays/s  (%llu rays in %.3f s, checksum %.1f)\n", raw_rate,
                 static_cast<unsigned long long>(raw_rays), raw_s, checksum);
     std::printf("ratio:         %12.3f  (tracer / raw rtcIntersect1)\n", tracer_rate / raw_rate);
     time_to_noise_level(s, 0.02);
-    std::printf("edit latency:  median %.1f ms, min %.1f ms, max %.1f ms over %zu edits (to the first image, a preview)\n",
-                first_images[first_images.size() / 2], first_images.front(), first_images.back(), first_images.size());
+    std::printf(
+        "edit latency:  median %.1f ms, min %.1f ms, max %.1f ms over %zu edits (to the first image, a preview)\n",
+        first_images[first_images.size() / 2], first_images.front(), first_images.back(), first_images.size());
     std::printf("               median %.1f ms, min %.1f ms, max %.1f ms (to the first full-resolution 1-spp image)\n",
                 latencies[latencies.size() / 2], latencies.front(), latencies.back());
   });

@@ -13,14 +13,14 @@
 #include "airr/analysis/mtf_csv.hpp"
 #include "airr/analysis/psf_mtf.hpp"
 #include "airr/analysis/sheet_fit.hpp"
-#include "airr/optics/geometry.hpp"
 #include "airr/optics/assets.hpp"
 #include "airr/optics/error.hpp"
+#include "airr/optics/geometry.hpp"
+#include "airr/optics/image.hpp"
 #include "airr/optics/layout.hpp"
 #include "airr/optics/preset.hpp"
 #include "airr/optics/retro_model.hpp"
 #include "airr/optics/scene_json.hpp"
-#include "airr/optics/image.hpp"
 #include "commands.hpp"
 #include "progress_bar.hpp"
 
@@ -49,8 +49,10 @@ void run_fit(const options& opt) {
 
   progress_bar bar("fit");
   const auto r = airr::analysis::fit_sheet(data, p, [&](const airr::analysis::fit_progress& f) {
-    if (f.fraction < 1) bar.update(f.fraction, f.stage);
-    else bar.finish(f.stage);
+    if (f.fraction < 1)
+      bar.update(f.fraction, f.stage);
+    else
+      bar.finish(f.stage);
     return true;
   });
   airr::save_preset(r.preset, opt.output);
@@ -79,10 +81,11 @@ void run_fit(const options& opt) {
   const airr::analysis::fit_c_entry& c = rep.c;
   std::printf("c = %.5f mm, loss %.3e (slope of mean MTF against D: measured %.5g, simulated %.5g per mm)\n", c.c_mm,
               c.loss, c.slope_measured_per_mm, c.slope_simulated_per_mm);
-  std::printf("c with a(0) refitted at each of %d trial values: the match lies in [%.5f, %.5f] mm, a(0) %.4g .. %.4g "
-              "across it%s\n",
-              c.trial_c_values, c.bracket_mm[0], c.bracket_mm[1], c.a0_at_bracket_ends_per_mm[0],
-              c.a0_at_bracket_ends_per_mm[1], c.converged ? "" : " (warning: not converged)");
+  std::printf(
+      "c with a(0) refitted at each of %d trial values: the match lies in [%.5f, %.5f] mm, a(0) %.4g .. %.4g "
+      "across it%s\n",
+      c.trial_c_values, c.bracket_mm[0], c.bracket_mm[1], c.a0_at_bracket_ends_per_mm[0],
+      c.a0_at_bracket_ends_per_mm[1], c.converged ? "" : " (warning: not converged)");
   if (c.bound != airr::analysis::root_bound::none)
     std::printf("warning: the slope is matched only beyond the %s end of the c bracket; c is clamped there\n",
                 airr::analysis::to_string(c.bound));
@@ -127,7 +130,8 @@ void run_synthesise(const options& opt) {
     return airr::sample_psf(s, *model, {.samples = samples, .seed = seed});
   };
   auto write_csv = [&](const airr::psf_samples& psf, const std::string& name) {
-    const auto c = airr::analysis::measured_like_mtf(psf, {.max_lp_per_mm = 2.0, .points = 101, .pixel_mm = pixel_mm}, 0, false);
+    const auto c =
+        airr::analysis::measured_like_mtf(psf, {.max_lp_per_mm = 2.0, .points = 101, .pixel_mm = pixel_mm}, 0, false);
     airr::analysis::mtf_curve curve;
     for (std::size_t i = 0; i < c.mtf.size(); ++i) curve.cycles_per_pixel.push_back(c.lp_per_mm[i] * pixel_mm);
     curve.mtf = c.mtf;
@@ -163,7 +167,8 @@ void run_synthesise(const options& opt) {
         for (int k = 0; k < 3; ++k) rgb.at(x, y)[k] = float(img.at<double>(y, x));
     char mm[64];
     std::snprintf(mm, sizeof mm, "%.17g", airr::make_camera(s).mm_per_pixel);
-    airr::write_image((dir / white).string(), rgb, {{"airr:mm_per_pixel", mm}, {"airr:generator", "airr fit --synthesise"}});
+    airr::write_image((dir / white).string(), rgb,
+                      {{"airr:mm_per_pixel", mm}, {"airr:generator", "airr fit --synthesise"}});
     fit["white_squares"].push_back({{"tilt_deg", t}, {"image", white}, {"square_mm", square_mm}});
   }
   for (int d = 150; d <= 300; d += 25) {
@@ -182,12 +187,14 @@ void run_synthesise(const options& opt) {
 
 void add_fit_command(CLI::App& app) {
   auto opt = std::make_shared<options>();
-  auto* cmd = app.add_subcommand("fit", "Fit the sinc-shift model's a (per tilt), c and mu (per tilt) to measurements "
-                                        "and write a preset");
+  auto* cmd = app.add_subcommand("fit",
+                                 "Fit the sinc-shift model's a (per tilt), c and mu (per tilt) to measurements "
+                                 "and write a preset");
   auto* data = cmd->add_option("--data", opt->data, "Fit data directory holding fit.json (see assets/fit_example)");
   cmd->add_option("-o,--output", opt->output, "Preset file to write (with --data)");
-  auto* synth = cmd->add_option("--synthesise", opt->synthesise,
-                                "Instead of fitting, write a data directory synthesised from --preset by the model PSF");
+  auto* synth =
+      cmd->add_option("--synthesise", opt->synthesise,
+                      "Instead of fitting, write a data directory synthesised from --preset by the model PSF");
   cmd->add_option("--preset", opt->preset, "With --synthesise: the preset to synthesise from (default rf-ay)");
   cmd->add_option("--samples", opt->samples,
                   "PSF samples per simulation (fit default 200000; --synthesise default 1000000)")

@@ -1,12 +1,12 @@
 // airr make-assets [--dir DIR]: regenerates the glTF models and test charts shipped in assets/.
 #include <filesystem>
 
+#include "airr/measure/test_charts.hpp"
+#include "airr/optics/assets.hpp"
 #include "airr/optics/corner_cube.hpp"
 #include "airr/optics/mesh_gltf.hpp"
 #include "airr/optics/scene_json.hpp"
-#include "airr/optics/assets.hpp"
 #include "commands.hpp"
-#include "airr/measure/test_charts.hpp"
 
 void add_make_assets_command(CLI::App& app) {
   auto dir = std::make_shared<std::string>(airr::asset_dir());

@@ -43,8 +43,9 @@ void add_mtf_command(CLI::App& app) {
     airr::image_encoding encoding = airr::image_encoding::automatic;
   };
   auto opt = std::make_shared<options>();
-  auto* cmd = app.add_subcommand("mtf", "Measure the slanted-edge MTF of an image (edge about 5 deg "
-                                        "from vertical or horizontal)");
+  auto* cmd = app.add_subcommand("mtf",
+                                 "Measure the slanted-edge MTF of an image (edge about 5 deg "
+                                 "from vertical or horizontal)");
   cmd->add_option("image", opt->image, "Image with one slanted edge (EXR, PNG, TIFF, JPEG)")->required();
   cmd->add_option("-o,--output", opt->csv, "CSV file to write (cycles_per_pixel,lp_per_mm,mtf)")->required();
   cmd->add_option("--pixel-mm", opt->pixel_mm,
@@ -55,8 +56,7 @@ void add_mtf_command(CLI::App& app) {
   cmd->callback([opt] {
     airr::analysis::slanted_edge_params params;
     if (!opt->roi.empty()) params.roi = parse_roi(opt->roi);
-    if (opt->pixel_mm && !(*opt->pixel_mm > 0))
-      throw std::runtime_error("--pixel-mm must be positive");
+    if (opt->pixel_mm && !(*opt->pixel_mm > 0)) throw std::runtime_error("--pixel-mm must be positive");
     const auto result = airr::analysis::measure_edge_file(opt->image, params, {.encoding = opt->encoding});
 
     std::string pixel_source = "--pixel-mm";
@@ -67,13 +67,14 @@ void add_mtf_command(CLI::App& app) {
       mm = *result.image.mm_per_pixel;
       pixel_source = "airr:mm_per_pixel";
     } else {
-      throw std::runtime_error(opt->image + ": no pixel size: the image has no airr:mm_per_pixel attribute; pass --pixel-mm");
+      throw std::runtime_error(opt->image +
+                               ": no pixel size: the image has no airr:mm_per_pixel attribute; pass --pixel-mm");
     }
 
     const auto& c = result.curve;
     std::printf("image: %s (%dx%d, %s), pixel %.6g mm (%s)\n", opt->image.c_str(), result.image.luminance.cols,
-                result.image.luminance.rows,
-                result.image.srgb_decoded ? "sRGB decoded" : "linear", mm, pixel_source.c_str());
+                result.image.luminance.rows, result.image.srgb_decoded ? "sRGB decoded" : "linear", mm,
+                pixel_source.c_str());
     std::printf("region: %d,%d,%d,%d\n", c.roi.x, c.roi.y, c.roi.width, c.roi.height);
     std::printf("edge: %s, %s, %.3f deg from the pixel axis\n",
                 airr::analysis::edge_orientation_names[static_cast<int>(c.orientation)],
@@ -84,9 +85,10 @@ void add_mtf_command(CLI::App& app) {
       std::printf("MTF50: not reached (MTF stays above 0.5 up to %.3g cycles/pixel)\n", c.cycles_per_pixel.back());
     const auto mean = airr::analysis::mean_mtf(c, mm);
     if (mean.clamped)
-      std::printf("mean MTF over (0, %.4g] lp/mm: %.5f (the Nyquist frequency %.4g lp/mm is below 1 lp/mm; "
-                  "averaged over the available range)\n",
-                  mean.upper_lp_per_mm, mean.value, mean.upper_lp_per_mm);
+      std::printf(
+          "mean MTF over (0, %.4g] lp/mm: %.5f (the Nyquist frequency %.4g lp/mm is below 1 lp/mm; "
+          "averaged over the available range)\n",
+          mean.upper_lp_per_mm, mean.value, mean.upper_lp_per_mm);
     else
       std::printf("mean MTF over (0, 1] lp/mm: %.5f\n", mean.value);
 

@@ -8,10 +8,10 @@
 
 #include "airr/analysis/plot_png.hpp"
 #include "airr/analysis/psf_mtf.hpp"
+#include "airr/measure/mtf_routes.hpp"
 #include "airr/optics/layout.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "commands.hpp"
-#include "airr/measure/mtf_routes.hpp"
 
 namespace {
 
@@ -49,7 +49,8 @@ void add_psf_command(CLI::App& app) {
       ->check(CLI::Range(100, 100000000));
   cmd->add_flag("--no-pixel", opt->no_pixel,
                 "The optics alone; by default the camera pixel's aperture is included, as a render measures it");
-  cmd->add_option("--max-lp", opt->max_lp, "Highest frequency in the CSV, lp/mm (default 2)")->check(CLI::Range(0.01, 1000.0));
+  cmd->add_option("--max-lp", opt->max_lp, "Highest frequency in the CSV, lp/mm (default 2)")
+      ->check(CLI::Range(0.01, 1000.0));
   cmd->add_option("--points", opt->points, "Frequencies in the CSV, 0 .. max evenly spaced (default 101)")
       ->check(CLI::Range(2, 100000));
   cmd->add_option("--set", opt->sets, "Override a scene value, e.g. retroreflector.model.preset=rf-ay");
@@ -63,7 +64,8 @@ void add_psf_command(CLI::App& app) {
     const airr::psf_samples psf = airr::scene_psf(s, opt->samples);
     const double t_sample = seconds_since(t0);
     const auto t1 = std::chrono::steady_clock::now();
-    const auto curve = airr::analysis::psf_mtf(psf, {.max_lp_per_mm = opt->max_lp, .points = opt->points, .pixel_mm = pixel_mm});
+    const auto curve =
+        airr::analysis::psf_mtf(psf, {.max_lp_per_mm = opt->max_lp, .points = opt->points, .pixel_mm = pixel_mm});
     const double t_curve = seconds_since(t1);
     const auto t2 = std::chrono::steady_clock::now();
     const airr::mtf_summary m = airr::psf_route_mtf(psf, pixel_mm);
@@ -75,7 +77,8 @@ void add_psf_command(CLI::App& app) {
                 psf.incidence_deg);
     std::printf("50%%-energy radius: %.4f mm\n", r50);
     if (pixel_mm > 0)
-      std::printf("pixel aperture: %.6g mm on the aerial-image plane (included; --no-pixel for the optics alone)\n", pixel_mm);
+      std::printf("pixel aperture: %.6g mm on the aerial-image plane (included; --no-pixel for the optics alone)\n",
+                  pixel_mm);
     else
       std::printf("pixel aperture: none (optics alone)\n");
     std::printf("mean MTF over (0, 1] lp/mm: %.5f\n", m.mean_mtf);

@@ -3,10 +3,10 @@
 #include <thread>
 
 #include "airr/optics/scene_json.hpp"
+#include "airr/render/render_metadata.hpp"
 #include "airr/render/render_session.hpp"
 #include "commands.hpp"
 #include "progress_bar.hpp"
-#include "airr/render/render_metadata.hpp"
 
 void add_render_command(CLI::App& app) {
   struct options {
@@ -40,8 +40,8 @@ void add_render_command(CLI::App& app) {
       session.wait_for(0, std::min<std::uint64_t>(opt->spp, snap.spp + 1));
     }
     session.stop();
-    bar.finish(std::to_string(snap.spp) + " spp, " + std::to_string(std::uint64_t(snap.rays / std::max(snap.seconds, 1e-9))) +
-               " rays/s");
+    bar.finish(std::to_string(snap.spp) + " spp, " +
+               std::to_string(std::uint64_t(snap.rays / std::max(snap.seconds, 1e-9))) + " rays/s");
     const float exposure = opt->exposure > 0 ? float(opt->exposure) : float(airr::default_exposure(s));
     airr::write_image(opt->out, snap.image(), airr::render_metadata(s, snap, exposure), exposure);
     std::fprintf(stderr, "wrote %s (%dx%d, %llu spp, %.6g mm/pixel)\n", opt->out.c_str(), snap.width, snap.height,

@@ -57,7 +57,8 @@ void add_shift_table_command(CLI::App& app) {
 
     auto& prov = table.provenance;
     prov["date"] = utc_now_iso8601();
-    prov["command"] = "airr shift-table -o " + opt->out + " --grid " + std::to_string(opt->grid) + " --model " + opt->model;
+    prov["command"] =
+        "airr shift-table -o " + opt->out + " --grid " + std::to_string(opt->grid) + " --model " + opt->model;
     prov["model"] = opt->model;
     prov["run_seconds"] = seconds;
     prov["threads"] = tbb::this_task_arena::max_concurrency();

@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "airr/analysis/plot_png.hpp"
+#include "airr/measure/sweep.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "commands.hpp"
 #include "progress_bar.hpp"
-#include "airr/measure/sweep.hpp"
 
 namespace {
 
@@ -28,7 +28,8 @@ void write_sweep_plot(const std::string& path, const airr::sweep_result& r, cons
     char label[128];
     if (d_varies) {
       double slope = 0;
-      for (const auto& sl : r.slopes) if (sl.tilt_deg == tilt) slope = sl.per_mm;
+      for (const auto& sl : r.slopes)
+        if (sl.tilt_deg == tilt) slope = sl.per_mm;
       std::snprintf(label, sizeof label, "%s, tilt %g deg (slope %.3g per 100 mm)", route.c_str(), tilt, 100 * slope);
     } else {
       std::snprintf(label, sizeof label, "%s, D %g mm", route.c_str(), r.points.front().floating_distance_mm);
@@ -66,7 +67,8 @@ void add_sweep_command(CLI::App& app) {
   cmd->add_flag("--psf", opt->psf, "Use the model PSF instead of rendering an edge chart");
   cmd->add_option("--spp", opt->spp, "Edge route: samples per pixel (default 64)")->check(CLI::Range(1, 1 << 24));
   cmd->add_option("--chart", opt->chart, "Edge route: chart image (default assets/charts/slanted_edge.png)");
-  cmd->add_option("--samples", opt->samples, "PSF samples per point (default 100000)")->check(CLI::Range(100, 100000000));
+  cmd->add_option("--samples", opt->samples, "PSF samples per point (default 100000)")
+      ->check(CLI::Range(100, 100000000));
   cmd->add_option("-o,--output", opt->csv, "CSV file to write");
   cmd->add_option("--plot", opt->plot, "PNG plot of mean MTF against the varied parameter");
   cmd->add_option("--set", opt->sets, "Override a scene value, e.g. retroreflector.model.preset=rf-ay");
@@ -85,8 +87,10 @@ void add_sweep_command(CLI::App& app) {
 
     progress_bar bar("sweep");
     const auto r = airr::run_sweep(s, p, [&](double f, const std::string& detail) {
-      if (f < 1.0) bar.update(f, detail);
-      else bar.finish(detail);
+      if (f < 1.0)
+        bar.update(f, detail);
+      else
+        bar.finish(detail);
     });
 
     std::printf("route: %s; pixel %.6g mm on the aerial-image plane (its aperture is included)\n",

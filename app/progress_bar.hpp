@@ -1,10 +1,10 @@
 #pragma once
 // A one-line progress bar with elapsed time and ETA on stderr (redrawn in place on a terminal).
+#include <unistd.h>
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <string>
-#include <unistd.h>
 
 class progress_bar {
  public:
@@ -16,9 +16,9 @@ class progress_bar {
     last_print_ = elapsed;
     const int width = 30, filled = int(std::clamp(fraction, 0.0, 1.0) * width);
     const double eta = fraction > 0 ? elapsed * (1.0 - fraction) / fraction : 0.0;
-    std::fprintf(stderr, "%s%s [%.*s%*s] %5.1f%% %6.1fs elapsed, ETA %5.1fs %s%s", tty_ ? "\r" : "",
-                 label_.c_str(), filled, "##############################", width - filled, "", 100.0 * fraction,
-                 elapsed, eta, detail.c_str(), tty_ ? "\033[K" : "\n");
+    std::fprintf(stderr, "%s%s [%.*s%*s] %5.1f%% %6.1fs elapsed, ETA %5.1fs %s%s", tty_ ? "\r" : "", label_.c_str(),
+                 filled, "##############################", width - filled, "", 100.0 * fraction, elapsed, eta,
+                 detail.c_str(), tty_ ? "\033[K" : "\n");
     std::fflush(stderr);
   }
   void finish(const std::string& detail = "") {
@@ -26,9 +26,7 @@ class progress_bar {
     update(1.0, detail);
     if (tty_) std::fputc('\n', stderr);
   }
-  double seconds() const {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-  }
+  double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
 
  private:
   std::string label_;

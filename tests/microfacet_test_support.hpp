@@ -31,7 +31,7 @@ inline retro_samples next_randoms(pcg32& rng) { return random_retro_samples(rng)
 // Integrates f(m) over the part of the hemisphere about +z with tan(theta_m) / alpha in [q0, q1]
 // and azimuth in [p0, p1] (composite Simpson in q and phi).
 inline double integrate_patch(const std::function<double(const glm::dvec3&)>& f, double alpha, double q0, double q1,
-                       double p0, double p1, int nq, int np) {
+                              double p0, double p1, int nq, int np) {
   const double hq = (q1 - q0) / nq, hp = (p1 - p0) / np;
   double sum = 0;
   for (int i = 0; i <= nq; ++i) {
@@ -73,15 +73,15 @@ struct beckmann_bins {
     std::vector<double> p(rings * sectors);
     for (int k = 0; k < rings; ++k)
       for (int s = 0; s < sectors; ++s)
-        p[k * sectors + s] = integrate_patch(density, alpha, q[k], q[k + 1], 2 * pi * s / sectors,
-                                             2 * pi * (s + 1) / sectors, 100, 32);
+        p[k * sectors + s] =
+            integrate_patch(density, alpha, q[k], q[k + 1], 2 * pi * s / sectors, 2 * pi * (s + 1) / sectors, 100, 32);
     return p;
   }
 };
 
 // p-value of the chi-square goodness of fit of `n` samples against the bin probabilities.
 inline double chi_square_p(const beckmann_bins& bins, const std::vector<double>& prob, int n,
-                    const std::function<glm::dvec3()>& draw) {
+                           const std::function<glm::dvec3()>& draw) {
   std::vector<double> counts(prob.size(), 0), expected(prob.size());
   for (int i = 0; i < n; ++i) counts[bins.index(draw())] += 1;
   for (std::size_t i = 0; i < prob.size(); ++i) expected[i] = prob[i] * n;

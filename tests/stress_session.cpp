@@ -47,11 +47,16 @@ int main(int argc, char** argv) {
     session.edit(s);
     last = s;
     const double r = rng.next_double();
-    if (r < 0.02) session.set_paused(true);
-    else if (r < 0.04) session.set_paused(false);
-    else if (r < 0.05) session.set_target_spp(1 + rng.next_u32() % 16);
-    else if (r < 0.06) session.set_target_spp(1 << 20);
-    else if (r < 0.20) std::this_thread::sleep_for(std::chrono::microseconds(rng.next_u32() % 400));  // let waves run
+    if (r < 0.02)
+      session.set_paused(true);
+    else if (r < 0.04)
+      session.set_paused(false);
+    else if (r < 0.05)
+      session.set_target_spp(1 + rng.next_u32() % 16);
+    else if (r < 0.06)
+      session.set_target_spp(1 << 20);
+    else if (r < 0.20)
+      std::this_thread::sleep_for(std::chrono::microseconds(rng.next_u32() % 400));  // let waves run
     if (i % 1000 == 0) std::fprintf(stderr, "%d edits\n", i);
   }
   session.set_paused(false);

@@ -3,9 +3,9 @@
 
 #include <gtest/gtest.h>
 
-#include "airr/optics/scene_json.hpp"
-#include "airr/optics/image.hpp"
 #include "airr/optics/assets.hpp"
+#include "airr/optics/image.hpp"
+#include "airr/optics/scene_json.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -22,7 +22,8 @@ void expect_one_line_error(const test::command_result& r, const std::vector<std:
   EXPECT_NE(r.exit_code, 0) << r.out;
   EXPECT_EQ(line_count(r.out), 1) << r.out;
   EXPECT_EQ(r.out.rfind("error: ", 0), 0u) << r.out;
-  for (const auto& m : must_contain) EXPECT_NE(r.out.find(m), std::string::npos) << "missing '" << m << "' in: " << r.out;
+  for (const auto& m : must_contain)
+    EXPECT_NE(r.out.find(m), std::string::npos) << "missing '" << m << "' in: " << r.out;
 }
 
 std::string scene_file(const test::temp_dir& dir, const std::function<void(nlohmann::json&)>& edit) {
@@ -45,7 +46,8 @@ TEST(CliErrors, MalformedJson) {
 TEST(CliErrors, UnknownKey) {
   test::temp_dir dir;
   const auto path = scene_file(dir, [](nlohmann::json& j) { j["camera"]["zoom"] = 2; });
-  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png")), {path, "camera.zoom", "unknown key"});
+  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png")),
+                        {path, "camera.zoom", "unknown key"});
 }
 
 TEST(CliErrors, MissingGltf) {
@@ -59,13 +61,15 @@ TEST(CliErrors, MalformedGltf) {
   test::temp_dir dir;
   std::ofstream(dir.file("broken.gltf")) << "{\"asset\": ";
   const auto path = scene_file(dir, [](nlohmann::json& j) { j["source"]["mesh"] = "broken.gltf"; });
-  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png")), {"broken.gltf", "malformed glTF"});
+  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png")),
+                        {"broken.gltf", "malformed glTF"});
 }
 
 TEST(CliErrors, MissingImage) {
   test::temp_dir dir;
   const auto path = scene_file(dir, [](nlohmann::json& j) { j["source"]["image"] = "absent.png"; });
-  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png")), {path, "source.image", "absent.png"});
+  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png")),
+                        {path, "source.image", "absent.png"});
 }
 
 TEST(CliErrors, UnreadableImage) {
@@ -85,7 +89,8 @@ TEST(CliErrors, NanSize) {
 TEST(CliErrors, NegativeSize) {
   test::temp_dir dir;
   const auto path = scene_file(dir, [](nlohmann::json& j) { j["half_mirror"]["height_mm"] = -300; });
-  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png")), {path, "half_mirror.height_mm", "positive"});
+  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png")),
+                        {path, "half_mirror.height_mm", "positive"});
 }
 
 TEST(CliErrors, ResolutionAboveCap) {
@@ -109,7 +114,8 @@ TEST(CliRender, WritesImageWithMetadata) {
   });
   for (const std::string ext : {".exr", ".png"}) {
     const std::string out = dir.file("render" + ext);
-    const auto r = test::run_cli("render " + path + " -o " + out + " --spp 4 --seed 9 --set retroreflector.tilt_deg=10");
+    const auto r =
+        test::run_cli("render " + path + " -o " + out + " --spp 4 --seed 9 --set retroreflector.tilt_deg=10");
     ASSERT_EQ(r.exit_code, 0) << r.out;
     const image_metadata meta = read_image_metadata(out);
     EXPECT_EQ(meta.at("airr:spp"), "4");
@@ -126,6 +132,7 @@ TEST(CliRender, WritesImageWithMetadata) {
 
 TEST(CliRender, DefaultSceneRenders) {
   test::temp_dir dir;
-  const auto r = test::run_cli("render " + airr::default_scene_path() + " -o " + dir.file("d.exr") + " --spp 1 --set camera.width=32 --set camera.height=32");
+  const auto r = test::run_cli("render " + airr::default_scene_path() + " -o " + dir.file("d.exr") +
+                               " --spp 1 --set camera.width=32 --set camera.height=32");
   EXPECT_EQ(r.exit_code, 0) << r.out;
 }

@@ -19,15 +19,15 @@
 #include "airr/analysis/psf_mtf.hpp"
 #include "airr/analysis/sheet_fit.hpp"
 #include "airr/analysis/slanted_edge_mtf.hpp"
-#include "airr/optics/geometry.hpp"
+#include "airr/measure/test_charts.hpp"
 #include "airr/optics/error.hpp"
+#include "airr/optics/geometry.hpp"
 #include "airr/optics/layout.hpp"
 #include "airr/optics/preset.hpp"
 #include "airr/optics/retro_model.hpp"
 #include "airr/optics/retro_sinc_shift.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "airr/render/render_metadata.hpp"
-#include "airr/measure/test_charts.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -72,8 +72,10 @@ class sequential_renderer {
   explicit sequential_renderer(std::uint64_t spp) : spp_(spp) {}
   render_snapshot render(const scene& s) {
     std::uint64_t gen = 0;
-    if (!session_) session_ = std::make_unique<render_session>(s, session_params{.target_spp = spp_});
-    else gen = session_->edit(s);
+    if (!session_)
+      session_ = std::make_unique<render_session>(s, session_params{.target_spp = spp_});
+    else
+      gen = session_->edit(s);
     render_snapshot snap;
     while (!((snap = session_->wait_for(gen, spp_)).generation == gen && (snap.spp >= spp_ || !snap.error.empty()))) {
     }
@@ -147,8 +149,10 @@ TEST(SheetFit, RenderedMeasurementsFitBack) {
     const double contrast = analysis::slanted_edge_mtf(luminance_of(snap)).esf_contrast;
     write_image(dir.file(name), noisy(snap, contrast / 50.0, ++noise_seed), render_metadata(s, snap, 1.0));
   };
-  json fit = {{"format", "airr-fit-data"}, {"version", 1}, {"name", "round trip"}, {"scene", "setup.json"},
-              {"tilt_series", json::array()}, {"distance_series", json::array()}, {"white_squares", json::array()}};
+  json fit = {{"format", "airr-fit-data"},     {"version", 1},
+              {"name", "round trip"},          {"scene", "setup.json"},
+              {"tilt_series", json::array()},  {"distance_series", json::array()},
+              {"white_squares", json::array()}};
   for (int t = 0; t <= 45; t += 5) {
     const std::string name = "tilt_" + two_digits(t) + ".exr";
     render_edge(t, 150, name);
@@ -179,8 +183,11 @@ TEST(SheetFit, RenderedMeasurementsFitBack) {
   const auto r = analysis::fit_sheet(data, p, {});
   const double fit_seconds = seconds_since(t_fit);
 
-  std::printf("round trip (edges %dx%d, white squares %dx%d, %.2f mm/pixel, %llu spp edges, %llu spp white squares, "
-              "SNR 50):\n", size, edge_rows, size, size, pixel_mm, static_cast<unsigned long long>(edge_spp), static_cast<unsigned long long>(white_spp));
+  std::printf(
+      "round trip (edges %dx%d, white squares %dx%d, %.2f mm/pixel, %llu spp edges, %llu spp white squares, "
+      "SNR 50):\n",
+      size, edge_rows, size, size, pixel_mm, static_cast<unsigned long long>(edge_spp),
+      static_cast<unsigned long long>(white_spp));
   std::printf("%8s %8s %8s %7s %8s %8s %7s\n", "tilt", "a_true", "a_fit", "a_err", "mu_true", "mu_fit", "mu_err");
   for (std::size_t i = 0; i < truth.theta_deg.size(); ++i) {
     const double a_true = truth.a_per_mm[i], a_fit = r.preset.a_per_mm[i], mu_fit = r.preset.mu[i];
@@ -192,8 +199,7 @@ TEST(SheetFit, RenderedMeasurementsFitBack) {
   }
   std::printf("c: true 0.5 mm, fitted %.4f mm (%+.2f%%)\n", r.preset.c_mm, 100 * (r.preset.c_mm / 0.5 - 1));
   std::printf("renders %.1f s, fit %.1f s (%llu PSF samples, %llu simulations)\n", render_seconds, fit_seconds,
-              static_cast<unsigned long long>(p.psf_samples),
-              static_cast<unsigned long long>(r.report.simulations));
+              static_cast<unsigned long long>(p.psf_samples), static_cast<unsigned long long>(r.report.simulations));
   EXPECT_NEAR(r.preset.c_mm, 0.5, 0.05);
   EXPECT_TRUE(r.report.c.converged);
 
@@ -287,8 +293,11 @@ struct csv_data_dir {
   csv_data_dir() {
     scene setup = test::uniform_source_scene(50.0, 32);
     save_scene(setup, dir.file("setup.json"));
-    fit = {{"format", "airr-fit-data"}, {"version", 1}, {"scene", "setup.json"},
-           {"tilt_series", json::array()}, {"distance_series", json::array()}};
+    fit = {{"format", "airr-fit-data"},
+           {"version", 1},
+           {"scene", "setup.json"},
+           {"tilt_series", json::array()},
+           {"distance_series", json::array()}};
     for (int t : {0, 20}) {
       write_curve("tilt_" + std::to_string(t) + ".csv", 0.8);
       fit["tilt_series"].push_back({{"tilt_deg", t}, {"mtf_csv", "tilt_" + std::to_string(t) + ".csv"}});

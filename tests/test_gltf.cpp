@@ -3,9 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include "airr/optics/assets.hpp"
 #include "airr/optics/error.hpp"
 #include "airr/optics/mesh_gltf.hpp"
-#include "airr/optics/assets.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -36,7 +36,8 @@ TEST(Gltf, BadFilesGiveErrorsNamingTheFile) {
   const std::string empty = dir.file("empty.gltf");
   std::ofstream(empty) << R"({"asset": {"version": "2.0"}})";
   const std::string badref = dir.file("badref.gltf");
-  std::ofstream(badref) << R"({"asset": {"version": "2.0"}, "meshes": [{"primitives": [{"attributes": {"POSITION": 7}}]}],
+  std::ofstream(badref)
+      << R"({"asset": {"version": "2.0"}, "meshes": [{"primitives": [{"attributes": {"POSITION": 7}}]}],
                               "nodes": [{"mesh": 0}], "scenes": [{"nodes": [0]}]})";
   for (const std::string& path : {garbage, empty, badref, dir.file("missing.gltf")}) {
     try {

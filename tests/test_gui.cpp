@@ -6,9 +6,9 @@
 #include <cstdlib>
 #include <fstream>
 
+#include <OpenImageIO/imageio.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <OpenImageIO/imageio.h>
 
 #include "airr/optics/assets.hpp"
 #include "test_helpers.hpp"
@@ -74,7 +74,8 @@ int curve_pixels(const rgb8_image& img, const std::array<int, 4>& r, std::array<
 
 std::array<int, 4> region(const nlohmann::json& j, const char* name) {
   const auto& r = j.at("regions").at(name);
-  return {int(r[0].get<double>()) + 1, int(r[1].get<double>()) + 1, int(r[2].get<double>()) - 1, int(r[3].get<double>()) - 1};
+  return {int(r[0].get<double>()) + 1, int(r[1].get<double>()) + 1, int(r[2].get<double>()) - 1,
+          int(r[3].get<double>()) - 1};
 }
 
 }  // namespace

@@ -1,9 +1,9 @@
 #include "test_helpers.hpp"
 
+#include <sys/wait.h>
 #include <array>
 #include <cstdio>
 #include <random>
-#include <sys/wait.h>
 
 #include "airr/optics/assets.hpp"
 

@@ -3,10 +3,10 @@
 #include <filesystem>
 #include <string>
 
+#include "airr/optics/image.hpp"
 #include "airr/optics/random.hpp"
 #include "airr/optics/retro_model.hpp"
 #include "airr/optics/scene.hpp"
-#include "airr/optics/image.hpp"
 #include "airr/render/render_session.hpp"
 
 namespace airr::test {

@@ -9,8 +9,8 @@ using namespace airr::test;
 
 TEST(Beckmann, DensityIntegratesToOne) {
   for (double alpha : {0.01, 0.05, 0.2, 0.5, 1.0}) {
-    const double integral = integrate_patch([&](const glm::dvec3& m) { return beckmann_d(m, alpha) * m.z; },
-                                            alpha, 0, q_max, 0, 2 * pi, 4000, 8);
+    const double integral = integrate_patch([&](const glm::dvec3& m) { return beckmann_d(m, alpha) * m.z; }, alpha, 0,
+                                            q_max, 0, 2 * pi, 4000, 8);
     EXPECT_NEAR(integral, 1, 1e-7) << "alpha " << alpha;
   }
 }
@@ -19,8 +19,8 @@ TEST(Beckmann, VisibleDensityIntegratesToOne) {
   for (double alpha : {0.05, 0.2, 0.5}) {
     for (double theta : {0.0, 30.0, 60.0, 80.0, 89.0}) {
       const glm::dvec3 wi = direction(theta, 35);
-      const double integral = integrate_patch(
-          [&](const glm::dvec3& m) { return beckmann_visible_d(wi, m, alpha); }, alpha, 0, q_max, 0, 2 * pi, 2000, 720);
+      const double integral = integrate_patch([&](const glm::dvec3& m) { return beckmann_visible_d(wi, m, alpha); },
+                                              alpha, 0, q_max, 0, 2 * pi, 2000, 720);
       EXPECT_NEAR(integral, 1, 1e-4) << "alpha " << alpha << " theta " << theta;
     }
   }
@@ -110,4 +110,3 @@ TEST(Fresnel, KnownValues) {
     EXPECT_LT(fresnel_dielectric(std::cos(critical - 0.01), 1 / eta), 1.0);
   }
 }
-

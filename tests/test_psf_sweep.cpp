@@ -12,14 +12,14 @@
 
 #include <gtest/gtest.h>
 
+#include "airr/analysis/mtf_metrics.hpp"
+#include "airr/measure/mtf_routes.hpp"
+#include "airr/measure/sweep.hpp"
+#include "airr/measure/test_charts.hpp"
 #include "airr/optics/assets.hpp"
 #include "airr/optics/layout.hpp"
 #include "airr/optics/preset.hpp"
 #include "airr/optics/scene_json.hpp"
-#include "airr/measure/mtf_routes.hpp"
-#include "airr/measure/sweep.hpp"
-#include "airr/measure/test_charts.hpp"
-#include "airr/analysis/mtf_metrics.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -62,7 +62,8 @@ scene two_route_scene(const two_route_case& c) {
   s.source.image = fine_edge_chart();
   s.camera.width = 160;
   s.camera.height = 64;
-  s.camera.fov_deg = 2.0 * std::atan(0.5 * s.camera.height * pixel_mm / s.camera.distance_mm) * 180.0 / std::numbers::pi;
+  s.camera.fov_deg =
+      2.0 * std::atan(0.5 * s.camera.height * pixel_mm / s.camera.distance_mm) * 180.0 / std::numbers::pi;
   s.floating_distance_mm = c.floating_distance_mm;
   if (c.preset) {
     s.retroreflector.model.type = retro_model_type::sinc_shift;
@@ -91,11 +92,12 @@ TEST_P(TwoRoutes, MeanMtfOverZeroToOneLpPerMmAgrees) {
   const render_snapshot snap = test::render_to(s, c.spp);
   const mtf_summary edge = edge_route_mtf(s, snap, 1.0);
   ASSERT_DOUBLE_EQ(psf.mm_per_pixel, edge.mm_per_pixel);
-  std::printf("two routes: %-8s D %3.0f mm: PSF %.4f, edge render %.4f (%llu spp), difference %+.4f; "
-              "MTF50 %.3f / %.3f lp/mm\n",
-              c.preset ? c.preset : "ideal", c.floating_distance_mm, psf.mean_mtf, edge.mean_mtf,
-              static_cast<unsigned long long>(snap.spp), edge.mean_mtf - psf.mean_mtf,
-              psf.mtf50_lp_per_mm.value_or(0.0), edge.mtf50_lp_per_mm.value_or(0.0));
+  std::printf(
+      "two routes: %-8s D %3.0f mm: PSF %.4f, edge render %.4f (%llu spp), difference %+.4f; "
+      "MTF50 %.3f / %.3f lp/mm\n",
+      c.preset ? c.preset : "ideal", c.floating_distance_mm, psf.mean_mtf, edge.mean_mtf,
+      static_cast<unsigned long long>(snap.spp), edge.mean_mtf - psf.mean_mtf, psf.mtf50_lp_per_mm.value_or(0.0),
+      edge.mtf50_lp_per_mm.value_or(0.0));
   EXPECT_NEAR(edge.mean_mtf, psf.mean_mtf, 0.03);
   // With the ideal retroreflector only the pixel's aperture blurs, which both routes include (it
   // alone takes 0.034 off the mean): nothing but the chart's texels separates them.
@@ -134,8 +136,9 @@ TEST(Sweep, SlopeIsNegativeForThePresetsAndTheCsvHasOneRowPerPoint) {
   test::temp_dir dir;
   for (const char* preset : {"rf-ay", "rf-an"}) {
     const std::string csv = dir.file(std::string(preset) + ".csv"), png = dir.file(std::string(preset) + ".png");
-    const auto r = test::run_cli("sweep " + default_scene_path() + " --vary floating_distance=150:300:75 --psf --samples 40000 -o " +
-                                 csv + " --plot " + png + preset_sets(preset));
+    const auto r = test::run_cli("sweep " + default_scene_path() +
+                                 " --vary floating_distance=150:300:75 --psf --samples 40000 -o " + csv + " --plot " +
+                                 png + preset_sets(preset));
     ASSERT_EQ(r.exit_code, 0) << r.out;
     std::smatch m;
     ASSERT_TRUE(std::regex_search(r.out, m, std::regex(R"(slope d of mean MTF against D at tilt 0 deg: (\S+) per mm)")))
@@ -166,8 +169,8 @@ TEST(Sweep, GridOfDistanceAndTiltHasEveryPoint) {
   test::temp_dir dir;
   const std::string csv = dir.file("grid.csv");
   const auto r = test::run_cli("sweep " + default_scene_path() +
-                               " --vary floating_distance=150:300:150 --vary tilt=0:10:5 --psf --samples 2000 -o " + csv +
-                               preset_sets("rf-an"));
+                               " --vary floating_distance=150:300:150 --vary tilt=0:10:5 --psf --samples 2000 -o " +
+                               csv + preset_sets("rf-an"));
   ASSERT_EQ(r.exit_code, 0) << r.out;
   const auto rows = lines_of(read_file(csv));
   ASSERT_EQ(rows.size(), 7u) << read_file(csv);
@@ -199,8 +202,8 @@ TEST(Sweep, EdgeRouteMeanMtfFallsWithDistance) {
   });
   ASSERT_EQ(r.points.size(), 2u);
   ASSERT_EQ(r.slopes.size(), 1u);
-  std::printf("edge-route sweep rf-an: mean MTF %.4f at D 150, %.4f at D 300, slope %.6g per mm\n", r.points[0].mean_mtf,
-              r.points[1].mean_mtf, r.slopes[0].per_mm);
+  std::printf("edge-route sweep rf-an: mean MTF %.4f at D 150, %.4f at D 300, slope %.6g per mm\n",
+              r.points[0].mean_mtf, r.points[1].mean_mtf, r.slopes[0].per_mm);
   EXPECT_LT(r.slopes[0].per_mm, 0.0);
   EXPECT_TRUE(monotone);
   EXPECT_DOUBLE_EQ(last_fraction, 1.0);
@@ -289,7 +292,8 @@ TEST(PsfCommand, CsvStartsAtOneAndFallsAndTheIdealRadiusIsZero) {
 TEST(PsfCommand, NoPixelRaisesTheIdealMeanMtfToOne) {
   test::temp_dir dir;
   const auto with = test::run_cli("psf " + default_scene_path() + " -o " + dir.file("a.csv") + " --samples 1000");
-  const auto without = test::run_cli("psf " + default_scene_path() + " -o " + dir.file("b.csv") + " --samples 1000 --no-pixel");
+  const auto without =
+      test::run_cli("psf " + default_scene_path() + " -o " + dir.file("b.csv") + " --samples 1000 --no-pixel");
   ASSERT_EQ(with.exit_code, 0) << with.out;
   ASSERT_EQ(without.exit_code, 0) << without.out;
   const std::string pattern = R"(mean MTF over \(0, 1\] lp/mm: (\S+))";

@@ -284,8 +284,8 @@ TEST(MicrofacetRetro, RetroSpreadMatchesLinearisedPropagation) {
     }
     const double mean = sum / kept;
     const double predicted = linearised_retro_spread(wi, params.eta, alpha);
-    std::printf("theta %4.0f phi %4.0f: mean 1 - cos %.4e, linearised %.4e (%d samples)\n", theta, phi, mean,
-                predicted, kept);
+    std::printf("theta %4.0f phi %4.0f: mean 1 - cos %.4e, linearised %.4e (%d samples)\n", theta, phi, mean, predicted,
+                kept);
     EXPECT_NEAR(mean, predicted, 0.02 * predicted + 4 * standard_error(mean, sum_sq / kept, kept)) << theta;
   }
 }

@@ -4,9 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include "airr/optics/assets.hpp"
 #include "airr/optics/error.hpp"
 #include "airr/optics/scene_json.hpp"
-#include "airr/optics/assets.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -136,9 +136,7 @@ TEST(SceneJson, HugeNumberInFileIsRejected) {
 
 TEST(SceneJson, ResolutionAboveCapIsRejected) {
   test::temp_dir dir;
-  const auto path = write_scene(dir, [](nlohmann::json& j) {
-    j["camera"]["width"] = 100000;
-  });
+  const auto path = write_scene(dir, [](nlohmann::json& j) { j["camera"]["width"] = 100000; });
   const std::string e = error_of([&] { load_scene(path); });
   EXPECT_NE(e.find("camera.width: must be in"), std::string::npos) << e;
   const auto path2 = write_scene(dir, [](nlohmann::json& j) {
@@ -167,7 +165,8 @@ TEST(SceneJson, OverridesReachFieldsTheFileOmits) {
   const std::string panel = airr::asset_dir() + "/models/panel.gltf";
   std::ofstream(path) << R"({"source": {"mesh": ")" << panel << R"(", "image": ""}, "half_mirror": {"mesh": ")" << panel
                       << R"("}, "retroreflector": {"mesh": ")" << panel << R"("}})";
-  const scene s = load_scene(path, {parse_override("retroreflector.tilt_deg=20"), parse_override("floating_distance_mm=225")});
+  const scene s =
+      load_scene(path, {parse_override("retroreflector.tilt_deg=20"), parse_override("floating_distance_mm=225")});
   EXPECT_EQ(s.retroreflector.tilt_deg, 20);
   EXPECT_EQ(s.floating_distance_mm, 225);
   EXPECT_NE(error_of([&] { load_scene(path, {parse_override("retroreflector.tlt_deg=20")}); }).find("unknown key"),

@@ -60,8 +60,8 @@ TEST(Session, SnapshotsAreWholeWavesOfOneGeneration) {
       const render_snapshot s = session.snapshot();
       if (!s.rgb) continue;
       ++seen;
-      const bool boundary = (s.preview && s.spp == 0) || s.spp == 1 || s.spp == 3 || s.spp == 7 ||
-                            (s.spp >= 15 && (s.spp - 15) % 8 == 0);
+      const bool boundary =
+          (s.preview && s.spp == 0) || s.spp == 1 || s.spp == 3 || s.spp == 7 || (s.spp >= 15 && (s.spp - 15) % 8 == 0);
       if (!boundary || s.rgb->size() != std::size_t(s.width) * s.height * 3) ++bad;
     }
   });

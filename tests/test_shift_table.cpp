@@ -304,11 +304,23 @@ TEST(ShiftTableFile, BadFilesGiveErrorsNamingTheFileAndField) {
       {"fractions", [](nlohmann::json& j) { j["retro_fraction"] = {0.6}; }, "retro_fraction"},
       {"fraction_range", [](nlohmann::json& j) { j["retro_fraction"][1] = 1.5; }, "retro_fraction[1]"},
       {"rows", [](nlohmann::json& j) { j["probability"].erase(1); }, "probability"},
-      {"row_length", [](nlohmann::json& j) { j["probability"][1] = {0.5, 0.5}; }, "probability[1]"},
+      {"row_length",
+       [](nlohmann::json& j) {
+         j["probability"][1] = {0.5, 0.5};
+       },
+       "probability[1]"},
       {"row_sum", [](nlohmann::json& j) { j["probability"][1][2] = 0.4; }, "probability[1]"},
-      {"negative", [](nlohmann::json& j) { j["probability"][0] = {1.5, -0.5, 0}; }, "probability[0][1]"},
+      {"negative",
+       [](nlohmann::json& j) {
+         j["probability"][0] = {1.5, -0.5, 0};
+       },
+       "probability[0][1]"},
       {"not_number", [](nlohmann::json& j) { j["probability"][0][0] = "half"; }, "probability[0][0]"},
-      {"theta_order", [](nlohmann::json& j) { j["theta_deg"] = {5, 0}; }, "theta_deg[1]"},
+      {"theta_order",
+       [](nlohmann::json& j) {
+         j["theta_deg"] = {5, 0};
+       },
+       "theta_deg[1]"},
       {"s_max", [](nlohmann::json& j) { j["s_max"] = 0; }, "s_max"},
       {"unknown", [](nlohmann::json& j) { j["colour"] = "blue"; }, "colour"},
   };

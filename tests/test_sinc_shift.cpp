@@ -102,7 +102,8 @@ TEST(SincLobe, DensityIntegratesToOne) {
 }
 
 TEST(SincShift, NeverReturnsMoreEnergyThanItReceives) {
-  const sinc_shift_retro model({.theta_deg = {}, .a_per_mm = {0.05}, .mu = {0.9}, .c_mm = 0.0, .reference_distance_mm = 300.0}, nullptr);
+  const sinc_shift_retro model(
+      {.theta_deg = {}, .a_per_mm = {0.05}, .mu = {0.9}, .c_mm = 0.0, .reference_distance_mm = 300.0}, nullptr);
   for (double theta : {0.0, 30.0, 60.0, 85.0}) {
     const double t = theta * std::numbers::pi / 180;
     const glm::dvec3 wi(std::sin(t), 0, std::cos(t));
@@ -128,8 +129,8 @@ TEST(SincShift, NeverReturnsMoreEnergyThanItReceives) {
 // (a basis built here), absorbed samples in a bin of their own, expected counts from integrating
 // pdf over each bin. A grazing wi and a wide lobe put a good share below the sheet.
 TEST(SincShift, SampledDirectionsFollowTheModelsPdfByChiSquare) {
-  const sinc_shift_retro model({.theta_deg = {}, .a_per_mm = {0.01}, .mu = {0.7}, .c_mm = 0.0, .reference_distance_mm = 300.0},
-                               nullptr);
+  const sinc_shift_retro model(
+      {.theta_deg = {}, .a_per_mm = {0.01}, .mu = {0.7}, .c_mm = 0.0, .reference_distance_mm = 300.0}, nullptr);
   const double theta = 60 * std::numbers::pi / 180;
   const glm::dvec3 wi(std::sin(theta), 0, std::cos(theta));
   const glm::dvec3 e1 = glm::normalize(glm::cross(glm::dvec3(0, 1, 0), wi)), e2 = glm::cross(wi, e1);
@@ -252,7 +253,8 @@ TEST(Presets, BadPresetsGiveClearErrors) {
     }
   };
   const std::string head = R"({"format": "airr-preset", "version": 1, )";
-  expect_error(head + R"("a_per_mm": [1, 2], "mu": 0.2, "c_mm": 0.1, "tilt_deg": [0, 5, 10]})", "a_per_mm: needs one value");
+  expect_error(head + R"("a_per_mm": [1, 2], "mu": 0.2, "c_mm": 0.1, "tilt_deg": [0, 5, 10]})",
+               "a_per_mm: needs one value");
   expect_error(head + R"("a_per_mm": -1, "mu": 0.2, "c_mm": 0.1})", "a_per_mm: must be positive");
   expect_error(head + R"("a_per_mm": 1, "mu": 0.2})", "c_mm: missing");
   expect_error(head + R"("a_per_mm": 1, "mu": 0.2, "c_mm": 0.1, "colour": 1})", "colour: unknown key");

@@ -68,7 +68,8 @@ TEST_P(MirrorImage, CentroidLandsOnTheProjectionOfZeroZeroD) {
 }
 
 INSTANTIATE_TEST_SUITE_P(DistancesAndTilts, MirrorImage,
-                         ::testing::Combine(::testing::Values(150.0, 225.0, 300.0), ::testing::Values(0.0, 20.0, 40.0)));
+                         ::testing::Combine(::testing::Values(150.0, 225.0, 300.0),
+                                            ::testing::Values(0.0, 20.0, 40.0)));
 
 TEST(MirrorImage, OffsetSourceMovesTheImageByItsMirror) {
   // A source moved +10 mm along z appears 10 mm lower (aerial y = -source z).

@@ -4,8 +4,7 @@
 
 namespace airr::analysis {
 
-edge_file_result measure_edge_file(const std::filesystem::path& path,
-                                   const slanted_edge_params& params,
+edge_file_result measure_edge_file(const std::filesystem::path& path, const slanted_edge_params& params,
                                    const image_read_params& read_params) {
   edge_file_result result;
   result.image = read_linear_image(path, read_params);  // names the file itself

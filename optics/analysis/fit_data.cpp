@@ -64,7 +64,8 @@ double tilt_of(json_reader& r, const std::string& key = "tilt_deg") {
 }
 
 double distance_of(json_reader& r, double fallback, bool required) {
-  const std::optional<double> d = required ? std::optional(r.number("floating_distance_mm")) : r.optional_number("floating_distance_mm");
+  const std::optional<double> d =
+      required ? std::optional(r.number("floating_distance_mm")) : r.optional_number("floating_distance_mm");
   const double v = d.value_or(fallback);
   if (!(v > 0)) r.fail(r.field("floating_distance_mm"), "must be positive, got " + number_text(v));
   return v;
@@ -74,7 +75,8 @@ void read_edge_measurement(json_reader& r, mtf_measurement& m) {
   slanted_edge_params params;
   if (r.has("roi")) {
     const json& v = r.raw("roi");
-    if (!v.is_array() || v.size() != 4 || !std::all_of(v.begin(), v.end(), [](const json& e) { return e.is_number_integer(); }))
+    if (!v.is_array() || v.size() != 4 ||
+        !std::all_of(v.begin(), v.end(), [](const json& e) { return e.is_number_integer(); }))
       r.fail(r.field("roi"), "must be [x, y, width, height] in pixels");
     params.roi = cv::Rect(v[0].get<int>(), v[1].get<int>(), v[2].get<int>(), v[3].get<int>());
   }
@@ -88,7 +90,7 @@ void read_edge_measurement(json_reader& r, mtf_measurement& m) {
   if (given && !(*given > 0)) r.fail(r.field("pixel_mm"), "must be positive for an edge image");
   if (!given && !e.image.mm_per_pixel)
     r.fail(r.field("pixel_mm"), std::string("missing, and ") + m.file + " carries no " + mm_per_pixel_attribute +
-                           " attribute: give the pixel's size on the aerial-image plane in mm");
+                                    " attribute: give the pixel's size on the aerial-image plane in mm");
   m.pixel_mm = given ? *given : *e.image.mm_per_pixel;
   m.lp_per_mm = to_lp_per_mm(e.curve.cycles_per_pixel, m.pixel_mm);
   m.mtf = e.curve.mtf;
@@ -106,9 +108,10 @@ void read_csv_measurement(json_reader& r, mtf_measurement& m) {
     if (*p < 0) r.fail(r.field("pixel_mm"), "must not be negative (0: the curve holds no pixel aperture)");
     m.pixel_mm = *p;
   } else if (m.pixel_mm == 0) {
-    r.fail(r.field("pixel_mm"), "missing, and " + m.file +
-                           " has no cycles_per_pixel column to derive it from: give the measuring pixel's size on "
-                           "the aerial-image plane in mm (0: the curve holds no pixel aperture)");
+    r.fail(r.field("pixel_mm"),
+           "missing, and " + m.file +
+               " has no cycles_per_pixel column to derive it from: give the measuring pixel's size on "
+               "the aerial-image plane in mm (0: the curve holds no pixel aperture)");
   }
   if (const auto w = r.optional_number("lsf_window_mm")) {
     if (!(*w > 0)) r.fail(r.field("lsf_window_mm"), "must be positive (leave it out when the LSF was not windowed)");
@@ -129,16 +132,22 @@ mtf_measurement read_measurement(const json& j, const fit_data& d, const std::st
   }
   m.floating_distance_mm = distance_of(r, d.setup.floating_distance_mm, distance_series);
   const bool csv = r.has("mtf_csv"), edge = r.has("edge_image");
-  if (csv == edge) r.fail(r.field(csv ? "edge_image" : "mtf_csv"), csv ? "give mtf_csv or edge_image, not both" : "missing (give mtf_csv or edge_image)");
+  if (csv == edge)
+    r.fail(r.field(csv ? "edge_image" : "mtf_csv"),
+           csv ? "give mtf_csv or edge_image, not both" : "missing (give mtf_csv or edge_image)");
   m.kind = csv ? "mtf_csv" : "edge_image";
   m.file = resolve_file(r, d.dir, m.kind);
-  if (csv) read_csv_measurement(r, m);
-  else read_edge_measurement(r, m);
+  if (csv)
+    read_csv_measurement(r, m);
+  else
+    read_edge_measurement(r, m);
   r.finish();
 
-  const auto in_range = std::count_if(m.lp_per_mm.begin(), m.lp_per_mm.end(), [](double f) { return f > 0 && f <= 1.0; });
+  const auto in_range =
+      std::count_if(m.lp_per_mm.begin(), m.lp_per_mm.end(), [](double f) { return f > 0 && f <= 1.0; });
   if (in_range < 2)
-    r.fail(r.field(m.kind), m.file + ": the curve has " + std::to_string(in_range) + " frequencies in (0, 1] lp/mm; need at least 2");
+    r.fail(r.field(m.kind),
+           m.file + ": the curve has " + std::to_string(in_range) + " frequencies in (0, 1] lp/mm; need at least 2");
   check_entry_layout(d.setup, m.tilt_deg, m.floating_distance_mm, m.origin);
   return m;
 }
@@ -154,12 +163,16 @@ white_square read_white_square(const json& j, const fit_data& d, const std::stri
   if (r.has("square_mm")) {
     const json& v = r.raw("square_mm");
     std::vector<double> size;
-    if (v.is_number()) size = {v.get<double>(), v.get<double>()};
-    else if (v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number()) size = {v[0].get<double>(), v[1].get<double>()};
-    else r.fail(r.field("square_mm"), "must be a side length or [width, height] in mm");
+    if (v.is_number())
+      size = {v.get<double>(), v.get<double>()};
+    else if (v.is_array() && v.size() == 2 && v[0].is_number() && v[1].is_number())
+      size = {v[0].get<double>(), v[1].get<double>()};
+    else
+      r.fail(r.field("square_mm"), "must be a side length or [width, height] in mm");
     if (!(size[0] > 0) || !(size[1] > 0) || !std::isfinite(size[0]) || !std::isfinite(size[1]))
       r.fail(r.field("square_mm"), "must be positive and finite");
-    if (size[0] > w.width_mm || size[1] > w.height_mm) r.fail(r.field("square_mm"), "is larger than the setup scene's source");
+    if (size[0] > w.width_mm || size[1] > w.height_mm)
+      r.fail(r.field("square_mm"), "is larger than the setup scene's source");
     w.width_mm = size[0];
     w.height_mm = size[1];
   }
@@ -173,15 +186,16 @@ white_square read_white_square(const json& j, const fit_data& d, const std::stri
     r.fail(r.field("image"), err.what());
   }
   if (img.luminance.cols != d.setup.camera.width || img.luminance.rows != d.setup.camera.height)
-    r.fail(r.field("image"), w.file + " is " + std::to_string(img.luminance.cols) + "x" + std::to_string(img.luminance.rows) +
-                        ", but the setup scene's camera is " + std::to_string(d.setup.camera.width) + "x" +
-                        std::to_string(d.setup.camera.height) + " (white squares are framed by that camera)");
+    r.fail(r.field("image"), w.file + " is " + std::to_string(img.luminance.cols) + "x" +
+                                 std::to_string(img.luminance.rows) + ", but the setup scene's camera is " +
+                                 std::to_string(d.setup.camera.width) + "x" + std::to_string(d.setup.camera.height) +
+                                 " (white squares are framed by that camera)");
   for (int y = 0; y < img.luminance.rows; ++y) {
     for (int x = 0; x < img.luminance.cols; ++x) {
       const double v = img.luminance.at<double>(y, x);
       if (!std::isfinite(v))
         r.fail(r.field("image"), w.file + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") is " +
-                            (std::isnan(v) ? "NaN" : "infinite"));
+                                     (std::isnan(v) ? "NaN" : "infinite"));
     }
   }
   w.luminance = img.luminance;
@@ -218,8 +232,11 @@ void read_mtf_csv(const std::string& path, mtf_measurement& m) {
     return it == header.end() ? -1 : int(it - header.begin());
   };
   const int c_lp = column("lp_per_mm"), c_mtf = column("mtf"), c_cpp = column("cycles_per_pixel");
-  if (c_lp < 0) throw input_error(path + ": no lp_per_mm column in the header (the `airr mtf` format is cycles_per_pixel,lp_per_mm,mtf)");
-  if (c_mtf < 0) throw input_error(path + ": no mtf column in the header (the `airr mtf` format is cycles_per_pixel,lp_per_mm,mtf)");
+  if (c_lp < 0)
+    throw input_error(path +
+                      ": no lp_per_mm column in the header (the `airr mtf` format is cycles_per_pixel,lp_per_mm,mtf)");
+  if (c_mtf < 0)
+    throw input_error(path + ": no mtf column in the header (the `airr mtf` format is cycles_per_pixel,lp_per_mm,mtf)");
 
   std::vector<double> cpp;
   m.lp_per_mm.clear();
@@ -230,18 +247,22 @@ void read_mtf_csv(const std::string& path, mtf_measurement& m) {
     const auto fields = split_csv_line(line);
     const std::string where = path + ": line " + std::to_string(line_no);
     if (fields.size() != header.size())
-      throw input_error(where + ": " + std::to_string(fields.size()) + " fields, the header has " + std::to_string(header.size()));
+      throw input_error(where + ": " + std::to_string(fields.size()) + " fields, the header has " +
+                        std::to_string(header.size()));
     auto value = [&](int c) {
       const std::string& t = fields[std::size_t(c)];
       char* end = nullptr;
       const double v = std::strtod(t.c_str(), &end);
-      if (t.empty() || end != t.c_str() + t.size()) throw input_error(where + ": " + header[std::size_t(c)] + ": '" + t + "' is not a number");
-      if (!std::isfinite(v)) throw input_error(where + ": " + header[std::size_t(c)] + ": '" + t + "' is not a finite number");
+      if (t.empty() || end != t.c_str() + t.size())
+        throw input_error(where + ": " + header[std::size_t(c)] + ": '" + t + "' is not a number");
+      if (!std::isfinite(v))
+        throw input_error(where + ": " + header[std::size_t(c)] + ": '" + t + "' is not a finite number");
       return v;
     };
     const double f = value(c_lp);
     if (f < 0) throw input_error(where + ": lp_per_mm: negative frequency");
-    if (!m.lp_per_mm.empty() && !(f > m.lp_per_mm.back())) throw input_error(where + ": lp_per_mm: frequencies must ascend");
+    if (!m.lp_per_mm.empty() && !(f > m.lp_per_mm.back()))
+      throw input_error(where + ": lp_per_mm: frequencies must ascend");
     m.lp_per_mm.push_back(f);
     m.mtf.push_back(value(c_mtf));
     if (c_cpp >= 0) cpp.push_back(value(c_cpp));
@@ -254,10 +275,11 @@ void read_mtf_csv(const std::string& path, mtf_measurement& m) {
     for (std::size_t i = 0; i < cpp.size(); ++i) {
       if (m.lp_per_mm[i] <= 0) continue;
       const double p = cpp[i] / m.lp_per_mm[i];
-      if (m.pixel_mm == 0) m.pixel_mm = p;
+      if (m.pixel_mm == 0)
+        m.pixel_mm = p;
       else if (std::abs(p - m.pixel_mm) > 1e-3 * m.pixel_mm)
-        throw input_error(path + ": cycles_per_pixel and lp_per_mm disagree on the pixel size (" + number_text(m.pixel_mm) +
-                          " and " + number_text(p) + " mm)");
+        throw input_error(path + ": cycles_per_pixel and lp_per_mm disagree on the pixel size (" +
+                          number_text(m.pixel_mm) + " and " + number_text(p) + " mm)");
     }
     if (!(m.pixel_mm > 0)) throw input_error(path + ": cycles_per_pixel: must be positive where lp_per_mm is");
   }
@@ -276,13 +298,15 @@ std::vector<std::string> fit_data::files() const {
 fit_data load_fit_data(const std::string& dir_text) {
   fit_data d;
   d.dir = fs::path(dir_text).lexically_normal().string();
-  if (!fs::is_directory(d.dir)) throw input_error(dir_text + ": not a directory (expected a fit data directory holding fit.json)");
+  if (!fs::is_directory(d.dir))
+    throw input_error(dir_text + ": not a directory (expected a fit data directory holding fit.json)");
   d.fit_json = (fs::path(d.dir) / "fit.json").string();
   if (!fs::is_regular_file(d.fit_json))
     throw input_error(d.fit_json + ": missing (a fit data directory needs fit.json; see assets/fit_example/README.md)");
   const json j = read_json_file(d.fit_json);
   json_reader r(j, d.fit_json, "");
-  if (r.string("format") != fit_data_format) r.fail(r.field("format"), std::string("expected \"") + fit_data_format + "\"");
+  if (r.string("format") != fit_data_format)
+    r.fail(r.field("format"), std::string("expected \"") + fit_data_format + "\"");
   const double version = r.number("version");
   if (version != fit_data_version) r.fail(r.field("version"), "unsupported version " + number_text(version));
   d.name = r.has("name") ? r.string("name") : fs::path(d.dir).filename().string();
@@ -304,7 +328,8 @@ fit_data load_fit_data(const std::string& dir_text) {
   }
   d.mu = r.optional_number("mu");
   if (d.mu && (*d.mu < 0 || *d.mu > 1)) r.fail(r.field("mu"), "must be in [0, 1]");
-  if (d.mu && !d.white_squares.empty()) r.fail(r.field("mu"), "give white_squares (mu is fitted) or mu (mu is fixed), not both");
+  if (d.mu && !d.white_squares.empty())
+    r.fail(r.field("mu"), "give white_squares (mu is fitted) or mu (mu is fixed), not both");
   r.finish();
 
   auto by_tilt = [](const auto& a, const auto& b) { return a.tilt_deg < b.tilt_deg; };
@@ -322,12 +347,15 @@ fit_data load_fit_data(const std::string& dir_text) {
   for (const auto& m : d.distance_series) distinct.insert(m.floating_distance_mm);
   if (distinct.size() < 2)
     r.fail(r.field("distance_series"), "needs at least 2 different floating distances for the slope of mean MTF (has " +
-                                  std::to_string(distinct.size()) + ")");
+                                           std::to_string(distinct.size()) + ")");
   for (std::size_t i = 0; i < d.white_squares.size(); ++i) {
     const double t = d.white_squares[i].tilt_deg;
-    if (i > 0 && t == d.white_squares[i - 1].tilt_deg) r.fail(r.field("white_squares"), "tilt " + number_text(t) + " deg appears twice");
+    if (i > 0 && t == d.white_squares[i - 1].tilt_deg)
+      r.fail(r.field("white_squares"), "tilt " + number_text(t) + " deg appears twice");
     if (std::none_of(d.tilt_series.begin(), d.tilt_series.end(), [&](const auto& m) { return m.tilt_deg == t; }))
-      r.fail(r.field("white_squares"), "tilt " + number_text(t) + " deg has no tilt_series entry (the preset tabulates mu at the tilt series' angles)");
+      r.fail(r.field("white_squares"),
+             "tilt " + number_text(t) +
+                 " deg has no tilt_series entry (the preset tabulates mu at the tilt series' angles)");
   }
   return d;
 }

@@ -88,7 +88,8 @@ cv::Mat white_square_image(const scene& s, const psf_samples& psf, double width_
   // An offset on the aerial-image plane (x right, y up) moves the image by this many pixels.
   const glm::dvec3 c = aerial(src.center);
   const glm::dvec2 p0 = camera_project(cam, c);
-  const glm::dvec2 jx = camera_project(cam, c + glm::dvec3(1, 0, 0)) - p0, jy = camera_project(cam, c + glm::dvec3(0, 1, 0)) - p0;
+  const glm::dvec2 jx = camera_project(cam, c + glm::dvec3(1, 0, 0)) - p0,
+                   jy = camera_project(cam, c + glm::dvec3(0, 1, 0)) - p0;
 
   // Splat the PSF bilinearly onto integer pixel shifts that can bring light into the frame.
   const int W = cam.width, H = cam.height;

@@ -1,5 +1,5 @@
-#include "airr/optics/error.hpp"
 #include "airr/analysis/image_read.hpp"
+#include "airr/optics/error.hpp"
 
 #include <stdexcept>
 

@@ -1,6 +1,6 @@
-#include "airr/optics/error.hpp"
-#include "airr/optics/color.hpp"
 #include "airr/analysis/lpips.hpp"
+#include "airr/optics/color.hpp"
+#include "airr/optics/error.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -47,15 +47,13 @@ cv::Mat to_blob(const cv::Mat& rgb, cv::Size size) {
 
 }  // namespace
 
-lpips_result lpips(const cv::Mat& a_rgb, const cv::Mat& b_rgb,
-                   const std::filesystem::path& model_path) {
+lpips_result lpips(const cv::Mat& a_rgb, const cv::Mat& b_rgb, const std::filesystem::path& model_path) {
   if (a_rgb.empty() || b_rgb.empty()) throw measurement_error("cannot compare an empty image");
   if (a_rgb.channels() != 3 || b_rgb.channels() != 3)
     throw measurement_error("LPIPS compares three-channel RGB images");
   if (a_rgb.size() != b_rgb.size())
-    throw measurement_error("images differ in size: " + std::to_string(a_rgb.cols) + "x" +
-                             std::to_string(a_rgb.rows) + " vs " + std::to_string(b_rgb.cols) +
-                             "x" + std::to_string(b_rgb.rows));
+    throw measurement_error("images differ in size: " + std::to_string(a_rgb.cols) + "x" + std::to_string(a_rgb.rows) +
+                            " vs " + std::to_string(b_rgb.cols) + "x" + std::to_string(b_rgb.rows));
 
   const std::string where = model_path.string() + ": ";
   const std::vector<onnx_input> inputs = read_onnx_inputs(model_path);
@@ -63,18 +61,17 @@ lpips_result lpips(const cv::Mat& a_rgb, const cv::Mat& b_rgb,
     std::string names;
     for (const auto& in : inputs) names += (names.empty() ? "" : ", ") + in.name + " " + shape_text(in);
     throw measurement_error(where + "an LPIPS model takes two images (N x 3 x H x W), this one has " +
-                             std::to_string(inputs.size()) + " input(s)" +
-                             (names.empty() ? std::string() : ": " + names));
+                            std::to_string(inputs.size()) + " input(s)" +
+                            (names.empty() ? std::string() : ": " + names));
   }
   lpips_result result;
   result.input_size = a_rgb.size();
   for (const auto& in : inputs) {
-    const bool nchw = !in.shape_known ||
-                      (in.shape.size() == 4 && (in.shape[0] == -1 || in.shape[0] == 1) &&
-                       (in.shape[1] == -1 || in.shape[1] == 3));
+    const bool nchw = !in.shape_known || (in.shape.size() == 4 && (in.shape[0] == -1 || in.shape[0] == 1) &&
+                                          (in.shape[1] == -1 || in.shape[1] == 3));
     if (!nchw)
       throw measurement_error(where + "input '" + in.name + "' has shape " + shape_text(in) +
-                               ", expected N x 3 x H x W with N = 1");
+                              ", expected N x 3 x H x W with N = 1");
     if (in.shape_known && in.shape[2] > 0 && in.shape[3] > 0)
       result.input_size = cv::Size(static_cast<int>(in.shape[3]), static_cast<int>(in.shape[2]));
   }
@@ -96,8 +93,7 @@ lpips_result lpips(const cv::Mat& a_rgb, const cv::Mat& b_rgb,
   } catch (const cv::Exception& e) {
     throw measurement_error(where + "running the model failed: " + e.err);
   }
-  if (out.empty() || out.depth() != CV_32F)
-    throw measurement_error(where + "the model returned no float output");
+  if (out.empty() || out.depth() != CV_32F) throw measurement_error(where + "the model returned no float output");
   // A spatial distance map is averaged to one value.
   const auto* v = out.ptr<float>();
   double sum = 0;

@@ -94,9 +94,12 @@ minimum brent_minimum(const scalar_function& f, const min_bracket& b, double tol
 
 const char* to_string(root_bound b) {
   switch (b) {
-    case root_bound::lower: return "lower";
-    case root_bound::upper: return "upper";
-    case root_bound::none: break;
+    case root_bound::lower:
+      return "lower";
+    case root_bound::upper:
+      return "upper";
+    case root_bound::none:
+      break;
   }
   return "";
 }

@@ -11,8 +11,7 @@ std::string format_mtf_csv(const mtf_curve& curve, double mm_per_pixel) {
   std::string out = "cycles_per_pixel,lp_per_mm,mtf\n";
   char line[96];
   for (size_t i = 0; i < curve.cycles_per_pixel.size(); ++i) {
-    std::snprintf(line, sizeof line, "%.8g,%.8g,%.8g\n", curve.cycles_per_pixel[i], lp_per_mm[i],
-                  curve.mtf[i]);
+    std::snprintf(line, sizeof line, "%.8g,%.8g,%.8g\n", curve.cycles_per_pixel[i], lp_per_mm[i], curve.mtf[i]);
     out += line;
   }
   return out;

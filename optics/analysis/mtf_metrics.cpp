@@ -1,5 +1,5 @@
-#include "airr/optics/error.hpp"
 #include "airr/analysis/mtf_metrics.hpp"
+#include "airr/optics/error.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -33,11 +33,9 @@ std::optional<mtf50_result> mtf50(const mtf_curve& curve, double mm_per_pixel) {
   return r;
 }
 
-mean_mtf_result mean_mtf(const mtf_curve& curve, double mm_per_pixel,
-                         const mean_mtf_params& params) {
+mean_mtf_result mean_mtf(const mtf_curve& curve, double mm_per_pixel, const mean_mtf_params& params) {
   if (!(mm_per_pixel > 0) || !std::isfinite(mm_per_pixel))
-    throw measurement_error("pixel size must be a positive number of mm, got " +
-                             std::to_string(mm_per_pixel));
+    throw measurement_error("pixel size must be a positive number of mm, got " + std::to_string(mm_per_pixel));
   if (!(params.max_lp_per_mm > 0) || params.samples < 1)
     throw measurement_error("mean MTF needs a positive range and at least one sample");
   mean_mtf_result r;

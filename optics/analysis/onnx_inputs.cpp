@@ -1,5 +1,5 @@
-#include "airr/optics/error.hpp"
 #include "airr/analysis/onnx_inputs.hpp"
+#include "airr/optics/error.hpp"
 
 #include <fstream>
 #include <iterator>
@@ -35,9 +35,15 @@ class wire_reader {
     f.wire = static_cast<int>(key & 7);
     if (f.number == 0) throw malformed{base_ + pos_};
     switch (f.wire) {
-      case 0: f.varint = varint(); break;
-      case 1: skip(8); break;
-      case 5: skip(4); break;
+      case 0:
+        f.varint = varint();
+        break;
+      case 1:
+        skip(8);
+        break;
+      case 5:
+        skip(4);
+        break;
       case 2: {
         const std::uint64_t len = varint();
         if (len > data_.size() - pos_) throw malformed{base_ + pos_};
@@ -46,7 +52,8 @@ class wire_reader {
         pos_ += static_cast<size_t>(len);
         break;
       }
-      default: throw malformed{base_ + pos_};  // groups and reserved wire types
+      default:
+        throw malformed{base_ + pos_};  // groups and reserved wire types
     }
     return true;
   }
@@ -117,8 +124,7 @@ std::vector<onnx_input> read_onnx_inputs(const std::filesystem::path& path) {
   const std::string where = path.string() + ": ";
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
-    throw input_error(where + (std::filesystem::exists(path, ec) ? "is not a regular file"
-                                                                        : "no such file"));
+    throw input_error(where + (std::filesystem::exists(path, ec) ? "is not a regular file" : "no such file"));
   std::ifstream file(path, std::ios::binary);
   if (!file) throw input_error(where + "cannot open file");
   const std::string data{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
@@ -146,12 +152,10 @@ std::vector<onnx_input> read_onnx_inputs(const std::filesystem::path& path) {
         if (g.number == 11) inputs.push_back(parse_value_info(g));
       }
     }
-    if (!has_ir_version || !has_graph)
-      throw input_error(where + "not an ONNX model (no IR version or graph)");
+    if (!has_ir_version || !has_graph) throw input_error(where + "not an ONNX model (no IR version or graph)");
     std::erase_if(inputs, [&](const onnx_input& in) { return initializers.count(in.name) > 0; });
   } catch (const malformed& m) {
-    throw input_error(where + "not an ONNX model (malformed protobuf at byte " +
-                             std::to_string(m.offset) + ")");
+    throw input_error(where + "not an ONNX model (malformed protobuf at byte " + std::to_string(m.offset) + ")");
   }
   return inputs;
 }

@@ -1,5 +1,5 @@
-#include "airr/optics/error.hpp"
 #include "airr/analysis/plot_png.hpp"
+#include "airr/optics/error.hpp"
 
 #include <algorithm>
 #include <array>
@@ -36,8 +36,7 @@ double nice_step(double span, int target) {
   return 10.0 * magnitude;
 }
 
-axis_range make_axis(double data_lo, double data_hi, std::optional<double> lo,
-                     std::optional<double> hi, int target) {
+axis_range make_axis(double data_lo, double data_hi, std::optional<double> lo, std::optional<double> hi, int target) {
   axis_range a;
   const bool have_data = data_lo <= data_hi;
   double l = lo.value_or(have_data ? data_lo : 0.0);
@@ -62,8 +61,8 @@ std::string tick_text(double v, double step) {
   return buf;
 }
 
-void put_text(cv::Mat& img, const std::string& text, cv::Point anchor, double scale, int thickness,
-              double align_x, double align_y, const cv::Scalar& colour = black) {
+void put_text(cv::Mat& img, const std::string& text, cv::Point anchor, double scale, int thickness, double align_x,
+              double align_y, const cv::Scalar& colour = black) {
   int baseline = 0;
   const cv::Size sz = cv::getTextSize(text, font, scale, thickness, &baseline);
   const cv::Point org(anchor.x - static_cast<int>(align_x * sz.width),
@@ -88,15 +87,13 @@ void put_vertical_text(cv::Mat& img, const std::string& text, cv::Point centre, 
 
 cv::Scalar plot_palette_colour(int index) {
   static const std::array<cv::Scalar, 8> palette = {
-      cv::Scalar(180, 119, 31), cv::Scalar(14, 127, 255), cv::Scalar(44, 160, 44),
-      cv::Scalar(40, 39, 214),  cv::Scalar(189, 103, 148), cv::Scalar(75, 86, 140),
-      cv::Scalar(194, 119, 227), cv::Scalar(34, 189, 188)};
+      cv::Scalar(180, 119, 31),  cv::Scalar(14, 127, 255), cv::Scalar(44, 160, 44),   cv::Scalar(40, 39, 214),
+      cv::Scalar(189, 103, 148), cv::Scalar(75, 86, 140),  cv::Scalar(194, 119, 227), cv::Scalar(34, 189, 188)};
   return palette[static_cast<size_t>(index) % palette.size()];
 }
 
 cv::Mat render_plot(const std::vector<plot_series>& series, const plot_params& params) {
-  if (params.width < 200 || params.height < 150)
-    throw measurement_error("plot must be at least 200x150 pixels");
+  if (params.width < 200 || params.height < 150) throw measurement_error("plot must be at least 200x150 pixels");
   double xlo = std::numeric_limits<double>::infinity(), xhi = -xlo, ylo = xlo, yhi = -xlo;
   for (const auto& s : series) {
     if (s.x.size() != s.y.size())
@@ -145,8 +142,7 @@ cv::Mat render_plot(const std::vector<plot_series>& series, const plot_params& p
     std::vector<cv::Point> run;
     auto flush = [&] {
       if (run.size() >= 2)
-        cv::polylines(inner, std::vector<std::vector<cv::Point>>{run}, false, colour, 2, cv::LINE_AA,
-                      shift);
+        cv::polylines(inner, std::vector<std::vector<cv::Point>>{run}, false, colour, 2, cv::LINE_AA, shift);
       else if (run.size() == 1)
         cv::circle(inner, run[0], 3 << shift, colour, cv::FILLED, cv::LINE_AA, shift);
       run.clear();
@@ -171,8 +167,7 @@ cv::Mat render_plot(const std::vector<plot_series>& series, const plot_params& p
   const double title_scale = 0.6;
   put_text(img, params.x_title, {area.x + area.width / 2, params.height - 28}, title_scale, 1, 0.5, 0.5);
   put_vertical_text(img, params.y_title, {22, area.y + area.height / 2}, title_scale);
-  if (!params.title.empty())
-    put_text(img, params.title, {area.x + area.width / 2, 22}, 0.7, 1, 0.5, 0.5);
+  if (!params.title.empty()) put_text(img, params.title, {area.x + area.width / 2, 22}, 0.7, 1, 0.5, 0.5);
 
   // Legend in the top-right corner of the plot area.
   std::vector<size_t> labelled;
@@ -206,8 +201,7 @@ void write_plot_png(const std::filesystem::path& path, const std::vector<plot_se
                     const plot_params& params) {
   const cv::Mat img = render_plot(series, params);
   std::vector<unsigned char> png;
-  if (!cv::imencode(".png", img, png))
-    throw input_error(path.string() + ": PNG encoding failed");
+  if (!cv::imencode(".png", img, png)) throw input_error(path.string() + ": PNG encoding failed");
   airr::write_file_atomic(path.string(), std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));
 }
 

@@ -151,8 +151,8 @@ class sheet_fitter {
   fit_a_entry fit_a(const mtf_target& t, double c, std::optional<double> guess = std::nullopt, bool check = true) {
     const auto loss = [&](double log_a) { return a_loss(t, std::exp(log_a), c); };
     const double lo = std::log(p_.a_min_per_mm), hi = std::log(p_.a_max_per_mm);
-    const min_bracket b = guess ? downhill_bracket(loss, lo, hi, std::log(*guess), 0.05)
-                                : grid_scan(loss, lo, hi, p_.a_scan_points);
+    const min_bracket b =
+        guess ? downhill_bracket(loss, lo, hi, std::log(*guess), 0.05) : grid_scan(loss, lo, hi, p_.a_scan_points);
     const minimum m = brent_minimum(loss, b, p_.a_tolerance);
     fit_a_entry r;
     r.tilt_deg = t.m->tilt_deg;
@@ -208,7 +208,8 @@ class sheet_fitter {
 
 }  // namespace
 
-scene fit_scene(const scene& setup, double tilt_deg, double floating_distance_mm, double a_per_mm, double c_mm, double mu) {
+scene fit_scene(const scene& setup, double tilt_deg, double floating_distance_mm, double a_per_mm, double c_mm,
+                double mu) {
   scene s = setup;
   s.retroreflector.tilt_deg = tilt_deg;
   s.floating_distance_mm = floating_distance_mm;
@@ -224,7 +225,8 @@ scene fit_scene(const scene& setup, double tilt_deg, double floating_distance_mm
 
 fit_result fit_sheet(const fit_data& d, const fit_params& p, const fit_progress_callback& progress) {
   if (p.psf_samples < 100) throw input_error("fit: psf_samples must be at least 100");
-  if (!(p.a_min_per_mm > 0) || !(p.a_max_per_mm > p.a_min_per_mm)) throw input_error("fit: the a bracket must satisfy 0 < a_min < a_max");
+  if (!(p.a_min_per_mm > 0) || !(p.a_max_per_mm > p.a_min_per_mm))
+    throw input_error("fit: the a bracket must satisfy 0 < a_min < a_max");
   if (p.frequencies < 2) throw input_error("fit: frequencies must be at least 2");
 
   std::vector<mtf_target> tilts, distances;
@@ -341,12 +343,8 @@ fit_result fit_sheet(const fit_data& d, const fit_params& p, const fit_progress_
   report.simulations = fitter.simulations();
   report.seconds = meter.seconds();
 
-  preset.provenance = {{"source", "airr fit"},
-                       {"name", d.name},
-                       {"note", d.note},
-                       {"data_dir", d.dir},
-                       {"files", d.files()},
-                       {"setup_scene", scene_to_json(d.setup)},
+  preset.provenance = {{"source", "airr fit"},  {"name", d.name},     {"note", d.note},
+                       {"data_dir", d.dir},     {"files", d.files()}, {"setup_scene", scene_to_json(d.setup)},
                        {"fit", to_json(report)}};
   return {std::move(preset), std::move(report)};
 }

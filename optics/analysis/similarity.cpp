@@ -1,5 +1,5 @@
-#include "airr/optics/error.hpp"
 #include "airr/analysis/similarity.hpp"
+#include "airr/optics/error.hpp"
 
 #include <algorithm>
 #include <array>
@@ -13,23 +13,19 @@ namespace airr::analysis {
 
 namespace {
 
-std::string size_text(const cv::Mat& m) {
-  return std::to_string(m.cols) + "x" + std::to_string(m.rows);
-}
+std::string size_text(const cv::Mat& m) { return std::to_string(m.cols) + "x" + std::to_string(m.rows); }
 
 void check_pair(const cv::Mat& a, const cv::Mat& b, const ssim_params& params) {
   if (a.empty() || b.empty()) throw measurement_error("cannot compare an empty image");
   if (a.channels() != 1 || b.channels() != 1)
     throw measurement_error("SSIM compares single-channel (luminance) images");
-  if (a.size() != b.size())
-    throw measurement_error("images differ in size: " + size_text(a) + " vs " + size_text(b));
+  if (a.size() != b.size()) throw measurement_error("images differ in size: " + size_text(a) + " vs " + size_text(b));
   if (params.window < 3 || params.window % 2 == 0 || !(params.sigma > 0))
     throw measurement_error("SSIM window must be odd and at least 3 with a positive sigma");
   if (a.cols < params.window || a.rows < params.window)
-    throw measurement_error("images of " + size_text(a) + " are smaller than the " +
-                             std::to_string(params.window) + "-pixel SSIM window");
-  if (!cv::checkRange(a) || !cv::checkRange(b))
-    throw measurement_error("images hold NaN or infinite values");
+    throw measurement_error("images of " + size_text(a) + " are smaller than the " + std::to_string(params.window) +
+                            "-pixel SSIM window");
+  if (!cv::checkRange(a) || !cv::checkRange(b)) throw measurement_error("images hold NaN or infinite values");
 }
 
 struct ssim_means {

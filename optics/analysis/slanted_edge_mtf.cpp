@@ -46,18 +46,17 @@ struct edge_line {
 cv::Mat checked_region(const cv::Mat& image, const slanted_edge_params& params, cv::Rect& roi) {
   if (image.empty()) fail("image is empty");
   if (image.channels() != 1)
-    fail("slanted-edge MTF needs a single-channel image, got " + std::to_string(image.channels()) +
-         " channels");
+    fail("slanted-edge MTF needs a single-channel image, got " + std::to_string(image.channels()) + " channels");
   const cv::Rect full(0, 0, image.cols, image.rows);
   roi = params.roi.value_or(full);
   if (roi.width <= 0 || roi.height <= 0 || (roi & full) != roi)
-    fail("ROI " + std::to_string(roi.x) + "," + std::to_string(roi.y) + "," +
-         std::to_string(roi.width) + "," + std::to_string(roi.height) + " lies outside the " +
-         std::to_string(image.cols) + "x" + std::to_string(image.rows) + " image");
+    fail("ROI " + std::to_string(roi.x) + "," + std::to_string(roi.y) + "," + std::to_string(roi.width) + "," +
+         std::to_string(roi.height) + " lies outside the " + std::to_string(image.cols) + "x" +
+         std::to_string(image.rows) + " image");
   if (roi.width < min_region_size || roi.height < min_region_size)
-    fail(std::string(params.roi ? "ROI " : "image ") + std::to_string(roi.width) + "x" +
-         std::to_string(roi.height) + " is too small (need at least " +
-         std::to_string(min_region_size) + "x" + std::to_string(min_region_size) + " pixels)");
+    fail(std::string(params.roi ? "ROI " : "image ") + std::to_string(roi.width) + "x" + std::to_string(roi.height) +
+         " is too small (need at least " + std::to_string(min_region_size) + "x" + std::to_string(min_region_size) +
+         " pixels)");
   cv::Mat region;
   image(roi).convertTo(region, CV_64F);
 
@@ -66,9 +65,8 @@ cv::Mat checked_region(const cv::Mat& image, const slanted_edge_params& params, 
     const double* row = region.ptr<double>(y);
     for (int x = 0; x < region.cols; ++x) {
       if (!std::isfinite(row[x]))
-        fail(std::string("pixel (") + std::to_string(roi.x + x) + ", " + std::to_string(roi.y + y) +
-             ") is " + (std::isnan(row[x]) ? "NaN" : "infinite") +
-             "; the image must hold finite values");
+        fail(std::string("pixel (") + std::to_string(roi.x + x) + ", " + std::to_string(roi.y + y) + ") is " +
+             (std::isnan(row[x]) ? "NaN" : "infinite") + "; the image must hold finite values");
       if (x == 0 && y == 0) lo = hi = row[x];
       lo = std::min(lo, row[x]);
       hi = std::max(hi, row[x]);
@@ -124,8 +122,8 @@ double column_contrast(const cv::Mat& region) {
 
 // Centroid of the polarity-corrected row derivative under a Hamming window; empty when the
 // windowed derivative does not hold at least min_sum of edge signal.
-std::optional<double> row_centroid(const double* row, int n, double polarity, double centre,
-                                   double half_width, double min_sum) {
+std::optional<double> row_centroid(const double* row, int n, double polarity, double centre, double half_width,
+                                   double min_sum) {
   double sum = 0, sum_x = 0;
   for (int x = 1; x + 1 < n; ++x) {
     const double t = (x - centre) / half_width;
@@ -140,8 +138,7 @@ std::optional<double> row_centroid(const double* row, int n, double polarity, do
 
 // Least-squares line through (y, x) points, refitted once without outliers.
 edge_line fit_line(const std::vector<double>& ys, const std::vector<double>& xs) {
-  auto fit = [](const std::vector<double>& y, const std::vector<double>& x,
-                const std::vector<char>& keep) {
+  auto fit = [](const std::vector<double>& y, const std::vector<double>& x, const std::vector<char>& keep) {
     double n = 0, sy = 0, sx = 0, syy = 0, sxy = 0;
     for (size_t i = 0; i < y.size(); ++i) {
       if (!keep[i]) continue;
@@ -161,8 +158,7 @@ edge_line fit_line(const std::vector<double>& ys, const std::vector<double>& xs)
   std::vector<char> keep(ys.size(), 1);
   edge_line line = fit(ys, xs, keep);
   std::vector<double> residuals(ys.size());
-  for (size_t i = 0; i < ys.size(); ++i)
-    residuals[i] = std::abs(xs[i] - (line.offset + line.slope * ys[i]));
+  for (size_t i = 0; i < ys.size(); ++i) residuals[i] = std::abs(xs[i] - (line.offset + line.slope * ys[i]));
   const double limit = std::max(0.5, 3.0 * 1.4826 * median(residuals));
   for (size_t i = 0; i < ys.size(); ++i) keep[i] = residuals[i] <= limit;
   line = fit(ys, xs, keep);
@@ -175,22 +171,21 @@ edge_line fit_line(const std::vector<double>& ys, const std::vector<double>& xs)
   return line;
 }
 
-edge_line locate_edge(const cv::Mat& region, double polarity, double contrast,
-                      const std::optional<edge_line>& previous, double half_width) {
+edge_line locate_edge(const cv::Mat& region, double polarity, double contrast, const std::optional<edge_line>& previous,
+                      double half_width) {
   std::vector<double> ys, xs;
   const int n = region.cols;
   for (int y = 0; y < region.rows; ++y) {
     const double centre = previous ? previous->offset + previous->slope * y : 0.5 * (n - 1);
-    if (auto c = row_centroid(region.ptr<double>(y), n, polarity, centre, half_width,
-                              0.25 * contrast)) {
+    if (auto c = row_centroid(region.ptr<double>(y), n, polarity, centre, half_width, 0.25 * contrast)) {
       ys.push_back(y);
       xs.push_back(*c);
     }
   }
   const int min_rows = std::max(10, region.rows / 2);
   if (static_cast<int>(ys.size()) < min_rows)
-    fail("no edge found: only " + std::to_string(ys.size()) + " of " +
-         std::to_string(region.rows) + " rows show a step");
+    fail("no edge found: only " + std::to_string(ys.size()) + " of " + std::to_string(region.rows) +
+         " rows show a step");
   return fit_line(ys, xs);
 }
 
@@ -200,14 +195,11 @@ struct esf_profile {
   double bin = 0.25;           // bin width, pixels
 };
 
-esf_profile bin_esf(const cv::Mat& region, const edge_line& line, double polarity,
-                    int oversampling) {
+esf_profile bin_esf(const cv::Mat& region, const edge_line& line, double polarity, int oversampling) {
   const double cos_t = 1.0 / std::sqrt(1.0 + line.slope * line.slope);
   const int rows = region.rows, cols = region.cols;
   // Signed distance along the normal, growing towards the bright side.
-  auto distance = [&](double x, double y) {
-    return polarity * (x - line.offset - line.slope * y) * cos_t;
-  };
+  auto distance = [&](double x, double y) { return polarity * (x - line.offset - line.slope * y) * cos_t; };
   // Keep the distance range every row covers, so each bin sees all phases of the slant.
   double lo = -1e300, hi = 1e300;
   for (int y = 0; y < rows; ++y) {
@@ -218,8 +210,7 @@ esf_profile bin_esf(const cv::Mat& region, const edge_line& line, double polarit
   esf_profile esf;
   esf.bin = 1.0 / oversampling;
   const int nbins = static_cast<int>(std::floor((hi - lo) / esf.bin));
-  if (nbins < 8 * oversampling)
-    fail("the edge leaves the region; centre the region on the edge");
+  if (nbins < 8 * oversampling) fail("the edge leaves the region; centre the region on the edge");
   esf.start = lo;
   std::vector<double> sum(nbins, 0.0);
   std::vector<int> count(nbins, 0);
@@ -242,8 +233,7 @@ esf_profile bin_esf(const cv::Mat& region, const edge_line& line, double polarit
     // Fill empty bins between filled ones linearly.
     for (int j = last + 1; j < k; ++j)
       esf.values[j] = last < 0 ? esf.values[k]
-                               : esf.values[last] + (esf.values[k] - esf.values[last]) *
-                                                        (j - last) / double(k - last);
+                               : esf.values[last] + (esf.values[k] - esf.values[last]) * (j - last) / double(k - last);
     last = k;
   }
   for (int j = last + 1; j < nbins; ++j) esf.values[j] = esf.values[last];
@@ -275,13 +265,11 @@ double rise_distance(const esf_profile& esf, int oversampling, double low, doubl
   auto crossing = [&](double level, bool from_left) {
     if (from_left) {
       for (int k = 0; k + 1 < n; ++k)
-        if (smooth[k] < level && smooth[k + 1] >= level)
-          return k + (level - smooth[k]) / (smooth[k + 1] - smooth[k]);
+        if (smooth[k] < level && smooth[k + 1] >= level) return k + (level - smooth[k]) / (smooth[k + 1] - smooth[k]);
       return 0.0;
     }
     for (int k = n - 1; k > 0; --k)
-      if (smooth[k] > level && smooth[k - 1] <= level)
-        return k - (smooth[k] - level) / (smooth[k] - smooth[k - 1]);
+      if (smooth[k] > level && smooth[k - 1] <= level) return k - (smooth[k] - level) / (smooth[k] - smooth[k - 1]);
     return double(n - 1);
   };
   // Outermost crossings, so noise near the plateaus cannot make the rise look sharper.
@@ -295,13 +283,11 @@ double rise_distance(const esf_profile& esf, int oversampling, double low, doubl
 mtf_curve slanted_edge_mtf(const cv::Mat& image, const slanted_edge_params& params) {
   if (params.oversampling < 2 || params.oversampling > 16)
     fail("oversampling must be between 2 and 16, got " + std::to_string(params.oversampling));
-  if (!(params.max_cycles_per_pixel > 0))
-    fail("the highest reported frequency must be positive");
+  if (!(params.max_cycles_per_pixel > 0)) fail("the highest reported frequency must be positive");
   mtf_curve curve;
   cv::Mat region = checked_region(image, params, curve.roi);
 
-  curve.orientation =
-      is_near_vertical(region) ? edge_orientation::near_vertical : edge_orientation::near_horizontal;
+  curve.orientation = is_near_vertical(region) ? edge_orientation::near_vertical : edge_orientation::near_horizontal;
   // Measure a near-horizontal edge as a near-vertical one in the transposed region.
   if (curve.orientation == edge_orientation::near_horizontal) region = region.t();
 
@@ -341,13 +327,12 @@ mtf_curve slanted_edge_mtf(const cv::Mat& image, const slanted_edge_params& para
   const int n = static_cast<int>(esf.values.size());
   const auto [low, high] = plateaus(esf);
   curve.esf_contrast = high - low;
-  if (!(curve.esf_contrast > 0))
-    fail("no edge found: the edge spread function does not rise across the edge");
+  if (!(curve.esf_contrast > 0)) fail("no edge found: the edge spread function does not rise across the edge");
   const double rise = rise_distance(esf, params.oversampling, low, high);
   const double span = n * esf.bin;
   if (rise > 0.5 * span)
-    fail("the edge is too blurred for the region (10-90% rise " + fmt(rise) + " px over " +
-         fmt(span) + " px); use a wider region");
+    fail("the edge is too blurred for the region (10-90% rise " + fmt(rise) + " px over " + fmt(span) +
+         " px); use a wider region");
 
   // A window much wider than the rise keeps its bias on the MTF small while cutting noise far
   // from the edge.

@@ -6,8 +6,8 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imageio.h>
 
-#include "airr/optics/error.hpp"
 #include "airr/optics/color.hpp"
+#include "airr/optics/error.hpp"
 #include "airr/optics/image.hpp"
 
 namespace airr {
@@ -73,7 +73,8 @@ loaded_image load_image(const std::string& path, image_encoding encoding) {
   }
   const bool wide = is_float_format(spec.format) || spec.format.size() > 1;
   const bool tagged_linear = Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "linear");
-  out.srgb_decoded = encoding == image_encoding::srgb || (encoding == image_encoding::automatic && !wide && !tagged_linear);
+  out.srgb_decoded =
+      encoding == image_encoding::srgb || (encoding == image_encoding::automatic && !wide && !tagged_linear);
 
   image_rgb& img = out.pixels;
   img.width = spec.width;
@@ -85,8 +86,8 @@ loaded_image load_image(const std::string& path, image_encoding encoding) {
       const float v = px[i * nc + (nc >= 3 ? c : 0)];
       if (!std::isfinite(v)) {
         throw input_error(path + ": image contains NaN or infinite values (first at pixel (" +
-                          std::to_string(i % std::size_t(spec.width)) + ", " + std::to_string(i / std::size_t(spec.width)) +
-                          "))");
+                          std::to_string(i % std::size_t(spec.width)) + ", " +
+                          std::to_string(i / std::size_t(spec.width)) + "))");
       }
       img.rgb[i * 3 + c] = out.srgb_decoded ? float(srgb_decode(v)) : v;
     }
@@ -106,7 +107,8 @@ void write_image(const std::string& path, const image_rgb& img, const image_meta
   if (exr) spec.attribute("compression", "zip");
 
   std::vector<float> out(img.rgb.size());
-  for (std::size_t i = 0; i < out.size(); ++i) out[i] = exr ? img.rgb[i] : float(srgb_encode(std::clamp(img.rgb[i] * exposure, 0.0f, 1.0f)));
+  for (std::size_t i = 0; i < out.size(); ++i)
+    out[i] = exr ? img.rgb[i] : float(srgb_encode(std::clamp(img.rgb[i] * exposure, 0.0f, 1.0f)));
 
   const fs::path tmp = p.parent_path() / (".tmp." + p.stem().string() + ext);
   auto o = ImageOutput::create(tmp.string());

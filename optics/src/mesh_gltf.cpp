@@ -3,9 +3,9 @@
 #include <cstring>
 #include <filesystem>
 
-#include <glm/gtc/type_ptr.hpp>
-#include <glm/gtc/quaternion.hpp>
 #include <tiny_gltf.h>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
 #include "airr/optics/error.hpp"
 #include "airr/optics/scene_json.hpp"
@@ -17,7 +17,8 @@ namespace {
 glm::dmat4 node_matrix(const tinygltf::Node& n) {
   if (n.matrix.size() == 16) return glm::make_mat4(n.matrix.data());
   glm::dmat4 m(1.0);
-  if (n.translation.size() == 3) m = glm::translate(m, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
+  if (n.translation.size() == 3)
+    m = glm::translate(m, glm::dvec3(n.translation[0], n.translation[1], n.translation[2]));
   if (n.rotation.size() == 4) {
     m = m * glm::mat4_cast(glm::dquat(n.rotation[3], n.rotation[0], n.rotation[1], n.rotation[2]));
   }
@@ -27,13 +28,14 @@ glm::dmat4 node_matrix(const tinygltf::Node& n) {
 
 // Reads accessor element i as a double vector of `count` components.
 template <class T>
-const T* accessor_data(const tinygltf::Model& model, const tinygltf::Accessor& acc, std::size_t i, std::size_t elem_size,
-                       const std::string& path) {
+const T* accessor_data(const tinygltf::Model& model, const tinygltf::Accessor& acc, std::size_t i,
+                       std::size_t elem_size, const std::string& path) {
   if (acc.bufferView < 0 || acc.bufferView >= int(model.bufferViews.size())) {
     throw input_error(path + ": accessor without a valid buffer view");
   }
   const auto& view = model.bufferViews[acc.bufferView];
-  if (view.buffer < 0 || view.buffer >= int(model.buffers.size())) throw input_error(path + ": buffer view without a buffer");
+  if (view.buffer < 0 || view.buffer >= int(model.buffers.size()))
+    throw input_error(path + ": buffer view without a buffer");
   const auto& buf = model.buffers[view.buffer];
   const std::size_t stride = view.byteStride ? view.byteStride : elem_size;
   const std::size_t offset = view.byteOffset + acc.byteOffset + i * stride;
@@ -56,7 +58,8 @@ void append_primitive(const tinygltf::Model& model, const tinygltf::Primitive& p
   for (std::size_t i = 0; i < pacc.count; ++i) {
     const float* p = accessor_data<float>(model, pacc, i, 12, path);
     const glm::dvec4 w = xf * glm::dvec4(p[0], p[1], p[2], 1.0);
-    if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z)) throw input_error(path + ": non-finite vertex");
+    if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z))
+      throw input_error(path + ": non-finite vertex");
     out.positions.emplace_back(w);
   }
   if (prim.indices < 0) {
@@ -69,10 +72,17 @@ void append_primitive(const tinygltf::Model& model, const tinygltf::Primitive& p
   for (std::size_t i = 0; i < iacc.count; ++i) {
     std::uint32_t idx = 0;
     switch (iacc.componentType) {
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: idx = *accessor_data<std::uint8_t>(model, iacc, i, 1, path); break;
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: idx = *accessor_data<std::uint16_t>(model, iacc, i, 2, path); break;
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: idx = *accessor_data<std::uint32_t>(model, iacc, i, 4, path); break;
-      default: throw input_error(path + ": unsupported index type");
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        idx = *accessor_data<std::uint8_t>(model, iacc, i, 1, path);
+        break;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+        idx = *accessor_data<std::uint16_t>(model, iacc, i, 2, path);
+        break;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        idx = *accessor_data<std::uint32_t>(model, iacc, i, 4, path);
+        break;
+      default:
+        throw input_error(path + ": unsupported index type");
     }
     if (idx >= pacc.count) throw input_error(path + ": index out of range");
     out.indices.push_back(base + idx);
@@ -103,7 +113,8 @@ triangle_mesh load_gltf_mesh(const std::string& path) {
   const bool binary = std::filesystem::path(path).extension() == ".glb";
   bool ok = false;
   try {
-    ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path) : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+    ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
+                : loader.LoadASCIIFromFile(&model, &err, &warn, path);
   } catch (const std::exception& e) {
     throw input_error(path + ": malformed glTF: " + e.what());
   }

@@ -118,7 +118,9 @@ json preset_to_json(const sheet_preset& p) {
   return j;
 }
 
-void save_preset(const sheet_preset& p, const std::string& path) { write_file_atomic(path, preset_to_json(p).dump(2) + "\n"); }
+void save_preset(const sheet_preset& p, const std::string& path) {
+  write_file_atomic(path, preset_to_json(p).dump(2) + "\n");
+}
 
 double interpolate_by_angle(const std::vector<double>& theta_deg, const std::vector<double>& values, double theta) {
   return interpolate_linear(theta_deg, values, theta);

@@ -161,8 +161,8 @@ microfacet_retro::microfacet_retro(const retro_model_params& p)
       mu_(p.mu.value_or(1.0)) {
   const auto check = [](const char* name, double v, double lo, double hi) {
     if (!(v >= lo && v <= hi))
-      throw input_error(std::string("retroreflector.model.") + name + ": " + std::to_string(v) +
-                        " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+      throw input_error(std::string("retroreflector.model.") + name + ": " + std::to_string(v) + " is outside [" +
+                        std::to_string(lo) + ", " + std::to_string(hi) + "]");
   };
   check("alpha_surface", alpha_surface_, 0, 1);
   check("alpha_internal", alpha_internal_, 0, 1);

@@ -31,7 +31,9 @@ sinc_shift_params resolve_sinc_shift_params(const retro_model_params& m, const s
 sinc_shift_retro::sinc_shift_retro(sinc_shift_params p, std::shared_ptr<const shift_table> shifts)
     : p_(std::move(p)), shifts_(std::move(shifts)) {}
 
-double sinc_shift_retro::a_at(double theta_deg) const { return interpolate_by_angle(p_.theta_deg, p_.a_per_mm, theta_deg); }
+double sinc_shift_retro::a_at(double theta_deg) const {
+  return interpolate_by_angle(p_.theta_deg, p_.a_per_mm, theta_deg);
+}
 double sinc_shift_retro::mu_at(double theta_deg) const { return interpolate_by_angle(p_.theta_deg, p_.mu, theta_deg); }
 
 retro_sample sinc_shift_retro::sample(const glm::dvec3& wi, retro_samples u) const {

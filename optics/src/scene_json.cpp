@@ -5,10 +5,10 @@
 #include <limits>
 
 #include "airr/optics/error.hpp"
+#include "airr/optics/json_reader.hpp"
 #include "airr/optics/layout.hpp"
 #include "airr/optics/preset.hpp"
 #include "airr/optics/retro_model.hpp"
-#include "airr/optics/json_reader.hpp"
 
 namespace airr {
 
@@ -78,10 +78,7 @@ json scene_to_json(const scene& s) {
         {"tilt_deg", rr.tilt_deg},
         {"model", model_to_json(rr.model)}}},
       {"camera",
-       {{"distance_mm", cam.distance_mm},
-        {"fov_deg", cam.fov_deg},
-        {"width", cam.width},
-        {"height", cam.height}}},
+       {{"distance_mm", cam.distance_mm}, {"fov_deg", cam.fov_deg}, {"width", cam.width}, {"height", cam.height}}},
       {"render", {{"max_depth", s.render.max_depth}}},
   };
 }
@@ -296,7 +293,8 @@ void apply_overrides(json& j, const std::vector<scene_override>& overrides) {
       const auto dot = rest.find('.');
       const std::string part = rest.substr(0, dot);
       walked += (walked.empty() ? "" : ".") + part;
-      if (!node->is_object() || !node->contains(part)) throw input_error("--set " + o.key + ": unknown key '" + walked + "'");
+      if (!node->is_object() || !node->contains(part))
+        throw input_error("--set " + o.key + ": unknown key '" + walked + "'");
       node = &(*node)[part];
       if (dot == std::string::npos) break;
       rest = rest.substr(dot + 1);
@@ -333,8 +331,6 @@ scene load_scene(const std::string& path, const std::vector<scene_override>& ove
   return parse_scene(text, path, dir, overrides);
 }
 
-void save_scene(const scene& s, const std::string& path) {
-  write_file_atomic(path, scene_to_json(s).dump(2) + "\n");
-}
+void save_scene(const scene& s, const std::string& path) { write_file_atomic(path, scene_to_json(s).dump(2) + "\n"); }
 
 }  // namespace airr

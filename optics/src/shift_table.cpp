@@ -41,7 +41,8 @@ void finalize_shift_table(shift_table& table) {
   std::vector<std::vector<double>> cdf;
   cdf.reserve(table.probability.size());
   for (const auto& row : table.probability) {
-    if (row.size() != bins || bins == 0) throw std::invalid_argument("shift table: rows must have the same, non-zero length");
+    if (row.size() != bins || bins == 0)
+      throw std::invalid_argument("shift table: rows must have the same, non-zero length");
     std::vector<double> c(bins);
     double sum = 0;
     for (std::size_t b = 0; b < bins; ++b) c[b] = sum += row[b];
@@ -77,7 +78,8 @@ shift_table load_shift_table(const std::string& path) {
   t.theta_deg = r.number_array("theta_deg");
   if (t.theta_deg.empty()) r.fail("theta_deg", "must not be empty");
   for (std::size_t i = 0; i < t.theta_deg.size(); ++i) {
-    if (t.theta_deg[i] < 0 || t.theta_deg[i] >= 90) r.fail("theta_deg[" + std::to_string(i) + "]", "must be in [0, 90)");
+    if (t.theta_deg[i] < 0 || t.theta_deg[i] >= 90)
+      r.fail("theta_deg[" + std::to_string(i) + "]", "must be in [0, 90)");
     if (i > 0 && !(t.theta_deg[i] > t.theta_deg[i - 1])) {
       r.fail("theta_deg[" + std::to_string(i) + "]", "angles must be strictly ascending");
     }

@@ -30,7 +30,8 @@ const sinc_lobe& sinc_lobe::instance() {
 }
 
 double sinc_lobe::sample_delta(double k, double u_cell, double u_jitter) const {
-  const auto j = std::min<std::size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u_cell) - cdf_.begin(), cdf_.size() - 1);
+  const auto j =
+      std::min<std::size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u_cell) - cdf_.begin(), cdf_.size() - 1);
   const double delta1 = half_pi * (double(j) + u_jitter) / double(cdf_.size());
   return std::atan(std::tan(delta1) / k);
 }

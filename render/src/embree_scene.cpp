@@ -14,7 +14,9 @@ static void embree_error(void*, RTCError code, const char* message) {
 
 embree_device::embree_device() {
   device_ = rtcNewDevice(nullptr);
-  if (!device_) throw std::runtime_error("cannot create the Embree device (error " + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+  if (!device_)
+    throw std::runtime_error("cannot create the Embree device (error " +
+                             std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
   rtcSetDeviceErrorFunction(device_, embree_error, nullptr);
 }
 
@@ -42,7 +44,8 @@ embree_layout_scene::embree_layout_scene(const embree_device& device,
     : paths_(mesh_paths) {
   for (const auto& path : paths_) {
     if (!prototypes_.count(path)) {
-      prototypes_[path] = std::make_unique<embree_mesh_scene>(device, path.empty() ? make_unit_panel() : load_gltf_mesh(path));
+      prototypes_[path] =
+          std::make_unique<embree_mesh_scene>(device, path.empty() ? make_unit_panel() : load_gltf_mesh(path));
     }
   }
   top_ = rtcNewScene(device.get());

@@ -32,7 +32,8 @@ void parallel_rows(int rows, int threads, const Body& body) {
   for (auto& w : workers) w.join();
 #else
   auto run = [&] {
-    tbb::parallel_for(tbb::blocked_range<int>(0, rows, 1), [&](const tbb::blocked_range<int>& r) { body(r.begin(), r.end()); });
+    tbb::parallel_for(tbb::blocked_range<int>(0, rows, 1),
+                      [&](const tbb::blocked_range<int>& r) { body(r.begin(), r.end()); });
   };
   if (threads > 0) {
     tbb::task_arena arena(threads);

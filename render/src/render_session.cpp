@@ -16,8 +16,10 @@ image_rgb render_snapshot::image() const {
   image_rgb img;
   img.width = width;
   img.height = height;
-  if (rgb) img.rgb = *rgb;
-  else img.rgb.assign(std::size_t(width) * height * 3, 0.0f);
+  if (rgb)
+    img.rgb = *rgb;
+  else
+    img.rgb.assign(std::size_t(width) * height * 3, 0.0f);
   return img;
 }
 
@@ -144,8 +146,8 @@ void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb) 
   changed_.notify_all();
 }
 
-void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::vector<double>& sums,
-                             std::uint64_t rays, double seconds) {
+void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::vector<double>& sums, std::uint64_t rays,
+                             double seconds) {
   auto rgb = std::make_shared<std::vector<float>>(sums.size());
   const double inv = spp ? 1.0 / double(spp) : 0.0;
   for (std::size_t i = 0; i < sums.size(); ++i) (*rgb)[i] = float(sums[i] * inv);

@@ -202,8 +202,7 @@ shift_table trace_shift_table(const triangle_mesh& cube, const shift_table_param
   shift_table table;
   table.theta_deg = p.theta_deg;
   table.s_max = p.s_max;
-  nlohmann::json entering = nlohmann::json::array(), kept = nlohmann::json::array(),
-                 overflow = nlohmann::json::array();
+  nlohmann::json entering = nlohmann::json::array(), kept = nlohmann::json::array(), overflow = nlohmann::json::array();
 
   for (double theta : p.theta_deg) {
     // One ray pitch for every phi, from the largest bounding square, so that summing the counts

@@ -25,7 +25,8 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   if (tex != ts.texture_path || (!tex.empty() && !texture)) {
     texture = tex.empty() ? nullptr : std::make_shared<const image_rgb>(load_image(tex).pixels);
   }
-  std::shared_ptr<const retro_model> retro = model ? std::move(model) : make_retro_model(s.retroreflector.model, s.base_dir);
+  std::shared_ptr<const retro_model> retro =
+      model ? std::move(model) : make_retro_model(s.retroreflector.model, s.base_dir);
 
   if (embree) ts.embree = std::move(embree);
   ts.texture = std::move(texture);

@@ -28,8 +28,8 @@ inline std::string bytes_field(int number, const std::string& payload) {
 inline std::string tensor_info(const std::string& name, const std::vector<std::int64_t>& dims) {
   std::string shape;
   for (size_t i = 0; i < dims.size(); ++i)
-    shape += bytes_field(1, dims[i] > 0 ? int_field(1, std::uint64_t(dims[i]))
-                                        : bytes_field(2, "d" + std::to_string(i)));
+    shape +=
+        bytes_field(1, dims[i] > 0 ? int_field(1, std::uint64_t(dims[i])) : bytes_field(2, "d" + std::to_string(i)));
   const std::string tensor = int_field(1, 1) + bytes_field(2, shape);  // elem_type FLOAT
   return bytes_field(1, name) + bytes_field(2, bytes_field(1, tensor));
 }

@@ -12,8 +12,8 @@ cv::Mat make_slanted_edge(const synthetic_edge_params& p) {
   const double polarity = p.rising ? 1.0 : -1.0;
   auto value = [&](double x, double y) {
     // Signed distance to the edge line: across x for a near-vertical edge, across y otherwise.
-    const double d = p.horizontal ? (y - cy) * c - (x - cx) * s - p.offset_px
-                                  : (x - cx) * c - (y - cy) * s - p.offset_px;
+    const double d =
+        p.horizontal ? (y - cy) * c - (x - cx) * s - p.offset_px : (x - cx) * c - (y - cy) * s - p.offset_px;
     const double step = 0.5 * (1.0 + std::erf(polarity * d / (p.sigma_px * std::numbers::sqrt2)));
     return p.dark + (p.bright - p.dark) * step;
   };

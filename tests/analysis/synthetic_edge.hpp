@@ -9,16 +9,16 @@ namespace airr::analysis::testing {
 struct synthetic_edge_params {
   int width = 200;
   int height = 200;
-  double angle_deg = 5;        // tilt of the edge from the vertical (from horizontal if horizontal)
+  double angle_deg = 5;  // tilt of the edge from the vertical (from horizontal if horizontal)
   bool horizontal = false;
-  double offset_px = 0;        // shift of the edge from the image centre along the normal
-  double sigma_px = 1;         // Gaussian blur standard deviation
+  double offset_px = 0;           // shift of the edge from the image centre along the normal
+  double sigma_px = 1;            // Gaussian blur standard deviation
   bool pixel_integrated = false;  // average over the pixel area instead of the value at its centre
-  int subsamples = 16;         // per axis, for pixel integration
+  int subsamples = 16;            // per axis, for pixel integration
   double dark = 0.1;
   double bright = 0.9;
-  bool rising = true;          // dark on the negative side of the normal
-  double noise_sigma = 0;      // additive Gaussian noise
+  bool rising = true;      // dark on the negative side of the normal
+  double noise_sigma = 0;  // additive Gaussian noise
   std::uint64_t seed = 1;
 };
 

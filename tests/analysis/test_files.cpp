@@ -41,8 +41,7 @@ void write_exr(const std::filesystem::path& path, const cv::Mat& pixels, attribu
   pixels.convertTo(f, CV_32F);
   OIIO::ImageSpec spec(f.cols, f.rows, f.channels(), OIIO::TypeDesc::FLOAT);
   if (kind == attribute_kind::string) spec.attribute(mm_per_pixel_attribute, mm_per_pixel);
-  if (kind == attribute_kind::floating)
-    spec.attribute(mm_per_pixel_attribute, std::stof(mm_per_pixel));
+  if (kind == attribute_kind::floating) spec.attribute(mm_per_pixel_attribute, std::stof(mm_per_pixel));
   const cv::Mat packed = f.isContinuous() ? f : f.clone();
   write_oiio(path, spec, packed.ptr());
 }
@@ -50,8 +49,7 @@ void write_exr(const std::filesystem::path& path, const cv::Mat& pixels, attribu
 void write_coded(const std::filesystem::path& path, const cv::Mat& codes,
                  const std::optional<std::string>& mm_per_pixel) {
   const auto type = codes.depth() == CV_8U ? OIIO::TypeDesc::UINT8 : OIIO::TypeDesc::UINT16;
-  if (codes.depth() != CV_8U && codes.depth() != CV_16U)
-    throw std::runtime_error("write_coded takes CV_8U or CV_16U");
+  if (codes.depth() != CV_8U && codes.depth() != CV_16U) throw std::runtime_error("write_coded takes CV_8U or CV_16U");
   OIIO::ImageSpec spec(codes.cols, codes.rows, codes.channels(), type);
   if (mm_per_pixel) spec.attribute(mm_per_pixel_attribute, *mm_per_pixel);
   const cv::Mat packed = codes.isContinuous() ? codes : codes.clone();

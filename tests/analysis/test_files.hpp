@@ -34,8 +34,8 @@ enum class attribute_kind { none, string, floating };
 
 // Writes a float EXR (1 or 3 channels, from CV_64FC1/CV_64FC3 in RGB order), optionally with
 // the pixel-size attribute stored as a string or a float.
-void write_exr(const std::filesystem::path& path, const cv::Mat& pixels,
-               attribute_kind kind = attribute_kind::none, const std::string& mm_per_pixel = "");
+void write_exr(const std::filesystem::path& path, const cv::Mat& pixels, attribute_kind kind = attribute_kind::none,
+               const std::string& mm_per_pixel = "");
 
 // Writes integer code values (CV_8U or CV_16U, 1 or 3 channels in RGB order) to any format OIIO
 // writes (PNG, TIFF, JPEG), with an optional string pixel-size attribute.

@@ -5,10 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include "airr/optics/color.hpp"
 #include "airr/analysis/image_read.hpp"
 #include "airr/analysis/lpips.hpp"
 #include "airr/analysis/onnx_inputs.hpp"
+#include "airr/optics/color.hpp"
 #include "onnx_builder.hpp"
 #include "test_files.hpp"
 
@@ -41,7 +41,6 @@ double expected_distance(const cv::Mat& a, const cv::Mat& b) {
       }
   return sum / (a.total() * 3.0);
 }
-
 
 }  // namespace
 
@@ -125,8 +124,6 @@ TEST(Lpips, OtherInputArrangementsAreReported) {
 TEST(Lpips, ImagesMustMatch) {
   at::scratch_dir dir("lpips");
   at::write_bytes(dir / "m.onnx", onnx::squared_difference_model(-1, -1));
-  EXPECT_THROW(aa::lpips(colour_pattern(16, 16, 0), colour_pattern(17, 16, 0), dir / "m.onnx"),
-               std::runtime_error);
-  EXPECT_THROW(aa::lpips(cv::Mat(16, 16, CV_64FC1), cv::Mat(16, 16, CV_64FC1), dir / "m.onnx"),
-               std::runtime_error);
+  EXPECT_THROW(aa::lpips(colour_pattern(16, 16, 0), colour_pattern(17, 16, 0), dir / "m.onnx"), std::runtime_error);
+  EXPECT_THROW(aa::lpips(cv::Mat(16, 16, CV_64FC1), cv::Mat(16, 16, CV_64FC1), dir / "m.onnx"), std::runtime_error);
 }

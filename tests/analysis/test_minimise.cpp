@@ -215,8 +215,8 @@ TEST(RisingRoot, ReturnsTheEndWithTheSmallerMismatch) {
 
 TEST(RisingRoot, ToleranceIsHonoured) {
   for (double tol : {1e-2, 1e-5, 1e-9}) {
-    const aa::root_result r = aa::rising_root([](double x) { return std::atan(x - 0.7) + 0.1 * (x - 0.7); }, -4.0,
-                                              5.0, tol);
+    const aa::root_result r =
+        aa::rising_root([](double x) { return std::atan(x - 0.7) + 0.1 * (x - 0.7); }, -4.0, 5.0, tol);
     EXPECT_LE(r.hi - r.lo, tol) << tol;
     EXPECT_LE(r.lo, 0.7) << tol;
     EXPECT_GE(r.hi, 0.7) << tol;

@@ -43,7 +43,8 @@ TEST(MeanMtf, GaussianEdgeMatchesAveragedAnalyticCurve) {
   std::printf("\nmean MTF over (0, 1] lp/mm, 5 deg edge 200x200 px\n%-17s %6s %8s %10s %10s\n", "sampling", "sigma",
               "mm/px", "measured", "analytic");
   for (bool integrated : {false, true})
-    for (const auto& [sigma, mm] : {std::pair{2.0, 0.1}, std::pair{1.0, 0.3}, std::pair{4.0, 0.04}, std::pair{0.7, 0.5}}) {
+    for (const auto& [sigma, mm] :
+         {std::pair{2.0, 0.1}, std::pair{1.0, 0.3}, std::pair{4.0, 0.04}, std::pair{0.7, 0.5}}) {
       at::synthetic_edge_params p;
       p.sigma_px = sigma;
       p.pixel_integrated = integrated;

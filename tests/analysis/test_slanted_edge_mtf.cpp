@@ -27,8 +27,8 @@ edge_errors measure(const at::synthetic_edge_params& p, const aa::slanted_edge_p
   for (size_t i = 0; i < curve.cycles_per_pixel.size(); ++i) {
     const double f = curve.cycles_per_pixel[i];
     if (f > 0.5) break;
-    e.max_mtf_error = std::max(e.max_mtf_error,
-                               std::abs(curve.mtf[i] - at::analytic_mtf(f, p.sigma_px, p.pixel_integrated)));
+    e.max_mtf_error =
+        std::max(e.max_mtf_error, std::abs(curve.mtf[i] - at::analytic_mtf(f, p.sigma_px, p.pixel_integrated)));
   }
   const auto m50 = aa::mtf50(curve);
   const double truth = at::analytic_mtf50(p.sigma_px, p.pixel_integrated);
@@ -59,8 +59,7 @@ TEST(SlantedEdgeMtf, NoiseFreeGaussianEdgesMatchAnalyticMtf) {
 TEST(SlantedEdgeMtf, NoisyGaussianEdgesAtSnr50KeepMtf50Within3Percent) {
   const std::vector<std::uint64_t> seeds = {1, 2, 3, 4, 5};
   std::printf("\n5 deg edges, 200x200 px, Gaussian noise sigma = contrast / 50, seeds 1-5\n");
-  std::printf("%-17s %7s %16s %16s %16s\n", "sampling", "sigma", "max |dMTF|", "max |MTF50 err|",
-              "mean MTF50 err");
+  std::printf("%-17s %7s %16s %16s %16s\n", "sampling", "sigma", "max |dMTF|", "max |MTF50 err|", "mean MTF50 err");
   for (bool integrated : {false, true})
     for (double sigma : {0.7, 1.0, 2.0, 4.0}) {
       double worst_mtf = 0, worst_m50 = 0, mean_m50 = 0;
@@ -77,8 +76,8 @@ TEST(SlantedEdgeMtf, NoisyGaussianEdgesAtSnr50KeepMtf50Within3Percent) {
         EXPECT_LT(std::abs(e.mtf50_error_pct), 3.0)
             << sampling_name(integrated) << " sigma " << sigma << " seed " << seed;
       }
-      std::printf("%-17s %7.2f %16.5f %15.3f%% %15.3f%%\n", sampling_name(integrated), sigma, worst_mtf,
-                  worst_m50, mean_m50);
+      std::printf("%-17s %7.2f %16.5f %15.3f%% %15.3f%%\n", sampling_name(integrated), sigma, worst_mtf, worst_m50,
+                  mean_m50);
     }
 }
 
@@ -126,7 +125,8 @@ TEST(SlantedEdgeMtf, RoiSelectsOneEdgeOfSeveral) {
   cv::Mat img(160, 240, CV_64FC1);
   at::make_slanted_edge(sharp).copyTo(img(cv::Rect(0, 0, 120, 160)));
   at::make_slanted_edge(soft).copyTo(img(cv::Rect(120, 0, 120, 160)));
-  for (const auto& [roi, sigma] : {std::pair{cv::Rect(0, 0, 120, 160), 0.8}, std::pair{cv::Rect(120, 0, 120, 160), 3.0}}) {
+  for (const auto& [roi, sigma] :
+       {std::pair{cv::Rect(0, 0, 120, 160), 0.8}, std::pair{cv::Rect(120, 0, 120, 160), 3.0}}) {
     aa::slanted_edge_params sp;
     sp.roi = roi;
     const auto curve = aa::slanted_edge_mtf(img, sp);

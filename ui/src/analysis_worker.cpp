@@ -80,8 +80,11 @@ measured_plots measure_render_mtf(const render_snapshot& snap, const scene& s) {
   if (!snap.rgb || snap.spp == 0) return out;
   const cv::Mat lum = snapshot_luminance(snap);
   // The whole source (an edge chart), then its quadrants (the test chart's edge is top left).
-  const double regions[][4] = {{0.1, 0.1, 0.9, 0.9}, {0.05, 0.05, 0.45, 0.45}, {0.55, 0.05, 0.95, 0.45},
-                               {0.05, 0.55, 0.45, 0.95}, {0.55, 0.55, 0.95, 0.95}};
+  const double regions[][4] = {{0.1, 0.1, 0.9, 0.9},
+                               {0.05, 0.05, 0.45, 0.45},
+                               {0.55, 0.05, 0.95, 0.45},
+                               {0.05, 0.55, 0.45, 0.95},
+                               {0.55, 0.55, 0.95, 0.95}};
   for (const auto& r : regions) {
     const cv::Rect roi = aerial_image_roi(s, r[0], r[1], r[2], r[3]);
     if (roi.width < 20 || roi.height < 20) continue;
@@ -102,7 +105,9 @@ measured_plots measure_render_mtf(const render_snapshot& snap, const scene& s) {
   return out;
 }
 
-analysis_worker::analysis_worker() { worker_ = std::thread([this] { run(); }); }
+analysis_worker::analysis_worker() {
+  worker_ = std::thread([this] { run(); });
+}
 
 analysis_worker::~analysis_worker() {
   {

@@ -53,8 +53,10 @@ std::string file_dialog::draw() {
          it.increment(ec)) {
       const auto& e = *it;
       if (e.path().filename().string().starts_with(".")) continue;
-      if (e.is_directory(ec)) dirs.push_back(e);
-      else if (has_extension(e.path(), extensions)) files.push_back(e);
+      if (e.is_directory(ec))
+        dirs.push_back(e);
+      else if (has_extension(e.path(), extensions))
+        files.push_back(e);
     }
     auto by_name = [](const auto& a, const auto& b) { return a.path().filename() < b.path().filename(); };
     std::sort(dirs.begin(), dirs.end(), by_name);
@@ -81,9 +83,12 @@ std::string file_dialog::draw() {
     if (!error.empty()) ImGui::TextColored(ImVec4(1, 0.4f, 0.4f, 1), "%s", error.c_str());
     if (ImGui::Button(saving ? "Save" : "Open") || enter) {
       const fs::path p = resolve_path(name, dir);
-      if (name.empty()) error = "type a file name";
-      else if (!saving && !fs::is_regular_file(p, ec)) error = "no such file: " + p.string();
-      else chosen = p.string();
+      if (name.empty())
+        error = "type a file name";
+      else if (!saving && !fs::is_regular_file(p, ec))
+        error = "no such file: " + p.string();
+      else
+        chosen = p.string();
     }
     ImGui::SameLine();
     if (ImGui::Button("Cancel") || ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {

@@ -70,14 +70,15 @@ void draw_fit_window(studio& st) {
     ImGui::End();
     return;
   }
-  ImGui::TextWrapped("Fits a and mu per tilt and the corner size c from measured MTF curves or slanted-edge photos "
-                     "(a directory with fit.json; see assets/fit_example/README.md).");
+  ImGui::TextWrapped(
+      "Fits a and mu per tilt and the corner size c from measured MTF curves or slanted-edge photos "
+      "(a directory with fit.json; see assets/fit_example/README.md).");
   ImGui::SetNextItemWidth(-6 * ImGui::GetFontSize());
   ImGui::InputText("data", &st.fit_dir);
   ImGui::SameLine();
   if (ImGui::Button("Browse")) {
-    st.dialog.request(file_purpose::choose_fit_data, false, "Choose fit.json", st.fit_dir.empty() ? asset_dir() : st.fit_dir,
-                      {".json"});
+    st.dialog.request(file_purpose::choose_fit_data, false, "Choose fit.json",
+                      st.fit_dir.empty() ? asset_dir() : st.fit_dir, {".json"});
   }
   const bool running = st.fit_job_ && st.fit_job_->running();
   if (running) {
@@ -96,7 +97,8 @@ void draw_fit_window(studio& st) {
   }
   if (!st.fit_error.empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", st.fit_error.c_str());
   if (st.fit_job_ && !running) {
-    if (const std::string e = st.fit_job_->error(); !e.empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", e.c_str());
+    if (const std::string e = st.fit_job_->error(); !e.empty())
+      ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", e.c_str());
   }
   const auto result = st.fit_job_ && !running ? st.fit_job_->result() : std::nullopt;
   if (result) {
@@ -112,8 +114,10 @@ void draw_fit_window(studio& st) {
       for (std::size_t i = 0; i < rows; ++i) {
         ImGui::TableNextRow();
         ImGui::TableNextColumn();
-        if (p.theta_deg.empty()) ImGui::TextUnformatted("all");
-        else ImGui::Text("%.1f", p.theta_deg[i]);
+        if (p.theta_deg.empty())
+          ImGui::TextUnformatted("all");
+        else
+          ImGui::Text("%.1f", p.theta_deg[i]);
         ImGui::TableNextColumn();
         ImGui::Text("%.5g", p.a_per_mm[std::min(i, p.a_per_mm.size() - 1)]);
         ImGui::TableNextColumn();

@@ -24,7 +24,8 @@ void draw_plots_panel(studio& st) {
   }
   if (ImGui::Button("Pin MTF") && pred && !pred->mtf.empty()) {
     char label[64];
-    std::snprintf(label, sizeof label, "pinned D=%.0f tilt=%.0f", st.doc.floating_distance_mm, st.doc.retroreflector.tilt_deg);
+    std::snprintf(label, sizeof label, "pinned D=%.0f tilt=%.0f", st.doc.floating_distance_mm,
+                  st.doc.retroreflector.tilt_deg);
     st.pinned_mtf.push_back({label, pred->lp_per_mm, pred->mtf});
     if (st.pinned_mtf.size() > 4) st.pinned_mtf.erase(st.pinned_mtf.begin());
   }
@@ -43,28 +44,52 @@ void draw_plots_panel(studio& st) {
   for (std::size_t i = 0; i < st.pinned_mtf.size(); ++i) {
     mtf.push_back({st.pinned_mtf[i].label, st.pinned_mtf[i].x, st.pinned_mtf[i].y, plot_palette(int(i) + 2), true});
   }
-  auto keep = [&](const char* name, const plot_hover& h) { st.regions[name] = {h.area[0], h.area[1], h.area[2], h.area[3]}; };
+  auto keep = [&](const char* name, const plot_hover& h) {
+    st.regions[name] = {h.area[0], h.area[1], h.area[2], h.area[3]};
+  };
   keep("plot_mtf", draw_plot("mtf", mtf,
-            {.title = "MTF", .x_title = "spatial frequency (lp/mm)", .y_title = "MTF", .x_min = 0, .x_max = 2,
-             .y_min = 0, .y_max = 1.05, .auto_x = false, .auto_y = false, .height = h}));
+                             {.title = "MTF",
+                              .x_title = "spatial frequency (lp/mm)",
+                              .y_title = "MTF",
+                              .x_min = 0,
+                              .x_max = 2,
+                              .y_min = 0,
+                              .y_max = 1.05,
+                              .auto_x = false,
+                              .auto_y = false,
+                              .height = h}));
   if (meas && !meas->found && !meas->note.empty()) ImGui::TextDisabled("render MTF: %s", meas->note.c_str());
 
   std::vector<plot_curve> psf;
   if (pred) psf.push_back({"PSF cross-section", pred->psf_x_mm, pred->psf_density});
   keep("plot_psf", draw_plot("psf", psf,
-            {.title = "PSF through the centre (y = 0)", .x_title = "x on the aerial-image plane (mm)",
-             .y_title = "energy density (1/mm^2)", .auto_x = true, .auto_y = true, .height = h}));
+                             {.title = "PSF through the centre (y = 0)",
+                              .x_title = "x on the aerial-image plane (mm)",
+                              .y_title = "energy density (1/mm^2)",
+                              .auto_x = true,
+                              .auto_y = true,
+                              .height = h}));
 
   std::vector<plot_curve> sweep;
   if (pred && !pred->sweep_d_mm.empty()) {
     sweep.push_back({"mean MTF (0-1 lp/mm)", pred->sweep_d_mm, pred->sweep_mean_mtf});
-    sweep.push_back({"current D", {st.doc.floating_distance_mm, st.doc.floating_distance_mm}, {0.0, 1.0},
-                     IM_COL32(160, 160, 160, 255), true});
+    sweep.push_back({"current D",
+                     {st.doc.floating_distance_mm, st.doc.floating_distance_mm},
+                     {0.0, 1.0},
+                     IM_COL32(160, 160, 160, 255),
+                     true});
   }
   keep("plot_sweep", draw_plot("sweep", sweep,
-            {.title = "Mean MTF against floating distance", .x_title = "floating distance D (mm)",
-             .y_title = "mean MTF", .x_min = 140, .x_max = 310, .y_min = 0, .y_max = 1.05, .auto_x = false,
-             .auto_y = false, .height = h}));
+                               {.title = "Mean MTF against floating distance",
+                                .x_title = "floating distance D (mm)",
+                                .y_title = "mean MTF",
+                                .x_min = 140,
+                                .x_max = 310,
+                                .y_min = 0,
+                                .y_max = 1.05,
+                                .auto_x = false,
+                                .auto_y = false,
+                                .height = h}));
   ImGui::End();
 }
 

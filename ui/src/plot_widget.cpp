@@ -22,8 +22,9 @@ std::vector<double> nice_ticks(double lo, double hi, int target) {
 }
 
 unsigned plot_palette(int index) {
-  static const ImU32 colours[] = {IM_COL32(80, 160, 255, 255), IM_COL32(255, 150, 60, 255), IM_COL32(90, 200, 110, 255),
-                                  IM_COL32(230, 80, 90, 255), IM_COL32(190, 120, 240, 255), IM_COL32(240, 220, 80, 255)};
+  static const ImU32 colours[] = {IM_COL32(80, 160, 255, 255),  IM_COL32(255, 150, 60, 255),
+                                  IM_COL32(90, 200, 110, 255),  IM_COL32(230, 80, 90, 255),
+                                  IM_COL32(190, 120, 240, 255), IM_COL32(240, 220, 80, 255)};
   return colours[index % 6];
 }
 

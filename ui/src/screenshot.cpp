@@ -18,7 +18,8 @@ void write_framebuffer_png(const std::string& path, int width, int height) {
   const std::filesystem::path p(path), tmp = p.parent_path() / (".tmp." + p.filename().string());
   auto out = OIIO::ImageOutput::create(tmp.string());
   OIIO::ImageSpec spec(width, height, 3, OIIO::TypeDesc::UINT8);
-  if (!out || !out->open(tmp.string(), spec)) throw input_error(path + ": cannot write screenshot: " + OIIO::geterror());
+  if (!out || !out->open(tmp.string(), spec))
+    throw input_error(path + ": cannot write screenshot: " + OIIO::geterror());
   // OpenGL rows start at the bottom: write them top first.
   const auto stride = OIIO::stride_t(width) * 3;
   const bool ok = out->write_image(OIIO::TypeDesc::UINT8, px.data() + (height - 1) * stride, OIIO::AutoStride, -stride);

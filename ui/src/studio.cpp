@@ -7,9 +7,9 @@
 
 #include "airr/optics/assets.hpp"
 #include "airr/optics/error.hpp"
+#include "airr/optics/image.hpp"
 #include "airr/optics/json_reader.hpp"
 #include "airr/optics/scene_json.hpp"
-#include "airr/optics/image.hpp"
 #include "airr/render/render_metadata.hpp"
 
 namespace airr::ui {
@@ -232,11 +232,15 @@ static void run_pending(studio& st) {
   const auto action = st.after_save_prompt;
   st.after_save_prompt = studio::pending_action::none;
   switch (action) {
-    case studio::pending_action::quit: st.quit_requested = true; break;
+    case studio::pending_action::quit:
+      st.quit_requested = true;
+      break;
     case studio::pending_action::open_file:
       st.dialog.request(file_purpose::open_scene, false, "Open scene", start_dir(st), {".json"});
       break;
-    case studio::pending_action::open_path: studio_open(st, st.pending_path); break;
+    case studio::pending_action::open_path:
+      studio_open(st, st.pending_path);
+      break;
     case studio::pending_action::new_scene: {
       scene s;
       s.base_dir = asset_dir() + "/scenes";  // the defaults' relative paths point into assets/
@@ -244,14 +248,17 @@ static void run_pending(studio& st) {
       studio_start(st, s, "");
       break;
     }
-    case studio::pending_action::none: break;
+    case studio::pending_action::none:
+      break;
   }
 }
 
 static void ask_or_run(studio& st, studio::pending_action action) {
   st.after_save_prompt = action;
-  if (studio_dirty(st)) st.show_save_prompt = true;
-  else run_pending(st);
+  if (studio_dirty(st))
+    st.show_save_prompt = true;
+  else
+    run_pending(st);
 }
 
 static void draw_menu(studio& st) {
@@ -269,8 +276,10 @@ static void draw_menu(studio& st) {
       ImGui::EndMenu();
     }
     if (ImGui::MenuItem("Save", "Ctrl+S")) {
-      if (st.doc_path.empty()) request_save_as(st);
-      else studio_save(st, st.doc_path);
+      if (st.doc_path.empty())
+        request_save_as(st);
+      else
+        studio_save(st, st.doc_path);
     }
     if (ImGui::MenuItem("Save as...")) request_save_as(st);
     ImGui::Separator();
@@ -305,8 +314,10 @@ static void draw_save_prompt(studio& st) {
     ImGui::Text("%s has unsaved changes.", display_name(st).c_str());
     if (ImGui::Button("Save")) {
       ImGui::CloseCurrentPopup();
-      if (st.doc_path.empty()) request_save_as(st);  // the pending action runs after the dialog
-      else if (studio_save(st, st.doc_path)) run_pending(st);
+      if (st.doc_path.empty())
+        request_save_as(st);  // the pending action runs after the dialog
+      else if (studio_save(st, st.doc_path))
+        run_pending(st);
     }
     ImGui::SameLine();
     if (ImGui::Button("Discard")) {
@@ -327,15 +338,27 @@ static void handle_dialog(studio& st) {
   const std::string path = st.dialog.draw();
   if (path.empty()) return;
   switch (st.dialog.purpose) {
-    case file_purpose::open_scene: studio_open(st, path); break;
+    case file_purpose::open_scene:
+      studio_open(st, path);
+      break;
     case file_purpose::save_scene:
       if (studio_save(st, path)) run_pending(st);
       break;
-    case file_purpose::export_render: studio_export_render(st, path); break;
-    case file_purpose::export_plots: studio_export_plots(st, path); break;
-    case file_purpose::choose_source_image: studio_drop_file(st, path); break;
-    case file_purpose::choose_fit_data: st.fit_dir = fs::path(path).parent_path().string(); break;
-    case file_purpose::save_preset: save_fitted_preset(st, path); break;
+    case file_purpose::export_render:
+      studio_export_render(st, path);
+      break;
+    case file_purpose::export_plots:
+      studio_export_plots(st, path);
+      break;
+    case file_purpose::choose_source_image:
+      studio_drop_file(st, path);
+      break;
+    case file_purpose::choose_fit_data:
+      st.fit_dir = fs::path(path).parent_path().string();
+      break;
+    case file_purpose::save_preset:
+      save_fitted_preset(st, path);
+      break;
   }
 }
 
@@ -344,8 +367,10 @@ static void handle_shortcuts(studio& st) {
   if (!io.KeyCtrl || io.WantTextInput) return;
   // ImGui 1.86 indexes keys by the backend's codes; GLFW's letter codes are their ASCII capitals.
   if (ImGui::IsKeyPressed('S')) {
-    if (st.doc_path.empty()) request_save_as(st);
-    else studio_save(st, st.doc_path);
+    if (st.doc_path.empty())
+      request_save_as(st);
+    else
+      studio_save(st, st.doc_path);
   }
   if (ImGui::IsKeyPressed('O')) ask_or_run(st, studio::pending_action::open_file);
 }
@@ -377,8 +402,10 @@ void studio_frame(studio& st, double now) {
   ImGui::Begin("##status", nullptr,
                ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
                    ImGuiWindowFlags_NoBringToFrontOnFocus);
-  if (!st.doc_error.empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", st.doc_error.c_str());
-  else ImGui::TextUnformatted(st.status.c_str());
+  if (!st.doc_error.empty())
+    ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", st.doc_error.c_str());
+  else
+    ImGui::TextUnformatted(st.status.c_str());
   ImGui::End();
 
   draw_save_prompt(st);

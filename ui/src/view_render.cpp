@@ -5,9 +5,9 @@
 
 #include <imgui.h>
 
-#include "airr/optics/layout.hpp"
 #include "airr/optics/color.hpp"
 #include "airr/optics/image.hpp"
+#include "airr/optics/layout.hpp"
 #include "airr/render/render_metadata.hpp"
 #include "airr/ui/studio.hpp"
 
@@ -16,7 +16,9 @@ namespace airr::ui {
 static void upload_snapshot(studio& st, const render_snapshot& snap, float exposure) {
   std::vector<std::uint8_t> rgba(std::size_t(snap.width) * snap.height * 4);
   for (std::size_t i = 0; i < std::size_t(snap.width) * snap.height; ++i) {
-    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = std::uint8_t(std::lround(255.0f * float(srgb_encode(std::clamp((*snap.rgb)[3 * i + c] * exposure, 0.0f, 1.0f)))));
+    for (int c = 0; c < 3; ++c)
+      rgba[4 * i + c] = std::uint8_t(
+          std::lround(255.0f * float(srgb_encode(std::clamp((*snap.rgb)[3 * i + c] * exposure, 0.0f, 1.0f)))));
     rgba[4 * i + 3] = 255;
   }
   st.view.texture.upload(snap.width, snap.height, rgba);
@@ -72,7 +74,8 @@ void draw_render_view(studio& st, double now) {
     const double base = default_exposure(st.doc);
     if (*q > 0) st.settings.exposure_ev = std::clamp(float(std::log2(0.9 / (*q * base))), -6.0f, 6.0f);
   }
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("0 EV shows a white source seen through a lossless retroreflector as white");
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("0 EV shows a white source seen through a lossless retroreflector as white");
   ImGui::SameLine();
   const double rays_per_s = snap.seconds > 0 ? double(snap.rays) / snap.seconds : 0.0;
   ImGui::Text("%llu spp  %.1f Mrays/s  %.1f s%s%s", static_cast<unsigned long long>(snap.spp), rays_per_s * 1e-6,
@@ -82,7 +85,8 @@ void draw_render_view(studio& st, double now) {
   // Image area: fit the image, then zoom about the cursor and pan by dragging.
   const ImVec2 avail = ImGui::GetContentRegionAvail();
   const ImVec2 origin = ImGui::GetCursorScreenPos();
-  ImGui::InvisibleButton("image_area", ImVec2(std::max(avail.x, 10.0f), std::max(avail.y - ImGui::GetTextLineHeightWithSpacing(), 10.0f)));
+  ImGui::InvisibleButton(
+      "image_area", ImVec2(std::max(avail.x, 10.0f), std::max(avail.y - ImGui::GetTextLineHeightWithSpacing(), 10.0f)));
   const ImVec2 area = ImGui::GetItemRectSize();
   const bool hovered = ImGui::IsItemHovered();
   ImDrawList* dl = ImGui::GetWindowDrawList();
@@ -114,12 +118,14 @@ void draw_render_view(studio& st, double now) {
   dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(st.view.texture.id())), p0,
                ImVec2(p0.x + size.x, p0.y + size.y));
   dl->PopClipRect();
-  st.regions["render_image"] = {std::max(p0.x, origin.x), std::max(p0.y, origin.y), std::min(p0.x + size.x, origin.x + area.x),
-                                std::min(p0.y + size.y, origin.y + area.y)};
+  st.regions["render_image"] = {std::max(p0.x, origin.x), std::max(p0.y, origin.y),
+                                std::min(p0.x + size.x, origin.x + area.x), std::min(p0.y + size.y, origin.y + area.y)};
   const glm::dvec2 centre = camera_project(make_camera(st.doc), aerial_image_center(st.doc));
-  const glm::dvec2 half(0.5 * st.doc.source.width_mm / snap.mm_per_pixel, 0.5 * st.doc.source.height_mm / snap.mm_per_pixel);
-  st.regions["render_aerial_image"] = {float(p0.x + (centre.x - half.x) * scale), float(p0.y + (centre.y - half.y) * scale),
-                                       float(p0.x + (centre.x + half.x) * scale), float(p0.y + (centre.y + half.y) * scale)};
+  const glm::dvec2 half(0.5 * st.doc.source.width_mm / snap.mm_per_pixel,
+                        0.5 * st.doc.source.height_mm / snap.mm_per_pixel);
+  st.regions["render_aerial_image"] = {
+      float(p0.x + (centre.x - half.x) * scale), float(p0.y + (centre.y - half.y) * scale),
+      float(p0.x + (centre.x + half.x) * scale), float(p0.y + (centre.y + half.y) * scale)};
 
   // Cursor readout: pixel, linear value, position in mm on the aerial-image plane (centre (0, 0, D)).
   std::string readout = "cursor outside the image";
@@ -131,8 +137,8 @@ void draw_render_view(studio& st, double now) {
       const double x_mm = (px - 0.5 * snap.width) * snap.mm_per_pixel;
       const double y_mm = (0.5 * snap.height - py) * snap.mm_per_pixel;
       char buf[160];
-      std::snprintf(buf, sizeof buf, "pixel (%d, %d)  value %.4g %.4g %.4g  at x %+.3f mm, y %+.3f mm  (%.4f mm/px)", ix,
-                    iy, v[0], v[1], v[2], x_mm, y_mm, snap.mm_per_pixel);
+      std::snprintf(buf, sizeof buf, "pixel (%d, %d)  value %.4g %.4g %.4g  at x %+.3f mm, y %+.3f mm  (%.4f mm/px)",
+                    ix, iy, v[0], v[1], v[2], x_mm, y_mm, snap.mm_per_pixel);
       readout = buf;
     }
   }

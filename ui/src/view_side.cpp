@@ -19,7 +19,9 @@ namespace {
 struct view_map {
   ImVec2 origin;  // screen position of world (y, z) = (0, 0)
   float scale;    // pixels per mm
-  ImVec2 to_screen(double y, double z) const { return ImVec2(origin.x + float(z) * scale, origin.y - float(y) * scale); }
+  ImVec2 to_screen(double y, double z) const {
+    return ImVec2(origin.x + float(z) * scale, origin.y - float(y) * scale);
+  }
   glm::dvec2 to_world(ImVec2 p) const { return {(origin.y - p.y) / scale, (p.x - origin.x) / scale}; }  // (y, z)
 };
 
@@ -82,14 +84,16 @@ void draw_side_view(studio& st) {
   const ImVec2 avail = ImGui::GetContentRegionAvail();
   const ImVec2 canvas(std::max(avail.x, 50.0f), std::max(avail.y, 50.0f));
   const float margin = 1.5f * ImGui::GetFontSize();
-  const float scale = std::min((canvas.x - 2 * margin) / float(zmax - zmin), (canvas.y - 2 * margin) / float(ymax - ymin));
+  const float scale =
+      std::min((canvas.x - 2 * margin) / float(zmax - zmin), (canvas.y - 2 * margin) / float(ymax - ymin));
   // While a handle is dragged the view keeps its scale, so the part follows the mouse steadily.
   static view_map frozen;
   static bool dragging = false;
   view_map m;
   m.scale = scale;
-  m.origin = ImVec2(canvas0.x + margin + float(-zmin) * scale + 0.5f * (canvas.x - 2 * margin - float(zmax - zmin) * scale),
-                    canvas0.y + margin + float(ymax) * scale + 0.5f * (canvas.y - 2 * margin - float(ymax - ymin) * scale));
+  m.origin =
+      ImVec2(canvas0.x + margin + float(-zmin) * scale + 0.5f * (canvas.x - 2 * margin - float(zmax - zmin) * scale),
+             canvas0.y + margin + float(ymax) * scale + 0.5f * (canvas.y - 2 * margin - float(ymax - ymin) * scale));
   if (dragging) m = frozen;
   frozen = m;
   bool any_active = false;
@@ -105,7 +109,8 @@ void draw_side_view(studio& st) {
   const ImU32 chief = IM_COL32(255, 210, 90, 230), marginal = IM_COL32(255, 210, 90, 110);
   for (double yy : {0.0, -half_image, half_image}) {
     const auto path = ray_path(s, aerial + glm::dvec3(0, yy, 0));
-    for (std::size_t i = 1; i < path.size(); ++i) seg(path[i - 1], path[i], yy == 0 ? chief : marginal, yy == 0 ? lw : 0.7f * lw);
+    for (std::size_t i = 1; i < path.size(); ++i)
+      seg(path[i - 1], path[i], yy == 0 ? chief : marginal, yy == 0 ? lw : 0.7f * lw);
   }
   // Camera field of view to the aerial-image plane.
   const double half_view = cam.tan_half_fov * s.camera.distance_mm;
@@ -117,8 +122,8 @@ void draw_side_view(studio& st) {
   seg(s0, s1, IM_COL32(255, 255, 255, 255), 3 * lw);
   seg(a0, a1, IM_COL32(255, 120, 200, 255), 2 * lw);
   const ImVec2 cs = m.to_screen(cam.position.y, cam.position.z);
-  dl->AddTriangleFilled(ImVec2(cs.x - 6 * lw, cs.y), ImVec2(cs.x + 6 * lw, cs.y - 5 * lw), ImVec2(cs.x + 6 * lw, cs.y + 5 * lw),
-                        IM_COL32(200, 200, 200, 255));
+  dl->AddTriangleFilled(ImVec2(cs.x - 6 * lw, cs.y), ImVec2(cs.x + 6 * lw, cs.y - 5 * lw),
+                        ImVec2(cs.x + 6 * lw, cs.y + 5 * lw), IM_COL32(200, 200, 200, 255));
   const ImU32 text = IM_COL32(220, 220, 220, 255);
   auto label = [&](const glm::dvec3& p, const char* t, float dx = 4, float dy = 2) {
     const ImVec2 q = m.to_screen(p.y, p.z);
@@ -135,8 +140,8 @@ void draw_side_view(studio& st) {
   dl->AddLine(sb, ImVec2(sb.x + 50 * scale, sb.y), text, lw);
   dl->AddText(ImVec2(sb.x + 50 * scale + 4, sb.y - ImGui::GetFontSize() / 2), text, "50 mm   (z to the right, y up)");
   char info[160];
-  std::snprintf(info, sizeof info, "D %.1f mm   tilt %.1f deg   retroreflector to image %.1f mm", s.floating_distance_mm,
-                s.retroreflector.tilt_deg, glm::length(aerial - rr.center));
+  std::snprintf(info, sizeof info, "D %.1f mm   tilt %.1f deg   retroreflector to image %.1f mm",
+                s.floating_distance_mm, s.retroreflector.tilt_deg, glm::length(aerial - rr.center));
   const float info_w = ImGui::CalcTextSize(info).x;
   dl->AddText(ImVec2(canvas0.x + canvas.x - info_w - 0.5f * margin, canvas0.y + canvas.y - 1.1f * margin), text, info);
 
@@ -147,7 +152,8 @@ void draw_side_view(studio& st) {
   if (auto w = handle("tilt", m.to_screen(top.y, top.z), IM_COL32(120, 230, 140, 255), m, tip)) {
     // v = (0, cos t, -sin t): the angle of the handle around the sheet centre is the tilt.
     const double dy = w->x - rr.center.y, dz = w->y - rr.center.z;
-    s.retroreflector.tilt_deg = std::clamp(std::round(std::atan2(-dz, dy) * 180 / std::numbers::pi * 10) / 10, -80.0, 80.0);
+    s.retroreflector.tilt_deg =
+        std::clamp(std::round(std::atan2(-dz, dy) * 180 / std::numbers::pi * 10) / 10, -80.0, 80.0);
   }
   std::snprintf(tip, sizeof tip, "floating distance %.1f mm: drag along z", s.floating_distance_mm);
   if (auto w = handle("distance", m.to_screen(aerial.y, aerial.z), IM_COL32(255, 120, 200, 255), m, tip)) {

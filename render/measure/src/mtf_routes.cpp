@@ -57,7 +57,8 @@ cv::Rect aerial_image_roi(const scene& s, double u0, double v0, double u1, doubl
 }
 
 cv::Rect source_image_roi(const scene& s, double fraction) {
-  const cv::Rect r = aerial_image_roi(s, 0.5 - 0.5 * fraction, 0.5 - 0.5 * fraction, 0.5 + 0.5 * fraction, 0.5 + 0.5 * fraction);
+  const cv::Rect r =
+      aerial_image_roi(s, 0.5 - 0.5 * fraction, 0.5 - 0.5 * fraction, 0.5 + 0.5 * fraction, 0.5 + 0.5 * fraction);
   if (r.width < 8 || r.height < 8) throw input_error("edge MTF: the source's image is not in the camera's view");
   return r;
 }

@@ -9,12 +9,12 @@
 #include <memory>
 #include <stdexcept>
 
+#include "airr/measure/mtf_routes.hpp"
 #include "airr/optics/assets.hpp"
 #include "airr/optics/error.hpp"
 #include "airr/optics/layout.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "airr/render/render_session.hpp"
-#include "airr/measure/mtf_routes.hpp"
 
 namespace airr {
 
@@ -86,8 +86,8 @@ sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_pro
     (a.key == "floating_distance" ? distances : tilts) = sweep_values(a);
   }
   if (distances.size() * tilts.size() > std::size_t(max_sweep_points))
-    throw input_error("--vary: the grid has " + std::to_string(distances.size() * tilts.size()) + " points, more than " +
-                      std::to_string(max_sweep_points));
+    throw input_error("--vary: the grid has " + std::to_string(distances.size() * tilts.size()) +
+                      " points, more than " + std::to_string(max_sweep_points));
 
   std::string chart = p.chart.empty() ? asset_dir() + "/charts/slanted_edge.png" : p.chart;
   chart = std::filesystem::absolute(chart).lexically_normal().string();
@@ -138,7 +138,8 @@ sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_pro
         const bool current = snap.generation == gen;
         if (current && (!snap.error.empty() || snap.spp >= p.spp)) break;
         const std::uint64_t done = current ? snap.spp : 0;
-        if (progress) progress((double(i) + double(done) / double(p.spp)) / n, detail + ", " + std::to_string(done) + " spp");
+        if (progress)
+          progress((double(i) + double(done) / double(p.spp)) / n, detail + ", " + std::to_string(done) + " spp");
         session->wait_for(gen, std::min<std::uint64_t>(p.spp, done + 1));
       }
       if (!snap.error.empty()) throw input_error(label + ": " + snap.error);

@@ -60,8 +60,8 @@ image_rgb make_test_chart(int size) {
   // Bottom left: a white square and an "F".
   fill(img, q / 4, h + q / 4, q / 4 + q / 2, h + q / 4 + q / 2, 1.0f);
   const int fx = q + q / 4, fy = h + q / 4, fw = q / 2, fs = q / 8;
-  fill(img, fx, fy, fx + fs, fy + 2 * q - q / 2, 1.0f);    // stem
-  fill(img, fx, fy, fx + fw + fs, fy + fs, 1.0f);          // top bar
+  fill(img, fx, fy, fx + fs, fy + 2 * q - q / 2, 1.0f);       // stem
+  fill(img, fx, fy, fx + fw + fs, fy + fs, 1.0f);             // top bar
   fill(img, fx, fy + q / 2, fx + fw, fy + q / 2 + fs, 1.0f);  // middle bar
   // Bottom right: checkerboard of 16-texel squares.
   for (int y = h; y < size; ++y) {

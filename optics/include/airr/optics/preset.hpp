@@ -15,7 +15,7 @@ struct sheet_preset {
   std::vector<double> mu;         // one per angle, or a single value
   double c_mm = 0.0;
   double reference_distance_mm = 300.0;
-  nlohmann::json provenance;      // where the values come from (a table, a fit with its inputs and losses)
+  nlohmann::json provenance;  // where the values come from (a table, a fit with its inputs and losses)
 };
 
 // A name ("rf-ay") is looked up in assets/presets; anything with a '/' or ending in ".json" is a

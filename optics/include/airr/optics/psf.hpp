@@ -22,8 +22,8 @@ struct psf_samples {
   std::vector<glm::dvec2> offset_mm;  // on the aerial-image plane (x right, y up), from the ideal point
   std::vector<double> weight;         // throughput including R_hm x T_hm
   std::uint64_t launched = 0;
-  double rr_distance_mm = 0;          // retroreflector to aerial image along the chief ray
-  double incidence_deg = 0;           // the chief ray's incidence angle on the retroreflector
+  double rr_distance_mm = 0;  // retroreflector to aerial image along the chief ray
+  double incidence_deg = 0;   // the chief ray's incidence angle on the retroreflector
 
   // Aerial-image radiance per unit source radiance (what a uniform source would show).
   double brightness() const;

@@ -17,11 +17,11 @@ enum class retro_model_type { ideal, sinc_shift, microfacet };
 inline constexpr std::array retro_model_type_names = {"ideal", "sinc_shift", "microfacet"};
 
 struct source_params {
-  std::string image;                      // path relative to the scene file; empty = uniform white
-  std::string mesh;  // glTF file relative to the scene file; empty: the built-in unit panel
+  std::string image;  // path relative to the scene file; empty = uniform white
+  std::string mesh;   // glTF file relative to the scene file; empty: the built-in unit panel
   double width_mm = 50.0;
   double height_mm = 50.0;
-  double intensity = 10.0;                // radiance = image value x intensity
+  double intensity = 10.0;                   // radiance = image value x intensity
   std::array<double, 3> offset_mm{0, 0, 0};  // added to the canonical centre (0, -D, 0)
 
   bool operator==(const source_params&) const = default;
@@ -43,11 +43,11 @@ struct retro_model_params {
   retro_model_type type = retro_model_type::ideal;
   std::optional<double> mu;  // reflectance weight; default: the preset's mu(theta), else 1
   // sinc_shift
-  std::string preset;                              // a name in assets/presets or a path; empty: none
-  std::optional<double> a_per_mm;                  // spread parameter a; default: the preset's a(theta)
-  std::optional<double> c_mm;                      // corner size c; default: the preset's c
-  std::optional<double> reference_distance_mm;     // R; default: the preset's, else 300
-  std::string shift_table;                         // path; empty: the shipped corner-cube table
+  std::string preset;                           // a name in assets/presets or a path; empty: none
+  std::optional<double> a_per_mm;               // spread parameter a; default: the preset's a(theta)
+  std::optional<double> c_mm;                   // corner size c; default: the preset's c
+  std::optional<double> reference_distance_mm;  // R; default: the preset's, else 300
+  std::string shift_table;                      // path; empty: the shipped corner-cube table
   // microfacet (the baseline model)
   double alpha_surface = 0.0;
   double alpha_internal = 0.0005;

@@ -17,9 +17,9 @@
 namespace airr {
 
 struct session_params {
-  int threads = 0;                  // 0: all cores
+  int threads = 0;                     // 0: all cores
   std::uint64_t target_spp = 1 << 20;  // stop after this many samples per pixel
-  std::uint64_t max_wave_spp = 64;  // waves grow 1, 2, 4 ... up to this
+  std::uint64_t max_wave_spp = 64;     // waves grow 1, 2, 4 ... up to this
   // After an edit, one sample on every n-th pixel in each direction is shown first (n x n blocks),
   // so an edit appears at once; it does not enter the accumulation. 1: no preview.
   int preview_stride = 4;
@@ -35,10 +35,10 @@ struct render_snapshot {
   int height = 0;
   double mm_per_pixel = 0;
   std::shared_ptr<const std::vector<float>> rgb;  // mean radiance, 3 floats per pixel
-  std::uint64_t rays = 0;   // intersection queries so far in this generation
-  double seconds = 0;       // time spent so far in this generation
-  std::string error;        // set when the last edit could not be applied
-  bool preview = false;     // a coarse first look at this generation (spp is 0)
+  std::uint64_t rays = 0;                         // intersection queries so far in this generation
+  double seconds = 0;                             // time spent so far in this generation
+  std::string error;                              // set when the last edit could not be applied
+  bool preview = false;                           // a coarse first look at this generation (spp is 0)
 
   image_rgb image() const;
 };
@@ -67,7 +67,8 @@ class render_session {
  private:
   void run();
   bool render_wave(std::uint64_t first, std::uint64_t count, std::vector<double>& sums, std::uint64_t& rays);
-  void publish(std::uint64_t gen, std::uint64_t spp, const std::vector<double>& sums, std::uint64_t rays, double seconds);
+  void publish(std::uint64_t gen, std::uint64_t spp, const std::vector<double>& sums, std::uint64_t rays,
+               double seconds);
   bool render_preview(std::vector<float>& rgb, std::uint64_t& rays);
   void publish_preview(std::uint64_t gen, std::vector<float> rgb);
 

@@ -18,8 +18,8 @@ struct shift_table_params {
     return v;
   }();
   int bins = 150;
-  double s_max = 1.5;                 // histogram range [0, s_max], cube edge lengths
-  double generation_distance = 5.0;   // from the aperture centre to the plane the rays start on
+  double s_max = 1.5;                // histogram range [0, s_max], cube edge lengths
+  double generation_distance = 5.0;  // from the aperture centre to the plane the rays start on
 };
 
 // `cube` must be the corner cube: every triangle on one of the planes x = 0, y = 0, z = 0, the

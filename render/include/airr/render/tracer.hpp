@@ -9,11 +9,11 @@
 
 #include <glm/glm.hpp>
 
+#include "airr/optics/image.hpp"
 #include "airr/optics/layout.hpp"
 #include "airr/optics/retro_model.hpp"
 #include "airr/optics/scene.hpp"
 #include "airr/render/embree_scene.hpp"
-#include "airr/optics/image.hpp"
 
 namespace airr {
 

@@ -18,11 +18,11 @@ namespace airr::ui {
 
 struct predicted_plots {
   std::uint64_t generation = 0;
-  std::vector<double> lp_per_mm, mtf;     // PSF route, including the camera pixel's aperture
+  std::vector<double> lp_per_mm, mtf;  // PSF route, including the camera pixel's aperture
   double mean_mtf = 0, mtf50 = 0, r50_mm = 0, brightness = 0;
-  std::vector<double> psf_x_mm, psf_density;  // cross-section through the PSF's centre (per mm)
+  std::vector<double> psf_x_mm, psf_density;       // cross-section through the PSF's centre (per mm)
   std::vector<double> sweep_d_mm, sweep_mean_mtf;  // mean MTF over (0, 1] lp/mm against D
-  double psf_ms = 0;    // time for the PSF and its MTF (a plot-quality estimate)
+  double psf_ms = 0;                               // time for the PSF and its MTF (a plot-quality estimate)
   double sweep_ms = 0;
   std::string error;
 };

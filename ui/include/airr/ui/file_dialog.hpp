@@ -6,7 +6,15 @@
 
 namespace airr::ui {
 
-enum class file_purpose { open_scene, save_scene, export_render, export_plots, choose_source_image, choose_fit_data, save_preset };
+enum class file_purpose {
+  open_scene,
+  save_scene,
+  export_render,
+  export_plots,
+  choose_source_image,
+  choose_fit_data,
+  save_preset
+};
 
 struct file_dialog {
   bool visible = false;

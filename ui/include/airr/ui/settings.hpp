@@ -15,8 +15,8 @@ struct studio_settings {
   std::string last_dir;
 };
 
-std::string config_dir();  // created on demand
-studio_settings load_settings();  // defaults when missing or unreadable (a warning on stderr)
+std::string config_dir();                      // created on demand
+studio_settings load_settings();               // defaults when missing or unreadable (a warning on stderr)
 void save_settings(const studio_settings& s);  // atomic
 void add_recent_file(studio_settings& s, const std::string& path);
 

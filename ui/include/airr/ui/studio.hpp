@@ -49,7 +49,7 @@ struct studio {
   studio_settings settings;
   render_view_state view;
   std::vector<pinned_curve> pinned_mtf;
-  std::string status;          // last message for the status bar
+  std::string status;  // last message for the status bar
   double last_measure_time = -1;
   std::uint64_t last_measured_spp = 0;
 

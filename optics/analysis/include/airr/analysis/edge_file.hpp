@@ -13,8 +13,7 @@ struct edge_file_result {
 };
 
 // Reads an image and measures its slanted-edge MTF on the luminance; every error names the file.
-edge_file_result measure_edge_file(const std::filesystem::path& path,
-                                   const slanted_edge_params& params = {},
+edge_file_result measure_edge_file(const std::filesystem::path& path, const slanted_edge_params& params = {},
                                    const image_read_params& read_params = {});
 
 }  // namespace airr::analysis

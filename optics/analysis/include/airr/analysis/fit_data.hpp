@@ -15,16 +15,16 @@ namespace airr::analysis {
 
 // One measured MTF curve and what a simulation must include to compare with it.
 struct mtf_measurement {
-  std::string origin;                // "DIR/fit.json: tilt_series[2]", for messages
-  std::string file;                  // the CSV or image, resolved
-  std::string kind;                  // "mtf_csv" or "edge_image"
+  std::string origin;  // "DIR/fit.json: tilt_series[2]", for messages
+  std::string file;    // the CSV or image, resolved
+  std::string kind;    // "mtf_csv" or "edge_image"
   double tilt_deg = 0;
   double floating_distance_mm = 150;
-  std::vector<double> lp_per_mm;     // ascending, starting at or above 0
+  std::vector<double> lp_per_mm;  // ascending, starting at or above 0
   std::vector<double> mtf;
-  double pixel_mm = 0;               // the measuring pixel on the aerial-image plane; 0: no aperture
-  double window_half_width_mm = 0;   // Hamming window the measurement put on the LSF; 0: none
-  bool along_y = false;              // a near-horizontal edge measures the blur along y
+  double pixel_mm = 0;              // the measuring pixel on the aerial-image plane; 0: no aperture
+  double window_half_width_mm = 0;  // Hamming window the measurement put on the LSF; 0: none
+  bool along_y = false;             // a near-horizontal edge measures the blur along y
 };
 
 // A photo of a white square shown centred on the source, framed by the setup scene's camera.
@@ -33,14 +33,14 @@ struct white_square {
   std::string file;
   double tilt_deg = 0;
   double floating_distance_mm = 150;
-  double width_mm = 0;   // of the square on the source
+  double width_mm = 0;  // of the square on the source
   double height_mm = 0;
-  cv::Mat luminance;     // CV_64FC1, camera size, radiance in the units of the source intensity
+  cv::Mat luminance;  // CV_64FC1, camera size, radiance in the units of the source intensity
 };
 
 struct fit_data {
-  std::string dir;        // the data directory
-  std::string fit_json;   // its fit.json
+  std::string dir;       // the data directory
+  std::string fit_json;  // its fit.json
   std::string name;
   std::string note;
   std::string scene_path;

@@ -20,14 +20,14 @@ struct fit_params {
   // a hangs on c ten times over (with 20000 samples a is off by up to 14% there).
   std::uint64_t psf_samples = 200000;
   std::uint64_t seed = 1;
-  int frequencies = 50;                 // compared on f_max * i / n, i = 1..n, f_max = min(1 lp/mm, the curve's end)
-  double a_min_per_mm = 0.05;           // the a search bracket
+  int frequencies = 50;        // compared on f_max * i / n, i = 1..n, f_max = min(1 lp/mm, the curve's end)
+  double a_min_per_mm = 0.05;  // the a search bracket
   double a_max_per_mm = 100.0;
-  int a_scan_points = 13;               // log-spaced scan over the bracket before Brent
-  double a_tolerance = 2e-4;            // relative, Brent's stopping width
-  double c_max_mm = 5.0;                // the c search bracket is [0, c_max]
-  double c_tolerance_mm = 1e-4;         // the root finder's final bracket width
-  double alternation_tolerance = 0.005; // converged: the final c bracket is narrower than this x c
+  int a_scan_points = 13;                // log-spaced scan over the bracket before Brent
+  double a_tolerance = 2e-4;             // relative, Brent's stopping width
+  double c_max_mm = 5.0;                 // the c search bracket is [0, c_max]
+  double c_tolerance_mm = 1e-4;          // the root finder's final bracket width
+  double alternation_tolerance = 0.005;  // converged: the final c bracket is narrower than this x c
 };
 
 // A measured MTF curve as the fit compared with it.
@@ -38,9 +38,9 @@ struct fit_input {
   double floating_distance_mm = 0;
   double pixel_mm = 0;
   double lsf_window_half_width_mm = 0;
-  bool along_y = false;                 // the axis the blur is measured along: y, else x
+  bool along_y = false;  // the axis the blur is measured along: y, else x
   double compared_up_to_lp_per_mm = 0;
-  double measured_mean_mtf = 0;         // over the compared frequencies
+  double measured_mean_mtf = 0;  // over the compared frequencies
 };
 
 // a at one tilt.
@@ -96,8 +96,8 @@ struct fit_mu_entry {
   double loss = 0;          // mean squared residual per pixel
   double relative_rms = 0;  // its root over the mean measured luminance
   double unclamped_mu = 0;
-  bool clamped = false;     // mu was clamped to [0, 1]
-  int evaluations = 1;      // closed form: one simulation
+  bool clamped = false;  // mu was clamped to [0, 1]
+  int evaluations = 1;   // closed form: one simulation
   double brightness_at_mu_1 = 0;
   std::string image;
   double floating_distance_mm = 0;

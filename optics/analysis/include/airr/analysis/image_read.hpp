@@ -17,12 +17,12 @@ struct image_read_params {
 
 struct linear_image {
   std::filesystem::path path;
-  cv::Mat rgb;        // CV_64FC3, linear RGB (grey files are replicated to three channels)
-  cv::Mat luminance;  // CV_64FC1, Rec.709 luminance of rgb
+  cv::Mat rgb;                         // CV_64FC3, linear RGB (grey files are replicated to three channels)
+  cv::Mat luminance;                   // CV_64FC1, Rec.709 luminance of rgb
   std::optional<double> mm_per_pixel;  // from the "airr:mm_per_pixel" attribute, if present
   bool srgb_decoded = false;           // true when code values went through the sRGB curve
   int source_channels = 0;
-  std::string source_format;           // e.g. "uint8", "half", "float"
+  std::string source_format;  // e.g. "uint8", "half", "float"
 };
 
 // Reads an image by load_image. Throws input_error naming the file on any failure.

@@ -16,7 +16,6 @@ struct lpips_result {
 // model that takes two N x 3 x H x W inputs of sRGB-encoded values scaled to [-1, 1] and returns
 // the distance (a map is averaged). Throws std::runtime_error naming the model file when it is
 // missing, unreadable or has a different input arrangement.
-lpips_result lpips(const cv::Mat& a_rgb, const cv::Mat& b_rgb,
-                   const std::filesystem::path& model_path);
+lpips_result lpips(const cv::Mat& a_rgb, const cv::Mat& b_rgb, const std::filesystem::path& model_path);
 
 }  // namespace airr::analysis

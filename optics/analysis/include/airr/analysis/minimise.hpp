@@ -47,9 +47,9 @@ enum class root_bound {
 const char* to_string(root_bound b);
 
 struct root_result {
-  double x = 0;                         // the end of the final bracket where |g| is smaller
-  double lo = 0, hi = 0;                // the final bracket (lo = hi = x when bound is not none)
-  double g_lo = 0, g_hi = 0;            // g at its ends
+  double x = 0;               // the end of the final bracket where |g| is smaller
+  double lo = 0, hi = 0;      // the final bracket (lo = hi = x when bound is not none)
+  double g_lo = 0, g_hi = 0;  // g at its ends
   int evaluations = 0;
   root_bound bound = root_bound::none;
 };

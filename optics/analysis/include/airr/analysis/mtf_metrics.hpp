@@ -38,7 +38,6 @@ double least_squares_slope(const std::vector<double>& x, const std::vector<doubl
 
 // Mean of the MTF over (0, max_lp_per_mm] lp/mm on a uniform grid, cut at the Nyquist frequency
 // (0.5 cycles/pixel) when that is lower.
-mean_mtf_result mean_mtf(const mtf_curve& curve, double mm_per_pixel,
-                         const mean_mtf_params& params = {});
+mean_mtf_result mean_mtf(const mtf_curve& curve, double mm_per_pixel, const mean_mtf_params& params = {});
 
 }  // namespace airr::analysis

@@ -51,6 +51,7 @@ fit_result fit_sheet(const fit_data& data, const fit_params& p, const fit_progre
 
 // The scene a measurement is simulated in: the setup at `tilt_deg` and `floating_distance_mm`
 // with the sinc-shift model set to scalar a, c, mu (the setup's shift table and R are kept).
-scene fit_scene(const scene& setup, double tilt_deg, double floating_distance_mm, double a_per_mm, double c_mm, double mu);
+scene fit_scene(const scene& setup, double tilt_deg, double floating_distance_mm, double a_per_mm, double c_mm,
+                double mu);
 
 }  // namespace airr::analysis

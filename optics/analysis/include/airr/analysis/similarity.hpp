@@ -5,8 +5,8 @@
 namespace airr::analysis {
 
 struct ssim_params {
-  int window = 11;       // Gaussian window size in pixels (odd)
-  double sigma = 1.5;    // Gaussian window standard deviation in pixels
+  int window = 11;     // Gaussian window size in pixels (odd)
+  double sigma = 1.5;  // Gaussian window standard deviation in pixels
   double k1 = 0.01;
   double k2 = 0.03;
   // Dynamic range L of the pixel values; <= 0 takes max - min over both images (1 if that is 0).

@@ -12,8 +12,8 @@ enum class edge_orientation { near_vertical, near_horizontal };
 inline constexpr const char* edge_orientation_names[] = {"near-vertical", "near-horizontal"};
 
 struct slanted_edge_params {
-  std::optional<cv::Rect> roi;    // region holding one straight edge; the whole image if empty
-  int oversampling = 4;           // bins per pixel along the edge normal
+  std::optional<cv::Rect> roi;        // region holding one straight edge; the whole image if empty
+  int oversampling = 4;               // bins per pixel along the edge normal
   double max_cycles_per_pixel = 1.0;  // highest frequency reported
 };
 
@@ -24,11 +24,11 @@ struct mtf_curve {
   // edge, atan(dy/dx) for a near-horizontal one (image coordinates, y pointing down).
   double edge_angle_deg = 0;
   edge_orientation orientation = edge_orientation::near_vertical;
-  bool rising = true;          // dark-to-bright going right (vertical) or down (horizontal)
+  bool rising = true;  // dark-to-bright going right (vertical) or down (horizontal)
   double nyquist_cycles_per_pixel = 0.5;
-  double esf_contrast = 0;     // bright minus dark plateau of the edge spread function
+  double esf_contrast = 0;          // bright minus dark plateau of the edge spread function
   double window_half_width_px = 0;  // half-width of the Hamming window applied to the LSF
-  cv::Rect roi;                // the region actually analysed
+  cv::Rect roi;                     // the region actually analysed
 };
 
 // Slanted-edge (ISO 12233 e-SFR style) MTF of a linear greyscale image (CV_64FC1 or CV_32FC1).

@@ -24,13 +24,13 @@ sweep_axis parse_sweep_axis(const std::string& text);
 std::vector<double> sweep_values(const sweep_axis& a);
 
 struct sweep_params {
-  std::vector<sweep_axis> axes;   // one or two distinct keys; two make a grid
-  bool psf_route = false;         // false: render an edge chart and measure it
-  std::uint64_t spp = 64;         // edge route: samples per pixel
-  std::string chart;              // edge route: chart image; empty: the shipped slanted_edge.png
-  double roi_fraction = 0.6;      // edge route: central part of the source's image measured
+  std::vector<sweep_axis> axes;  // one or two distinct keys; two make a grid
+  bool psf_route = false;        // false: render an edge chart and measure it
+  std::uint64_t spp = 64;        // edge route: samples per pixel
+  std::string chart;             // edge route: chart image; empty: the shipped slanted_edge.png
+  double roi_fraction = 0.6;     // edge route: central part of the source's image measured
   std::uint64_t psf_samples = 100000;
-  int threads = 0;                // 0: all cores
+  int threads = 0;  // 0: all cores
 };
 
 struct sweep_point {
@@ -61,6 +61,5 @@ sweep_result run_sweep(const scene& s, const sweep_params& p, const sweep_progre
 // Header "floating_distance_mm,tilt_deg,mean_mtf_0_1,mtf50_lp_per_mm,r50_mm"; an MTF50 that was
 // not reached is an empty field.
 std::string sweep_csv(const sweep_result& r);
-
 
 }  // namespace airr
