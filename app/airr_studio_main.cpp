@@ -69,7 +69,8 @@ int main(int argc, char** argv) {
   options opt;
   CLI::App cli{"airr-studio: design AIRR optical systems interactively"};
   cli.add_option("scene", opt.scene_path, "Scene JSON file (default: the shipped default scene)");
-  cli.add_option("--set", opt.sets, "Override a scene value, e.g. retroreflector.tilt_deg=20");
+  cli.add_option("--set", opt.sets,
+                 "Override a scene value, e.g. retroreflectors.0.pose.pitch_deg=20 or floating_distance_mm=200");
   cli.add_option("--frames", opt.frames, "Run this many frames, then exit (scripted run)")
       ->check(CLI::Range(1, 1000000));
   cli.add_option("--screenshot", opt.screenshot, "After the scripted frames, save the window as PNG");
@@ -248,7 +249,7 @@ int main(int argc, char** argv) {
     // Latency benchmark: a new edit once the previous one's first image is on screen.
     if (opt.bench_edits > 0 && st.edit_time < 0 && frame > 5) {
       if (edits_done == opt.bench_edits) break;
-      st.doc.retroreflector.tilt_deg = (edits_done % 2) ? s.retroreflector.tilt_deg : s.retroreflector.tilt_deg + 2.0;
+      st.doc.sheet().pose.pitch_deg = (edits_done % 2) ? s.sheet().pose.pitch_deg : s.sheet().pose.pitch_deg + 2.0;
       ++edits_done;
     }
   }

@@ -74,9 +74,9 @@ double relative_rms(const std::vector<float>& a, const std::vector<float>& ref) 
 // rendered with many more samples (a different seed, so the two are independent).
 void time_to_noise_level(const airr::scene& base, double target) {
   airr::scene s = base;
-  s.retroreflector.model.type = airr::retro_model_type::sinc_shift;
-  s.retroreflector.model.preset = "rf-ay";
-  s.camera.width = s.camera.height = 64;
+  s.sheet().model.type = "sinc_shift";
+  airr::set_model_value(s.sheet().model, "preset", "rf-ay");
+  s.observer.width = s.observer.height = 64;
   const std::uint64_t reference_spp = 4096;
   airr::scene ref_scene = s;
   ref_scene.seed = s.seed + 1000;
@@ -152,7 +152,7 @@ void add_bench_command(CLI::App& app) {
     std::vector<double> latencies, first_images;
     airr::scene edited = s;
     for (int i = 0; i < opt->edits; ++i) {
-      edited.retroreflector.tilt_deg = (i % 2) ? s.retroreflector.tilt_deg : s.retroreflector.tilt_deg + 5.0;
+      edited.sheet().pose.pitch_deg = (i % 2) ? s.sheet().pose.pitch_deg : s.sheet().pose.pitch_deg + 5.0;
       const auto e0 = clock_type::now();
       const std::uint64_t gen = session.edit(edited);
       session.wait_for(gen, 0);  // the first image of the edit: the coarse preview

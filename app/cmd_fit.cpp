@@ -108,25 +108,23 @@ void run_synthesise(const options& opt) {
   // The MTF curves are measured as with 0.25 mm pixels (their aperture is in the curves).
   airr::scene setup;
   const std::string panel = fs::relative(fs::path(airr::asset_dir()) / "models/panel.gltf", fs::absolute(dir)).string();
-  setup.source.mesh = setup.half_mirror.mesh = setup.retroreflector.mesh = panel;
+  setup.source.mesh = setup.half_mirror.mesh = setup.sheet().mesh = panel;
   setup.source.image.clear();
   const int camera_pixels = 40;
   const double camera_mm = 0.4, pixel_mm = 0.25, square_mm = 10.0;
-  setup.camera.width = setup.camera.height = camera_pixels;
-  setup.camera.fov_deg = airr::degrees(2.0 * std::atan(0.5 * camera_pixels * camera_mm / setup.camera.distance_mm));
-  setup.retroreflector.model.reference_distance_mm = truth.reference_distance_mm;
+  setup.observer.width = setup.observer.height = camera_pixels;
+  setup.observer.fov_deg = airr::degrees(2.0 * std::atan(0.5 * camera_pixels * camera_mm / setup.observer.distance_mm));
   airr::save_scene(setup, (dir / "setup.json").string());
   setup = airr::load_scene((dir / "setup.json").string());
 
   const std::string preset_path = airr::resolve_preset_path(opt.preset, fs::current_path().string());
   auto truth_psf = [&](double tilt, double d, airr::scene& s) {
     s = setup;
-    s.retroreflector.tilt_deg = tilt;
-    s.floating_distance_mm = d;
-    s.retroreflector.model = {};
-    s.retroreflector.model.type = airr::retro_model_type::sinc_shift;
-    s.retroreflector.model.preset = fs::absolute(preset_path).string();
-    const auto model = airr::make_retro_model(s.retroreflector.model, s.base_dir);
+    s.sheet().pose.pitch_deg = tilt;
+    airr::set_floating_distance(s, d);
+    s.sheet().model = {.type = "sinc_shift", .values = {}};
+    airr::set_model_value(s.sheet().model, "preset", fs::absolute(preset_path).string());
+    const auto model = airr::make_retro_model(s.sheet().model, s.base_dir);
     return airr::sample_psf(s, *model, {.samples = samples, .seed = seed});
   };
   auto write_csv = [&](const airr::psf_samples& psf, const std::string& name) {

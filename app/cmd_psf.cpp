@@ -53,7 +53,7 @@ void add_psf_command(CLI::App& app) {
       ->check(CLI::Range(0.01, 1000.0));
   cmd->add_option("--points", opt->points, "Frequencies in the CSV, 0 .. max evenly spaced (default 101)")
       ->check(CLI::Range(2, 100000));
-  cmd->add_option("--set", opt->sets, "Override a scene value, e.g. retroreflector.model.preset=rf-ay");
+  cmd->add_option("--set", opt->sets, "Override a scene value, e.g. retroreflectors.0.model.preset=rf-ay");
   cmd->callback([opt] {
     std::vector<airr::scene_override> overrides;
     for (const auto& s : opt->sets) overrides.push_back(airr::parse_override(s));
@@ -73,8 +73,7 @@ void add_psf_command(CLI::App& app) {
     const double t_summary = seconds_since(t2);
 
     std::printf("retroreflector: %s, %.6g mm from the aerial image, chief-ray incidence %.4g deg\n",
-                airr::retro_model_type_names[static_cast<int>(s.retroreflector.model.type)], psf.rr_distance_mm,
-                psf.incidence_deg);
+                s.sheet().model.type.c_str(), psf.rr_distance_mm, psf.incidence_deg);
     std::printf("50%%-energy radius: %.4f mm\n", r50);
     if (pixel_mm > 0)
       std::printf("pixel aperture: %.6g mm on the aerial-image plane (included; --no-pixel for the optics alone)\n",
@@ -109,8 +108,8 @@ void add_psf_command(CLI::App& app) {
       airr::analysis::plot_params pp;
       char title[128];
       std::snprintf(title, sizeof title, "model PSF MTF (%s, D %g mm, tilt %g deg, %llu samples)",
-                    airr::retro_model_type_names[static_cast<int>(s.retroreflector.model.type)], s.floating_distance_mm,
-                    s.retroreflector.tilt_deg, static_cast<unsigned long long>(psf.launched));
+                    s.sheet().model.type.c_str(), airr::floating_distance(s), s.sheet().pose.pitch_deg,
+                    static_cast<unsigned long long>(psf.launched));
       pp.title = title;
       pp.y_title = "MTF (unitless)";
       pp.x_min = 0.0;

@@ -1,7 +1,9 @@
 // airr render SCENE -o OUT.exr|OUT.png [--spp N] [--seed S] [--set key=value ...]
 #include <chrono>
+#include <cmath>
 #include <thread>
 
+#include "airr/optics/layout.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "airr/render/render_metadata.hpp"
 #include "airr/render/render_session.hpp"
@@ -23,7 +25,8 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("-o,--output", opt->out, "Output image (.exr or .png)")->required();
   cmd->add_option("--spp", opt->spp, "Samples per pixel")->check(CLI::Range(1, 1 << 24));
   cmd->add_option("--seed", opt->seed, "Random seed (overrides the scene's)");
-  cmd->add_option("--set", opt->sets, "Override a scene value, e.g. retroreflector.tilt_deg=20");
+  cmd->add_option("--set", opt->sets,
+                  "Override a scene value, e.g. retroreflectors.0.pose.pitch_deg=20 or floating_distance_mm=200");
   cmd->add_option("--exposure", opt->exposure,
                   "PNG scale factor; default maps a white source through a lossless retroreflector to 1");
   cmd->add_option("--threads", opt->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
@@ -46,5 +49,14 @@ void add_render_command(CLI::App& app) {
     airr::write_image(opt->out, snap.image(), airr::render_metadata(s, snap, exposure), exposure);
     std::fprintf(stderr, "wrote %s (%dx%d, %llu spp, %.6g mm/pixel)\n", opt->out.c_str(), snap.width, snap.height,
                  static_cast<unsigned long long>(snap.spp), snap.mm_per_pixel);
+    // Rounding noise of the mirror image (1e-14 mm) printed as 0.
+    const auto tidy = [](double v) { return std::abs(v) < 1e-9 ? 0.0 : v; };
+    const glm::dvec3 aerial = airr::aerial_image_center(s);
+    const airr::pinhole_camera cam = airr::make_camera(s);
+    std::fprintf(stderr,
+                 "floating distance D %.6g mm; aerial image centred at (%.6g, %.6g, %.6g) mm; observer at (%.6g, %.6g, "
+                 "%.6g) mm, %s\n",
+                 airr::floating_distance(s), tidy(aerial.x), tidy(aerial.y), tidy(aerial.z), tidy(cam.position.x),
+                 tidy(cam.position.y), tidy(cam.position.z), cam.aperture_mm > 0 ? "thin lens" : "pinhole");
   });
 }

@@ -71,7 +71,7 @@ void add_sweep_command(CLI::App& app) {
       ->check(CLI::Range(100, 100000000));
   cmd->add_option("-o,--output", opt->csv, "CSV file to write");
   cmd->add_option("--plot", opt->plot, "PNG plot of mean MTF against the varied parameter");
-  cmd->add_option("--set", opt->sets, "Override a scene value, e.g. retroreflector.model.preset=rf-ay");
+  cmd->add_option("--set", opt->sets, "Override a scene value, e.g. retroreflectors.0.model.preset=rf-ay");
   cmd->add_option("--threads", opt->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
   cmd->callback([opt] {
     airr::sweep_params p;

@@ -16,9 +16,9 @@ int main(int argc, char** argv) {
   const int edits = argc > 1 ? std::atoi(argv[1]) : 10000;
   scene base;
   const std::string panel = asset_dir() + "/models/panel.gltf";
-  base.source.mesh = base.half_mirror.mesh = base.retroreflector.mesh = panel;
+  base.source.mesh = base.half_mirror.mesh = base.sheet().mesh = panel;
   base.source.width_mm = base.source.height_mm = 20;
-  base.camera.width = base.camera.height = 24;
+  base.observer.width = base.observer.height = 24;
 
   render_session session(base, {.threads = 2, .target_spp = 1 << 20, .max_wave_spp = 4});
   std::atomic<bool> done{false};
@@ -35,14 +35,14 @@ int main(int argc, char** argv) {
   scene last = base;
   for (int i = 0; i < edits; ++i) {
     scene s = base;
-    s.retroreflector.tilt_deg = 40 * rng.next_double();
-    s.floating_distance_mm = 150 + 150 * rng.next_double();
-    s.source.offset_mm[0] = 10 * (rng.next_double() - 0.5);
+    s.sheet().pose.pitch_deg = 40 * rng.next_double();
+    airr::set_floating_distance(s, 150 + 150 * rng.next_double());
+    s.source.pose.center_mm[0] = 10 * (rng.next_double() - 0.5);
     s.half_mirror.reflectance = 0.2 + 0.5 * rng.next_double();
     s.half_mirror.transmittance = 1.0 - s.half_mirror.reflectance;
     if (rng.next_double() < 0.3) {
-      s.retroreflector.model.type = retro_model_type::sinc_shift;
-      s.retroreflector.model.a_per_mm = 1 + 5 * rng.next_double();
+      s.sheet().model.type = "sinc_shift";
+      airr::set_model_value(s.sheet().model, "a_per_mm", 1 + 5 * rng.next_double());
     }
     session.edit(s);
     last = s;

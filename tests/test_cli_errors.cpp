@@ -45,16 +45,16 @@ TEST(CliErrors, MalformedJson) {
 
 TEST(CliErrors, UnknownKey) {
   test::temp_dir dir;
-  const auto path = scene_file(dir, [](nlohmann::json& j) { j["camera"]["zoom"] = 2; });
+  const auto path = scene_file(dir, [](nlohmann::json& j) { j["observer"]["zoom"] = 2; });
   expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png")),
-                        {path, "camera.zoom", "unknown key"});
+                        {path, "observer.zoom", "unknown key"});
 }
 
 TEST(CliErrors, MissingGltf) {
   test::temp_dir dir;
-  const auto path = scene_file(dir, [](nlohmann::json& j) { j["retroreflector"]["mesh"] = "gone.gltf"; });
+  const auto path = scene_file(dir, [](nlohmann::json& j) { j["retroreflectors"][0]["mesh"] = "gone.gltf"; });
   expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png")),
-                        {path, "retroreflector.mesh", "gone.gltf"});
+                        {path, "retroreflectors[0].mesh", "gone.gltf"});
 }
 
 TEST(CliErrors, MalformedGltf) {
@@ -96,8 +96,8 @@ TEST(CliErrors, NegativeSize) {
 TEST(CliErrors, ResolutionAboveCap) {
   test::temp_dir dir;
   const auto path = scene_file(dir, [](nlohmann::json&) {});
-  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png") + " --set camera.height=1000000"),
-                        {"camera.height", "must be in"});
+  expect_one_line_error(test::run_cli("render " + path + " -o " + dir.file("o.png") + " --set observer.height=1000000"),
+                        {"observer.height", "must be in"});
 }
 
 TEST(CliErrors, MissingSceneFile) {
@@ -109,20 +109,19 @@ TEST(CliErrors, MissingSceneFile) {
 TEST(CliRender, WritesImageWithMetadata) {
   test::temp_dir dir;
   const auto path = scene_file(dir, [](nlohmann::json& j) {
-    j["camera"]["width"] = 48;
-    j["camera"]["height"] = 40;
+    j["observer"]["width"] = 48;
+    j["observer"]["height"] = 40;
   });
   for (const std::string ext : {".exr", ".png"}) {
     const std::string out = dir.file("render" + ext);
-    const auto r =
-        test::run_cli("render " + path + " -o " + out + " --spp 4 --seed 9 --set retroreflector.tilt_deg=10");
+    const auto r = test::run_cli("render " + path + " -o " + out + " --spp 4 --seed 9 --set tilt_deg=10");
     ASSERT_EQ(r.exit_code, 0) << r.out;
     const image_metadata meta = read_image_metadata(out);
     EXPECT_EQ(meta.at("airr:spp"), "4");
     EXPECT_EQ(meta.at("airr:seed"), "9");
     const scene layout = scene_from_json(nlohmann::json::parse(meta.at("airr:layout")), out);
-    EXPECT_EQ(layout.retroreflector.tilt_deg, 10);
-    EXPECT_EQ(layout.camera.width, 48);
+    EXPECT_EQ(layout.sheet().pose.pitch_deg, 10);
+    EXPECT_EQ(layout.observer.width, 48);
     EXPECT_NEAR(std::stod(meta.at("airr:mm_per_pixel")), 2 * 300 * std::tan(7 * M_PI / 180) / 40, 1e-12);
     const image_rgb img = load_image(out).pixels;
     EXPECT_EQ(img.width, 48);
@@ -133,6 +132,6 @@ TEST(CliRender, WritesImageWithMetadata) {
 TEST(CliRender, DefaultSceneRenders) {
   test::temp_dir dir;
   const auto r = test::run_cli("render " + airr::default_scene_path() + " -o " + dir.file("d.exr") +
-                               " --spp 1 --set camera.width=32 --set camera.height=32");
+                               " --spp 1 --set observer.width=32 --set observer.height=32");
   EXPECT_EQ(r.exit_code, 0) << r.out;
 }

@@ -18,8 +18,8 @@ namespace {
 
 scene preset_scene() {
   scene s = test::uniform_source_scene(50, 256);
-  s.retroreflector.model.type = retro_model_type::sinc_shift;
-  s.retroreflector.model.preset = "rf-ay";
+  s.sheet().model.type = "sinc_shift";
+  airr::set_model_value(s.sheet().model, "preset", "rf-ay");
   return s;
 }
 

@@ -128,23 +128,23 @@ TEST(SheetFit, RenderedMeasurementsFitBack) {
   const std::uint64_t edge_spp = 256, white_spp = 32;
   auto fov_for = [&](int rows) { return degrees(2.0 * std::atan(0.5 * rows * pixel_mm / 300.0)); };
   scene setup = test::uniform_source_scene(50.0, size);
-  setup.camera.fov_deg = fov_for(size);
+  setup.observer.fov_deg = fov_for(size);
   save_scene(setup, dir.file("setup.json"));
   ASSERT_NEAR(make_camera(setup).mm_per_pixel, pixel_mm, 1e-9);
 
   scene truth_scene = setup;
-  truth_scene.retroreflector.model.type = retro_model_type::sinc_shift;
-  truth_scene.retroreflector.model.preset = dir.file("truth.json");
+  truth_scene.sheet().model.type = "sinc_shift";
+  airr::set_model_value(truth_scene.sheet().model, "preset", dir.file("truth.json"));
 
   std::uint64_t noise_seed = 1000;
   sequential_renderer edges(edge_spp), whites(white_spp);
   auto render_edge = [&](double tilt, double d, const std::string& name) {
     scene s = truth_scene;
     s.source.image = chart;
-    s.camera.height = edge_rows;
-    s.camera.fov_deg = fov_for(edge_rows);
-    s.retroreflector.tilt_deg = tilt;
-    s.floating_distance_mm = d;
+    s.observer.height = edge_rows;
+    s.observer.fov_deg = fov_for(edge_rows);
+    s.sheet().pose.pitch_deg = tilt;
+    airr::set_floating_distance(s, d);
     const render_snapshot snap = edges.render(s);
     const double contrast = analysis::slanted_edge_mtf(luminance_of(snap)).esf_contrast;
     write_image(dir.file(name), noisy(snap, contrast / 50.0, ++noise_seed), render_metadata(s, snap, 1.0));
@@ -161,7 +161,7 @@ TEST(SheetFit, RenderedMeasurementsFitBack) {
     // The white square: a 10 mm uniform source in a dark surround.
     scene s = truth_scene;
     s.source.width_mm = s.source.height_mm = square_mm;
-    s.retroreflector.tilt_deg = t;
+    s.sheet().pose.pitch_deg = t;
     const render_snapshot snap = whites.render(s);
     const double white = s.source.intensity * 0.25 * 0.25;  // R T mu
     const std::string white_name = "white_" + two_digits(t) + ".exr";
@@ -206,8 +206,8 @@ TEST(SheetFit, RenderedMeasurementsFitBack) {
   // The written preset drives the sinc-shift model.
   save_preset(r.preset, dir.file("fitted.json"));
   retro_model_params m;
-  m.type = retro_model_type::sinc_shift;
-  m.preset = dir.file("fitted.json");
+  m.type = "sinc_shift";
+  set_model_value(m, "preset", dir.file("fitted.json"));
   const auto model = make_retro_model(m);
   const auto* sinc = dynamic_cast<const sinc_shift_retro*>(model.get());
   ASSERT_NE(sinc, nullptr);
@@ -254,9 +254,9 @@ TEST(SheetFit, RfAyFitsBackToTable2) {
 
 TEST(SheetFit, MeasuredLikeMtfWithoutWindowIsPsfMtf) {
   scene s = test::uniform_source_scene(50.0);
-  s.retroreflector.model.type = retro_model_type::sinc_shift;
-  s.retroreflector.model.preset = "rf-an";
-  const auto model = make_retro_model(s.retroreflector.model);
+  s.sheet().model.type = "sinc_shift";
+  airr::set_model_value(s.sheet().model, "preset", "rf-an");
+  const auto model = make_retro_model(s.sheet().model);
   const psf_samples psf = sample_psf(s, *model, {.samples = 5000, .seed = 3});
   const analysis::psf_mtf_params params{.max_lp_per_mm = 1.5, .points = 31, .pixel_mm = 0.2};
   const auto expected = analysis::psf_mtf(psf, params);
@@ -271,8 +271,8 @@ TEST(SheetFit, MeasuredLikeMtfWithoutWindowIsPsfMtf) {
 TEST(SheetFit, WhiteSquareImageKeepsTheLight) {
   // An ideal retroreflector: the square's image is the square itself, R T mu x intensity bright.
   scene s = test::uniform_source_scene(50.0, 64);
-  s.retroreflector.model.mu = 0.5;
-  const auto model = make_retro_model(s.retroreflector.model);
+  airr::set_model_value(s.sheet().model, "mu", 0.5);
+  const auto model = make_retro_model(s.sheet().model);
   const psf_samples psf = sample_psf(s, *model, {.samples = 1000, .seed = 1});
   const cv::Mat img = analysis::white_square_image(s, psf, 10.0, 10.0);
   const double mm = make_camera(s).mm_per_pixel, level = s.source.intensity * 0.25 * 0.5;

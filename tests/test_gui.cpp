@@ -85,8 +85,8 @@ TEST(Gui, ScriptedRunShowsTheAerialImageAndPlots) {
   const std::string shot = dir.file("studio.png");
   const std::string cmd = "XDG_CONFIG_HOME=" + dir.file("config") + " xvfb-run -a -s '-screen 0 1600x1000x24' " +
                           std::string(AIRR_STUDIO) + " " + default_scene_path() +
-                          " --set retroreflector.tilt_deg=15 --set floating_distance_mm=200 --frames 20 --screenshot " +
-                          shot + " > " + dir.file("log.txt") + " 2>&1";
+                          " --set tilt_deg=15 --set floating_distance_mm=200 --frames 20 --screenshot " + shot + " > " +
+                          dir.file("log.txt") + " 2>&1";
   const int status = std::system(cmd.c_str());
   std::ifstream log(dir.file("log.txt"));
   const std::string log_text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());

@@ -22,10 +22,10 @@ temp_dir::~temp_dir() {
 scene uniform_source_scene(double source_mm, int resolution) {
   scene s;
   const std::string panel = airr::asset_dir() + "/models/panel.gltf";
-  s.source.mesh = s.half_mirror.mesh = s.retroreflector.mesh = panel;
+  s.source.mesh = s.half_mirror.mesh = s.sheet().mesh = panel;
   s.source.image.clear();
   s.source.width_mm = s.source.height_mm = source_mm;
-  s.camera.width = s.camera.height = resolution;
+  s.observer.width = s.observer.height = resolution;
   return s;
 }
 

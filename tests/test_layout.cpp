@@ -10,7 +10,7 @@ using namespace airr;
 TEST(Layout, AerialImageIsTheMirrorImageAtPlusD) {
   for (double d : {110.0, 150.0, 300.0}) {
     scene s;
-    s.floating_distance_mm = d;
+    airr::set_floating_distance(s, d);
     const glm::dvec3 a = aerial_image_center(s);
     EXPECT_NEAR(a.x, 0, 1e-12);
     EXPECT_NEAR(a.y, 0, 1e-12);
@@ -20,12 +20,12 @@ TEST(Layout, AerialImageIsTheMirrorImageAtPlusD) {
 
 TEST(Layout, CameraLooksAtTheAerialImageFromDPlus300) {
   scene s;
-  s.floating_distance_mm = 225;
+  airr::set_floating_distance(s, 225);
   const pinhole_camera c = make_camera(s);
   EXPECT_NEAR(c.position.z, 525, 1e-12);
   const glm::dvec2 p = camera_project(c, {0, 0, 225});
-  EXPECT_NEAR(p.x, s.camera.width / 2.0, 1e-9);
-  EXPECT_NEAR(p.y, s.camera.height / 2.0, 1e-9);
+  EXPECT_NEAR(p.x, s.observer.width / 2.0, 1e-9);
+  EXPECT_NEAR(p.y, s.observer.height / 2.0, 1e-9);
   // Projection inverts the ray direction of a pixel position.
   const glm::dvec3 d = camera_direction(c, 10.25, 200.5);
   const glm::dvec2 back = camera_project(c, c.position + 123.0 * d);
@@ -37,7 +37,7 @@ TEST(Layout, CameraLooksAtTheAerialImageFromDPlus300) {
 
 TEST(Layout, TiltTurnsTheSheetNormalUpwards) {
   scene s;
-  s.retroreflector.tilt_deg = 30;
+  s.sheet().pose.pitch_deg = 30;
   const part_frame f = retroreflector_frame(s);
   EXPECT_NEAR(f.n.y, 0.5, 1e-12);
   EXPECT_NEAR(f.n.z, std::sqrt(3.0) / 2, 1e-12);
@@ -48,20 +48,20 @@ TEST(Layout, TiltTurnsTheSheetNormalUpwards) {
 TEST(Layout, IntersectingPartsAreALayoutError) {
   scene s;
   EXPECT_NO_THROW(check_layout(s, "x"));
-  s.retroreflector.distance_mm = 50;  // inside the mirror's reach (its top edge is at z = -106)
+  s.sheet().pose.center_mm[2] = -50;  // inside the mirror's reach (its top edge is at z = -106)
   try {
     check_layout(s, "x.json");
     FAIL() << "no error";
   } catch (const input_error& e) {
-    EXPECT_STREQ(e.what(), "x.json: layout: retroreflector and half mirror intersect");
+    EXPECT_STREQ(e.what(), "x.json: retroreflectors[0]: layout: the half mirror and the retroreflector intersect");
   }
   s = scene{};
-  s.floating_distance_mm = 90;  // the mirror at y = -90 is at z = 90, clear of the source
+  airr::set_floating_distance(s, 90);  // the mirror at y = -90 is at z = 90, clear of the source
   EXPECT_NO_THROW(check_layout(s, "x"));
-  s.floating_distance_mm = 20;  // the mirror at y = -20 is at z = 20, inside the source's +-25 mm
+  airr::set_floating_distance(s, 20);  // the mirror at y = -20 is at z = 20, inside the source's +-25 mm
   EXPECT_THROW(check_layout(s, "x"), input_error);
   s = scene{};
-  s.retroreflector.tilt_deg = 45;  // leaning away: still clear
+  s.sheet().pose.pitch_deg = 45;  // leaning away: still clear
   EXPECT_NO_THROW(check_layout(s, "x"));
 }
 

@@ -30,9 +30,9 @@ TEST(PresetsRender, BrightnessFallsWithTiltAsMuDoes) {
       // A large source keeps the sinc^2 tail's loss small (about 1 / (pi a R tan(delta_edge)));
       // centre pixels see incidence angles within 0.2 deg of the tilt.
       scene s = test::uniform_source_scene(100.0, 64);
-      s.retroreflector.tilt_deg = preset.theta_deg[i];
-      s.retroreflector.model.type = retro_model_type::sinc_shift;
-      s.retroreflector.model.preset = name;
+      s.sheet().pose.pitch_deg = preset.theta_deg[i];
+      s.sheet().model.type = "sinc_shift";
+      airr::set_model_value(s.sheet().model, "preset", name);
       const double l = centre_radiance(test::render_to(s, 32), 3);
       const double expected = s.source.intensity * 0.25 * preset.mu[i];
       EXPECT_NEAR(l, expected, 0.03 * expected) << name << " tilt " << preset.theta_deg[i];

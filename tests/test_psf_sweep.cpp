@@ -60,18 +60,18 @@ scene two_route_scene(const two_route_case& c) {
   constexpr double pixel_mm = 0.25;
   scene s = test::uniform_source_scene(50.0);
   s.source.image = fine_edge_chart();
-  s.camera.width = 160;
-  s.camera.height = 64;
-  s.camera.fov_deg =
-      2.0 * std::atan(0.5 * s.camera.height * pixel_mm / s.camera.distance_mm) * 180.0 / std::numbers::pi;
-  s.floating_distance_mm = c.floating_distance_mm;
+  s.observer.width = 160;
+  s.observer.height = 64;
+  s.observer.fov_deg =
+      2.0 * std::atan(0.5 * s.observer.height * pixel_mm / s.observer.distance_mm) * 180.0 / std::numbers::pi;
+  airr::set_floating_distance(s, c.floating_distance_mm);
   if (c.preset) {
-    s.retroreflector.model.type = retro_model_type::sinc_shift;
-    s.retroreflector.model.preset = c.preset;
+    s.sheet().model.type = "sinc_shift";
+    airr::set_model_value(s.sheet().model, "preset", c.preset);
     // mu only scales brightness, but RF-Ay's falls 12% from 0 to 5 degrees: across the frame that
     // is a brightness gradient the edge analysis reads as a broad part of the line spread (+0.008
     // in mean MTF). Holding mu at its 0-degree value leaves blur as the only difference.
-    s.retroreflector.model.mu = load_preset(c.preset).mu.front();
+    airr::set_model_value(s.sheet().model, "mu", load_preset(c.preset).mu.front());
   }
   return s;
 }
@@ -129,7 +129,7 @@ std::string read_file(const std::string& path) {
 }
 
 std::string preset_sets(const char* preset) {
-  return std::string(" --set retroreflector.model.type=sinc_shift --set retroreflector.model.preset=") + preset;
+  return std::string(" --set retroreflectors.0.model.type=sinc_shift --set retroreflectors.0.model.preset=") + preset;
 }
 
 TEST(Sweep, SlopeIsNegativeForThePresetsAndTheCsvHasOneRowPerPoint) {
@@ -184,11 +184,11 @@ TEST(Sweep, GridOfDistanceAndTiltHasEveryPoint) {
 // The edge route renders the chart at each point; blur grows with D, so mean MTF falls.
 TEST(Sweep, EdgeRouteMeanMtfFallsWithDistance) {
   scene s = test::uniform_source_scene(50.0);
-  s.camera.width = 160;
-  s.camera.height = 64;
-  s.camera.fov_deg = 2.0 * std::atan(0.5 * 64 * 0.25 / s.camera.distance_mm) * 180.0 / std::numbers::pi;
-  s.retroreflector.model.type = retro_model_type::sinc_shift;
-  s.retroreflector.model.preset = "rf-an";
+  s.observer.width = 160;
+  s.observer.height = 64;
+  s.observer.fov_deg = 2.0 * std::atan(0.5 * 64 * 0.25 / s.observer.distance_mm) * 180.0 / std::numbers::pi;
+  s.sheet().model.type = "sinc_shift";
+  airr::set_model_value(s.sheet().model, "preset", "rf-an");
   sweep_params p;
   p.axes = {parse_sweep_axis("floating_distance=150:300:150")};
   p.spp = 64;

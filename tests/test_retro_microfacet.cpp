@@ -9,9 +9,8 @@ using namespace airr::test;
 
 namespace {
 
-retro_model_params smooth_params(double alpha_internal) {
-  retro_model_params p;
-  p.type = retro_model_type::microfacet;
+microfacet_params smooth_params(double alpha_internal) {
+  microfacet_params p;
   p.alpha_surface = 0;
   p.alpha_internal = alpha_internal;
   return p;
@@ -66,7 +65,7 @@ branch_energy analytic_smooth(const glm::dvec3& wi, double eta, double internal_
 TEST(MicrofacetRetro, EveryWeightIsAtMostOneAndTheMeanAtMostOne) {
   for (double alpha_surface : {0.0, 0.3}) {
     for (double alpha_internal : {0.0005, 0.3}) {
-      retro_model_params params = smooth_params(alpha_internal);
+      microfacet_params params = smooth_params(alpha_internal);
       params.alpha_surface = alpha_surface;
       const microfacet_retro model(params);
       pcg32 rng(3, 5);
@@ -96,7 +95,7 @@ TEST(MicrofacetRetro, EveryWeightIsAtMostOneAndTheMeanAtMostOne) {
 }
 
 TEST(MicrofacetRetro, MuScalesTheWeight) {
-  retro_model_params params = smooth_params(0.0005);
+  microfacet_params params = smooth_params(0.0005);
   params.mu = 0.25;
   const microfacet_retro scaled(params);
   const microfacet_retro plain(smooth_params(0.0005));
@@ -156,7 +155,7 @@ TEST(MicrofacetRetro, SmoothSurfaceReflectsTheFresnelFraction) {
 
 TEST(MicrofacetRetro, RoughSurfaceReflectionMatchesQuadrature) {
   const double alpha = 0.2, eta = 1.5046;
-  retro_model_params params = smooth_params(0.0005);
+  microfacet_params params = smooth_params(0.0005);
   params.alpha_surface = alpha;
   const microfacet_retro model(params);
   for (double theta : {0.0, 30.0, 60.0, 80.0}) {
@@ -174,7 +173,7 @@ TEST(MicrofacetRetro, RoughSurfaceReflectionMatchesQuadrature) {
 }
 
 TEST(MicrofacetRetro, BranchEnergiesMatchTheAnalyticValues) {
-  const retro_model_params params = smooth_params(0.0005);
+  const microfacet_params params = smooth_params(0.0005);
   const microfacet_retro model(params);
   const int n = 400000;
   std::printf("microfacet retroreflector, alpha_surface 0, alpha_internal 0.0005, eta %.4f, R_int %.2f, %d samples\n",
@@ -198,7 +197,7 @@ TEST(MicrofacetRetro, BranchEnergiesMatchTheAnalyticValues) {
 }
 
 TEST(MicrofacetRetro, NormalIncidenceRetroFractionIsUOfZero) {
-  const retro_model_params params = smooth_params(0.0005);
+  const microfacet_params params = smooth_params(0.0005);
   const microfacet_retro model(params);
   pcg32 rng(61, 8);
   int retro = 0, refracted = 0;
@@ -267,7 +266,7 @@ double linearised_retro_spread(const glm::dvec3& wi, double eta, double alpha) {
 
 TEST(MicrofacetRetro, RetroSpreadMatchesLinearisedPropagation) {
   const double alpha = 0.01;
-  const retro_model_params params = smooth_params(alpha);
+  const microfacet_params params = smooth_params(alpha);
   const microfacet_retro model(params);
   for (const auto& [theta, phi] : {std::pair{0.0, 0.0}, {20.0, 10.0}, {35.0, 100.0}, {45.0, 250.0}}) {
     const glm::dvec3 wi = direction(theta, phi);
@@ -294,7 +293,7 @@ TEST(MicrofacetRetro, SteepIncidenceLosesThePrismOrientationThatFacesAway) {
   // Beyond an internal angle of 35.26 deg a cube face can turn away from the refracted ray; a prism
   // orientation with such a face cannot retroreflect, so the retro branch keeps (orientations with
   // all three faces towards the ray) / 2 of its samples.
-  const retro_model_params params = smooth_params(0.0005);
+  const microfacet_params params = smooth_params(0.0005);
   const microfacet_retro model(params);
   // Away from 30 mod 60 deg (ERA 0 there) and from the angles where a face is grazing.
   for (const auto& [theta, phi] :

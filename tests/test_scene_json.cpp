@@ -50,19 +50,32 @@ TEST(SceneJson, DefaultSceneRoundTripsExactly) {
 
 TEST(SceneJson, NonDefaultValuesRoundTripBitExactly) {
   scene s = test::uniform_source_scene(12.345678901234567);
-  s.floating_distance_mm = 0.1 + 0.2;  // not exactly representable in decimal
-  s.retroreflector.tilt_deg = 1.0 / 3.0;
+  set_floating_distance(s, 0.1 + 0.2 + 100);  // not exactly representable in decimal
+  s.sheet().pose.pitch_deg = 1.0 / 3.0;
+  s.sheet().pose.roll_deg = -17.25;
   s.seed = 18446744073709551615ull;
-  s.source.offset_mm = {1e-17, -2.5, 3.25};
-  s.retroreflector.model.type = retro_model_type::ideal;
+  s.source.pose.center_mm = {1e-17, -102.5, 3.25};
+  s.source.pose.yaw_deg = 2.0 / 3.0;
+  s.source.bezel_mm = 4.5;
+  s.half_mirror.pose.pitch_deg = 38.0;
+  s.retroreflectors.push_back(s.sheet());
+  s.retroreflectors[1].model = {.type = "microfacet", .values = {}};
+  set_model_value(s.retroreflectors[1].model, "internal_reflectance", 0.9);
+  s.retroreflectors[1].pose.center_mm = {0, 250, 0};
+  s.observer.placement = observer_placement::look_at;
+  s.observer.position_mm = {10, 20, 400};
+  s.observer.lens = observer_lens::thin_lens;
+  s.observer.focus_distance_mm = 1.0 / 7.0 + 300;
   const nlohmann::json j = scene_to_json(s);
   const scene back = scene_from_json(nlohmann::json::parse(j.dump()), "mem");
-  EXPECT_EQ(back.floating_distance_mm, s.floating_distance_mm);
-  EXPECT_EQ(back.retroreflector.tilt_deg, s.retroreflector.tilt_deg);
-  EXPECT_EQ(back.source.width_mm, s.source.width_mm);
-  EXPECT_EQ(back.seed, s.seed);
-  EXPECT_EQ(back.source.offset_mm, s.source.offset_mm);
+  EXPECT_TRUE(back == s);
+  EXPECT_EQ(back.retroreflectors[1].model, s.retroreflectors[1].model);
+  EXPECT_EQ(back.observer, s.observer);
   EXPECT_EQ(scene_to_json(back), j);
+  // Only the active model's fields are written.
+  EXPECT_TRUE(j["retroreflectors"][1]["model"].contains("internal_reflectance"));
+  EXPECT_FALSE(j["retroreflectors"][1]["model"].contains("preset"));
+  EXPECT_FALSE(j["retroreflectors"][0]["model"].contains("internal_reflectance"));
 }
 
 TEST(SceneJson, SaveIsAtomicAndLeavesNoTemporaryFiles) {
@@ -89,10 +102,16 @@ TEST(SceneJson, MalformedJsonNamesTheFile) {
 
 TEST(SceneJson, UnknownKeyNamesTheField) {
   test::temp_dir dir;
-  const auto path = write_scene(dir, [](nlohmann::json& j) { j["retroreflector"]["tilt"] = 5; });
+  const auto path = write_scene(dir, [](nlohmann::json& j) { j["retroreflectors"][0]["tilt"] = 5; });
   const std::string e = error_of([&] { load_scene(path); });
   EXPECT_NE(e.find(path), std::string::npos) << e;
-  EXPECT_NE(e.find("retroreflector.tilt: unknown key"), std::string::npos) << e;
+  EXPECT_NE(e.find("retroreflectors[0].tilt: unknown key"), std::string::npos) << e;
+  // A parameter of another model than the sheet's is unknown too.
+  const auto p2 = write_scene(dir, [](nlohmann::json& j) { j["retroreflectors"][0]["model"]["eta"] = 1.5; });
+  const std::string e2 = error_of([&] { load_scene(p2); });
+  EXPECT_NE(e2.find("retroreflectors[0].model.eta: unknown key (not a parameter of the ideal model)"),
+            std::string::npos)
+      << e2;
 }
 
 TEST(SceneJson, MissingGltfNamesFieldAndFile) {
@@ -121,9 +140,11 @@ TEST(SceneJson, NegativeSizeIsRejected) {
 TEST(SceneJson, NanFromOverrideIsRejected) {
   test::temp_dir dir;
   const auto path = write_scene(dir, [](nlohmann::json&) {});
-  const std::string e = error_of([&] { load_scene(path, {parse_override("retroreflector.tilt_deg=nan")}); });
-  EXPECT_NE(e.find("retroreflector.tilt_deg"), std::string::npos) << e;
+  const std::string e = error_of([&] { load_scene(path, {parse_override("retroreflectors.0.pose.pitch_deg=nan")}); });
+  EXPECT_NE(e.find("retroreflectors.0.pose.pitch_deg"), std::string::npos) << e;
   EXPECT_NE(e.find("finite"), std::string::npos) << e;
+  const std::string e2 = error_of([&] { load_scene(path, {parse_override("floating_distance_mm=nan")}); });
+  EXPECT_NE(e2.find("floating_distance_mm"), std::string::npos) << e2;
 }
 
 TEST(SceneJson, HugeNumberInFileIsRejected) {
@@ -136,12 +157,12 @@ TEST(SceneJson, HugeNumberInFileIsRejected) {
 
 TEST(SceneJson, ResolutionAboveCapIsRejected) {
   test::temp_dir dir;
-  const auto path = write_scene(dir, [](nlohmann::json& j) { j["camera"]["width"] = 100000; });
+  const auto path = write_scene(dir, [](nlohmann::json& j) { j["observer"]["width"] = 100000; });
   const std::string e = error_of([&] { load_scene(path); });
-  EXPECT_NE(e.find("camera.width: must be in"), std::string::npos) << e;
+  EXPECT_NE(e.find("observer.width: must be in"), std::string::npos) << e;
   const auto path2 = write_scene(dir, [](nlohmann::json& j) {
-    j["camera"]["width"] = 8192;
-    j["camera"]["height"] = 8192;
+    j["observer"]["width"] = 8192;
+    j["observer"]["height"] = 8192;
   });
   const std::string e2 = error_of([&] { load_scene(path2); });
   EXPECT_NE(e2.find("exceeds the cap"), std::string::npos) << e2;
@@ -149,12 +170,13 @@ TEST(SceneJson, ResolutionAboveCapIsRejected) {
 
 TEST(SceneJson, WrongTypesAndVersionsAreRejected) {
   test::temp_dir dir;
-  auto p = write_scene(dir, [](nlohmann::json& j) { j["camera"]["width"] = "wide"; });
-  EXPECT_NE(error_of([&] { load_scene(p); }).find("camera.width: must be an integer"), std::string::npos);
+  auto p = write_scene(dir, [](nlohmann::json& j) { j["observer"]["width"] = "wide"; });
+  EXPECT_NE(error_of([&] { load_scene(p); }).find("observer.width: must be an integer"), std::string::npos);
   p = write_scene(dir, [](nlohmann::json& j) { j["version"] = 99; });
   EXPECT_NE(error_of([&] { load_scene(p); }).find("version: unsupported version 99"), std::string::npos);
-  p = write_scene(dir, [](nlohmann::json& j) { j["retroreflector"]["model"]["type"] = "magic"; });
-  EXPECT_NE(error_of([&] { load_scene(p); }).find("unknown model 'magic'"), std::string::npos);
+  p = write_scene(dir, [](nlohmann::json& j) { j["retroreflectors"][0]["model"]["type"] = "magic"; });
+  EXPECT_NE(error_of([&] { load_scene(p); }).find("retroreflectors[0].model.type: unknown model 'magic'"),
+            std::string::npos);
   p = write_scene(dir, [](nlohmann::json& j) { j["half_mirror"]["reflectance"] = 0.8; });
   EXPECT_NE(error_of([&] { load_scene(p); }).find("must not exceed 1"), std::string::npos);
 }
@@ -164,12 +186,22 @@ TEST(SceneJson, OverridesReachFieldsTheFileOmits) {
   const std::string path = dir.file("minimal.json");
   const std::string panel = airr::asset_dir() + "/models/panel.gltf";
   std::ofstream(path) << R"({"source": {"mesh": ")" << panel << R"(", "image": ""}, "half_mirror": {"mesh": ")" << panel
-                      << R"("}, "retroreflector": {"mesh": ")" << panel << R"("}})";
-  const scene s =
-      load_scene(path, {parse_override("retroreflector.tilt_deg=20"), parse_override("floating_distance_mm=225")});
-  EXPECT_EQ(s.retroreflector.tilt_deg, 20);
-  EXPECT_EQ(s.floating_distance_mm, 225);
-  EXPECT_NE(error_of([&] { load_scene(path, {parse_override("retroreflector.tlt_deg=20")}); }).find("unknown key"),
+                      << R"("}, "retroreflectors": [{"mesh": ")" << panel << R"("}]})";
+  const scene s = load_scene(
+      path, {parse_override("retroreflectors.0.pose.pitch_deg=20"), parse_override("floating_distance_mm=225"),
+             parse_override("retroreflectors.0.model.type=sinc_shift"),
+             parse_override("retroreflectors.0.model.preset=rf-ay")});
+  EXPECT_EQ(s.sheet().pose.pitch_deg, 20);
+  EXPECT_NEAR(floating_distance(s), 225, 1e-12);
+  EXPECT_EQ(s.sheet().model.type, "sinc_shift");
+  EXPECT_EQ(read_model_values(s.sheet().model).text("preset"), "rf-ay");
+  EXPECT_EQ(load_scene(path, {parse_override("tilt_deg=12")}).sheet().pose.pitch_deg, 12);
+  EXPECT_NE(
+      error_of([&] { load_scene(path, {parse_override("retroreflectors.0.pose.ptch_deg=20")}); }).find("unknown key"),
+      std::string::npos);
+  EXPECT_NE(error_of([&] {
+              load_scene(path, {parse_override("retroreflectors.3.pose.pitch_deg=20")});
+            }).find("no element 'retroreflectors.3'"),
             std::string::npos);
   EXPECT_NE(error_of([] { parse_override("no-equals-sign"); }), "");
 }

@@ -10,7 +10,7 @@ using namespace airr;
 
 TEST(Session, OneAndTwoThreadsAreBitIdentical) {
   scene s = test::uniform_source_scene(20.0, 64);
-  s.retroreflector.tilt_deg = 10;
+  s.sheet().pose.pitch_deg = 10;
   const render_snapshot one = test::render_to(s, 8, 1);
   const render_snapshot two = test::render_to(s, 8, 2);
   ASSERT_EQ(one.spp, 8u);
@@ -25,8 +25,8 @@ TEST(Session, OneAndTwoThreadsAreBitIdentical) {
 TEST(Session, CancelMidWaveThenRestartMatchesAFreshRender) {
   scene a = test::uniform_source_scene(20.0, 64);
   scene b = a;
-  b.retroreflector.tilt_deg = 25;
-  b.floating_distance_mm = 200;
+  b.sheet().pose.pitch_deg = 25;
+  set_floating_distance(b, 200);
   const render_snapshot fresh = test::render_to(b, 12, 2);
 
   render_session session(a, {.threads = 2, .target_spp = 1 << 20, .max_wave_spp = 256});
@@ -67,7 +67,7 @@ TEST(Session, SnapshotsAreWholeWavesOfOneGeneration) {
   });
   for (int i = 0; i < 60; ++i) {
     scene e = a;
-    e.retroreflector.tilt_deg = i % 30;
+    e.sheet().pose.pitch_deg = i % 30;
     session.edit(e);
     std::this_thread::sleep_for(std::chrono::milliseconds(i % 7));
   }

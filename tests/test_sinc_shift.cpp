@@ -35,24 +35,24 @@ double sinc2_integral(double y0, double y1) {
 
 scene sinc_scene(double a, double c, double distance_mm = 150) {
   scene s = test::uniform_source_scene(20.0);
-  s.floating_distance_mm = distance_mm;
-  s.retroreflector.model.type = retro_model_type::sinc_shift;
-  s.retroreflector.model.a_per_mm = a;
-  s.retroreflector.model.c_mm = c;
+  airr::set_floating_distance(s, distance_mm);
+  s.sheet().model.type = "sinc_shift";
+  airr::set_model_value(s.sheet().model, "a_per_mm", a);
+  airr::set_model_value(s.sheet().model, "c_mm", c);
   return s;
 }
 
 scene preset_scene(const std::string& preset, double distance_mm, double tilt_deg) {
   scene s = test::uniform_source_scene(20.0);
-  s.floating_distance_mm = distance_mm;
-  s.retroreflector.tilt_deg = tilt_deg;
-  s.retroreflector.model.type = retro_model_type::sinc_shift;
-  s.retroreflector.model.preset = preset;
+  airr::set_floating_distance(s, distance_mm);
+  s.sheet().pose.pitch_deg = tilt_deg;
+  s.sheet().model.type = "sinc_shift";
+  airr::set_model_value(s.sheet().model, "preset", preset);
   return s;
 }
 
 double blur_r50(const scene& s, std::uint64_t samples = 200000) {
-  const auto model = make_retro_model(s.retroreflector.model);
+  const auto model = make_retro_model(s.sheet().model);
   return energy_radius(sample_psf(s, *model, {.samples = samples, .seed = 3}));
 }
 
@@ -187,7 +187,7 @@ TEST(SincShift, LobeBlurGrowsLinearlyWithDistanceAndAsOneOverA) {
     std::vector<double> l, r;
     for (double d = 150; d <= 300; d += 25) {
       const scene s = sinc_scene(a, 0.0, d);
-      const auto model = make_retro_model(s.retroreflector.model);
+      const auto model = make_retro_model(s.sheet().model);
       const psf_samples psf = sample_psf(s, *model, {.samples = 200000, .seed = 5});
       l.push_back(psf.rr_distance_mm);
       r.push_back(energy_radius(psf));
@@ -231,9 +231,9 @@ TEST(Presets, LoadByNameAndPath) {
 
 TEST(Presets, SceneOverridesApplyAtEveryAngle) {
   retro_model_params m;
-  m.type = retro_model_type::sinc_shift;
-  m.preset = "rf-ay";
-  m.mu = 0.5;
+  m.type = "sinc_shift";
+  set_model_value(m, "preset", "rf-ay");
+  set_model_value(m, "mu", 0.5);
   const sinc_shift_params p = resolve_sinc_shift_params(m, "");
   EXPECT_EQ(p.mu, std::vector<double>{0.5});
   EXPECT_EQ(p.a_per_mm.size(), 10u);

@@ -16,12 +16,17 @@ namespace {
 // shifted by k/8 pixel, each profile averaged over the rows inside the square.
 double left_edge_rise(scene s, std::uint64_t spp) {
   const double mm_per_px = make_camera(s).mm_per_pixel;
-  const double base_offset = s.source.offset_mm[0];
+  // The observer stays where it is while the display moves.
+  const glm::dvec3 eye = observer_position(s), target = observer_target(s);
+  s.observer.placement = observer_placement::look_at;
+  s.observer.position_mm = {eye.x, eye.y, eye.z};
+  s.observer.look_at_mm = {target.x, target.y, target.z};
+  const double base_offset = s.source.pose.center_mm[0];
   std::vector<std::pair<double, double>> esf;
   double plateau = 0;
   int plateau_n = 0;
   for (int k = 0; k < 8; ++k) {
-    s.source.offset_mm[0] = base_offset + k / 8.0 * mm_per_px;
+    s.source.pose.center_mm[0] = base_offset + k / 8.0 * mm_per_px;
     const render_snapshot snap = test::render_to(s, spp);
     const int w = snap.width, y_mid = snap.height / 2, half_rows = 3;
     for (int x = 0; x < w / 2; ++x) {
@@ -54,8 +59,8 @@ class MirrorImage : public ::testing::TestWithParam<std::tuple<double, double>> 
 TEST_P(MirrorImage, CentroidLandsOnTheProjectionOfZeroZeroD) {
   const auto [d, tilt] = GetParam();
   scene s = test::uniform_source_scene(8.0, 96);
-  s.floating_distance_mm = d;
-  s.retroreflector.tilt_deg = tilt;
+  airr::set_floating_distance(s, d);
+  s.sheet().pose.pitch_deg = tilt;
   const render_snapshot snap = test::render_to(s, 16);
   const test::centroid c = test::luminance_centroid(snap);
   const glm::dvec2 expected = camera_project(make_camera(s), {0, 0, d});
@@ -74,10 +79,13 @@ INSTANTIATE_TEST_SUITE_P(DistancesAndTilts, MirrorImage,
 TEST(MirrorImage, OffsetSourceMovesTheImageByItsMirror) {
   // A source moved +10 mm along z appears 10 mm lower (aerial y = -source z).
   scene s = test::uniform_source_scene(6.0, 96);
-  s.source.offset_mm = {5.0, 0.0, 10.0};
+  s.observer.placement = observer_placement::look_at;
+  s.observer.position_mm = {0, 0, 450};
+  s.observer.look_at_mm = {0, 0, 150};
+  s.source.pose.center_mm = {5.0, -150.0, 10.0};
   const render_snapshot snap = test::render_to(s, 8);
   const test::centroid c = test::luminance_centroid(snap);
-  const glm::dvec2 expected = camera_project(make_camera(s), {5.0, -10.0, s.floating_distance_mm});
+  const glm::dvec2 expected = camera_project(make_camera(s), {5.0, -10.0, 150.0});
   EXPECT_NEAR(c.x, expected.x, 0.5);
   EXPECT_NEAR(c.y, expected.y, 0.5);
 }
@@ -92,7 +100,7 @@ TEST_P(Energy, MeanRadianceIsSourceTimesRTMu) {
   scene s = test::uniform_source_scene(40.0, 96);
   s.half_mirror.reflectance = e.r;
   s.half_mirror.transmittance = e.t;
-  s.retroreflector.model.mu = e.mu;
+  airr::set_model_value(s.sheet().model, "mu", e.mu);
   s.source.intensity = 7.0;
   const render_snapshot snap = test::render_to(s, 256);
   // The central 40 x 40 pixels lie well inside the 40 mm square's image (about 52 px wide at 0.77 mm per pixel).

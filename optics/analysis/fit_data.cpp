@@ -11,6 +11,7 @@
 
 #include "airr/analysis/edge_file.hpp"
 #include "airr/analysis/image_read.hpp"
+#include "airr/optics/csv_table.hpp"
 #include "airr/optics/error.hpp"
 #include "airr/optics/files.hpp"
 #include "airr/optics/json_reader.hpp"
@@ -37,23 +38,11 @@ std::string resolve_file(json_reader& r, const std::string& dir, const std::stri
   return path;
 }
 
-std::vector<std::string> split_csv_line(const std::string& line) {
-  std::vector<std::string> out;
-  std::string field;
-  std::istringstream s(line);
-  while (std::getline(s, field, ',')) {
-    const auto a = field.find_first_not_of(" \t\r"), b = field.find_last_not_of(" \t\r");
-    out.push_back(a == std::string::npos ? "" : field.substr(a, b - a + 1));
-  }
-  if (!line.empty() && line.back() == ',') out.emplace_back();
-  return out;
-}
-
 // The scene a measurement was taken in: the setup at the entry's tilt and floating distance.
 void check_entry_layout(const scene& setup, double tilt_deg, double d_mm, const std::string& origin) {
   scene s = setup;
-  s.retroreflector.tilt_deg = tilt_deg;
-  s.floating_distance_mm = d_mm;
+  s.sheet().pose.pitch_deg = tilt_deg;
+  airr::set_floating_distance(s, d_mm);
   check_layout(s, origin);
 }
 
@@ -130,7 +119,7 @@ mtf_measurement read_measurement(const json& j, const fit_data& d, const std::st
   } else {
     m.tilt_deg = tilt_of(r);
   }
-  m.floating_distance_mm = distance_of(r, d.setup.floating_distance_mm, distance_series);
+  m.floating_distance_mm = distance_of(r, floating_distance(d.setup), distance_series);
   const bool csv = r.has("mtf_csv"), edge = r.has("edge_image");
   if (csv == edge)
     r.fail(r.field(csv ? "edge_image" : "mtf_csv"),
@@ -157,7 +146,7 @@ white_square read_white_square(const json& j, const fit_data& d, const std::stri
   white_square w;
   w.origin = d.fit_json + ": " + field;
   w.tilt_deg = tilt_of(r);
-  w.floating_distance_mm = distance_of(r, d.setup.floating_distance_mm, false);
+  w.floating_distance_mm = distance_of(r, floating_distance(d.setup), false);
   w.width_mm = d.setup.source.width_mm;
   w.height_mm = d.setup.source.height_mm;
   if (r.has("square_mm")) {
@@ -185,11 +174,11 @@ white_square read_white_square(const json& j, const fit_data& d, const std::stri
   } catch (const std::runtime_error& err) {
     r.fail(r.field("image"), err.what());
   }
-  if (img.luminance.cols != d.setup.camera.width || img.luminance.rows != d.setup.camera.height)
-    r.fail(r.field("image"), w.file + " is " + std::to_string(img.luminance.cols) + "x" +
-                                 std::to_string(img.luminance.rows) + ", but the setup scene's camera is " +
-                                 std::to_string(d.setup.camera.width) + "x" + std::to_string(d.setup.camera.height) +
-                                 " (white squares are framed by that camera)");
+  if (img.luminance.cols != d.setup.observer.width || img.luminance.rows != d.setup.observer.height)
+    r.fail(r.field("image"),
+           w.file + " is " + std::to_string(img.luminance.cols) + "x" + std::to_string(img.luminance.rows) +
+               ", but the setup scene's camera is " + std::to_string(d.setup.observer.width) + "x" +
+               std::to_string(d.setup.observer.height) + " (white squares are framed by that camera)");
   for (int y = 0; y < img.luminance.rows; ++y) {
     for (int x = 0; x < img.luminance.cols; ++x) {
       const double v = img.luminance.at<double>(y, x);
@@ -217,21 +206,8 @@ const json& array_of(json_reader& r, const std::string& key, bool required) {
 }  // namespace
 
 void read_mtf_csv(const std::string& path, mtf_measurement& m) {
-  const std::string text = read_text_file(path);
-  std::istringstream in(text);
-  std::string line;
-  int line_no = 0;
-  std::vector<std::string> header;
-  while (header.empty() && std::getline(in, line)) {
-    ++line_no;
-    if (line.find_first_not_of(" \t\r") != std::string::npos) header = split_csv_line(line);
-  }
-  if (header.empty()) throw input_error(path + ": empty CSV (expected the header cycles_per_pixel,lp_per_mm,mtf)");
-  auto column = [&](const char* name) -> int {
-    const auto it = std::find(header.begin(), header.end(), name);
-    return it == header.end() ? -1 : int(it - header.begin());
-  };
-  const int c_lp = column("lp_per_mm"), c_mtf = column("mtf"), c_cpp = column("cycles_per_pixel");
+  const csv_table t = read_csv_table(path);
+  const int c_lp = t.column("lp_per_mm"), c_mtf = t.column("mtf"), c_cpp = t.column("cycles_per_pixel");
   if (c_lp < 0)
     throw input_error(path +
                       ": no lp_per_mm column in the header (the `airr mtf` format is cycles_per_pixel,lp_per_mm,mtf)");
@@ -241,31 +217,15 @@ void read_mtf_csv(const std::string& path, mtf_measurement& m) {
   std::vector<double> cpp;
   m.lp_per_mm.clear();
   m.mtf.clear();
-  while (std::getline(in, line)) {
-    ++line_no;
-    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
-    const auto fields = split_csv_line(line);
-    const std::string where = path + ": line " + std::to_string(line_no);
-    if (fields.size() != header.size())
-      throw input_error(where + ": " + std::to_string(fields.size()) + " fields, the header has " +
-                        std::to_string(header.size()));
-    auto value = [&](int c) {
-      const std::string& t = fields[std::size_t(c)];
-      char* end = nullptr;
-      const double v = std::strtod(t.c_str(), &end);
-      if (t.empty() || end != t.c_str() + t.size())
-        throw input_error(where + ": " + header[std::size_t(c)] + ": '" + t + "' is not a number");
-      if (!std::isfinite(v))
-        throw input_error(where + ": " + header[std::size_t(c)] + ": '" + t + "' is not a finite number");
-      return v;
-    };
-    const double f = value(c_lp);
-    if (f < 0) throw input_error(where + ": lp_per_mm: negative frequency");
+  for (std::size_t i = 0; i < t.rows.size(); ++i) {
+    const auto& row = t.rows[i];
+    const double f = row[std::size_t(c_lp)];
+    if (f < 0) throw input_error(t.where(i) + ": lp_per_mm: negative frequency");
     if (!m.lp_per_mm.empty() && !(f > m.lp_per_mm.back()))
-      throw input_error(where + ": lp_per_mm: frequencies must ascend");
+      throw input_error(t.where(i) + ": lp_per_mm: frequencies must ascend");
     m.lp_per_mm.push_back(f);
-    m.mtf.push_back(value(c_mtf));
-    if (c_cpp >= 0) cpp.push_back(value(c_cpp));
+    m.mtf.push_back(row[std::size_t(c_mtf)]);
+    if (c_cpp >= 0) cpp.push_back(row[std::size_t(c_cpp)]);
   }
   if (m.lp_per_mm.size() < 2) throw input_error(path + ": needs at least 2 rows of data");
 

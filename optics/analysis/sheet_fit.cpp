@@ -15,6 +15,7 @@
 #include "airr/analysis/minimise.hpp"
 #include "airr/analysis/mtf_metrics.hpp"
 #include "airr/optics/error.hpp"
+#include "airr/optics/layout.hpp"
 #include "airr/optics/retro_model.hpp"
 #include "airr/optics/retro_sinc_shift.hpp"
 #include "airr/optics/scene_json.hpp"
@@ -23,11 +24,11 @@ namespace airr::analysis {
 
 namespace {
 
+// The setup's R when its sheet is a sinc-shift sheet; otherwise 300 mm, the R of every shipped preset.
 double reference_distance(const scene& setup) {
-  const auto& m = setup.retroreflector.model;
-  if (m.type == retro_model_type::sinc_shift && !m.preset.empty())
-    return resolve_sinc_shift_params(m, setup.base_dir).reference_distance_mm;
-  return m.reference_distance_mm.value_or(300.0);
+  const auto& m = setup.sheet().model;
+  if (m.type != "sinc_shift") return 300.0;
+  return resolve_sinc_shift_params(m, setup.base_dir).reference_distance_mm;
 }
 
 // A measured curve resampled on the grid the simulation is compared on.
@@ -119,7 +120,7 @@ class sheet_fitter {
 
   psf_samples psf(double tilt, double distance, double a, double c) {
     const scene s = fit_scene(d_.setup, tilt, distance, a, c, 1.0);
-    const auto model = make_retro_model(s.retroreflector.model, s.base_dir);
+    const auto model = make_retro_model(s.sheet().model, s.base_dir);
     psf_samples out = sample_psf(s, *model, {.samples = p_.psf_samples, .seed = p_.seed});
     ++simulations_;
     meter_.add(1);
@@ -211,15 +212,14 @@ class sheet_fitter {
 scene fit_scene(const scene& setup, double tilt_deg, double floating_distance_mm, double a_per_mm, double c_mm,
                 double mu) {
   scene s = setup;
-  s.retroreflector.tilt_deg = tilt_deg;
-  s.floating_distance_mm = floating_distance_mm;
-  auto& m = s.retroreflector.model;
-  m.reference_distance_mm = reference_distance(setup);
-  m.type = retro_model_type::sinc_shift;
-  m.preset.clear();
-  m.a_per_mm = a_per_mm;
-  m.c_mm = c_mm;
-  m.mu = mu;
+  s.sheet().pose.pitch_deg = tilt_deg;
+  airr::set_floating_distance(s, floating_distance_mm);
+  auto& m = s.sheet().model;
+  m = {.type = "sinc_shift", .values = {}};
+  set_model_value(m, "reference_distance_mm", reference_distance(setup));
+  set_model_value(m, "a_per_mm", a_per_mm);
+  set_model_value(m, "c_mm", c_mm);
+  set_model_value(m, "mu", mu);
   return s;
 }
 

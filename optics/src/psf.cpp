@@ -19,7 +19,7 @@ double psf_samples::brightness() const {
 }
 
 psf_samples sample_psf(const scene& s, const retro_model& model, const psf_params& p) {
-  return sample_psf(s, model, p, glm::dvec3(0, 0, s.floating_distance_mm));
+  return sample_psf(s, model, p, aerial_image_center(s));
 }
 
 psf_samples sample_psf(const scene& s, const retro_model& model, const psf_params& p, const glm::dvec3& aerial_point) {

@@ -153,15 +153,41 @@ double fresnel_dielectric(double cos_i, double eta) {
   return 0.5 * (rs * rs + rp * rp);
 }
 
-microfacet_retro::microfacet_retro(const retro_model_params& p)
+const retro_model_kind& microfacet_retro_kind() {
+  static const retro_model_kind kind = [] {
+    retro_model_kind k;
+    k.name = "microfacet";
+    k.help = "Prism sheet with rough aluminium-coated cube corners (Saito et al. 2024), the baseline model";
+    k.fields = {
+        number_field("mu", "", 0, 1, 1, "Weight of every retroreflected path"),
+        number_field("alpha_surface", "", 0, 1, 0, "Beckmann roughness of the front surface", 0.5),
+        number_field("alpha_internal", "", 0, 1, 0.0005, "Beckmann roughness of the cube faces", 0.05),
+        number_field("internal_reflectance", "", 0, 1, 0.83, "Reflectance of each aluminium-coated cube face"),
+        number_field("eta", "", 1, 3, 1.5046, "Refractive index of the prism sheet"),
+    };
+    k.make = [](const model_values& v, const std::string&) -> std::unique_ptr<retro_model> {
+      microfacet_params p;
+      p.alpha_surface = v.number("alpha_surface");
+      p.alpha_internal = v.number("alpha_internal");
+      p.internal_reflectance = v.number("internal_reflectance");
+      p.eta = v.number("eta");
+      p.mu = v.number("mu");
+      return std::make_unique<microfacet_retro>(p);
+    };
+    return k;
+  }();
+  return kind;
+}
+
+microfacet_retro::microfacet_retro(const microfacet_params& p)
     : alpha_surface_(p.alpha_surface),
       alpha_internal_(p.alpha_internal),
       internal_reflectance_(p.internal_reflectance),
       eta_(p.eta),
-      mu_(p.mu.value_or(1.0)) {
+      mu_(p.mu) {
   const auto check = [](const char* name, double v, double lo, double hi) {
     if (!(v >= lo && v <= hi))
-      throw input_error(std::string("retroreflector.model.") + name + ": " + std::to_string(v) + " is outside [" +
+      throw input_error(std::string("microfacet model: ") + name + ": " + std::to_string(v) + " is outside [" +
                         std::to_string(lo) + ", " + std::to_string(hi) + "]");
   };
   check("alpha_surface", alpha_surface_, 0, 1);

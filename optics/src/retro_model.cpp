@@ -1,46 +1,67 @@
 #include "airr/optics/retro_model.hpp"
 
-#include <map>
-#include <mutex>
-
 #include "airr/optics/error.hpp"
-#include "airr/optics/files.hpp"
 #include "airr/optics/retro_microfacet.hpp"
 #include "airr/optics/retro_sinc_shift.hpp"
-#include "airr/optics/scene.hpp"
 
 namespace airr {
-
-// Shift tables are shared between models built from the same file.
-static std::shared_ptr<const shift_table> cached_shift_table(const std::string& path) {
-  static std::mutex mutex;
-  static std::map<std::string, std::shared_ptr<const shift_table>> cache;
-  std::lock_guard lock(mutex);
-  auto& entry = cache[path];
-  if (!entry) entry = std::make_shared<const shift_table>(load_shift_table(path));
-  return entry;
-}
 
 std::optional<double> retro_model::pdf(const glm::dvec3&, const glm::dvec3&) const { return std::nullopt; }
 std::optional<double> retro_model::eval(const glm::dvec3&, const glm::dvec3&) const { return std::nullopt; }
 
-std::unique_ptr<retro_model> make_retro_model(const retro_model_params& p, const std::string& base_dir) {
-  switch (p.type) {
-    case retro_model_type::ideal:
-      return std::make_unique<ideal_retro>(p.mu.value_or(1.0));
-    case retro_model_type::sinc_shift: {
-      sinc_shift_params sp = resolve_sinc_shift_params(p, base_dir);
-      std::shared_ptr<const shift_table> shifts;
-      if (sp.c_mm > 0) {
-        shifts = cached_shift_table(p.shift_table.empty() ? default_shift_table_path()
-                                                          : resolve_path(p.shift_table, base_dir));
-      }
-      return std::make_unique<sinc_shift_retro>(std::move(sp), std::move(shifts));
-    }
-    case retro_model_type::microfacet:
-      return std::make_unique<microfacet_retro>(p);
+const retro_model_kind& ideal_retro_kind() {
+  static const retro_model_kind kind = [] {
+    retro_model_kind k;
+    k.name = "ideal";
+    k.help = "Sends light exactly back where it came from";
+    k.fields = {number_field("mu", "", 0, 1, 1, "Weight of every retroreflected path")};
+    k.make = [](const model_values& v, const std::string&) -> std::unique_ptr<retro_model> {
+      return std::make_unique<ideal_retro>(v.number("mu"));
+    };
+    return k;
+  }();
+  return kind;
+}
+
+// The registration: every model the scene file can name, in the order the designer lists them.
+const std::vector<const retro_model_kind*>& retro_model_kinds() {
+  static const std::vector<const retro_model_kind*> kinds = {&ideal_retro_kind(), &sinc_shift_retro_kind(),
+                                                             &microfacet_retro_kind()};
+  return kinds;
+}
+
+const retro_model_kind& find_retro_model_kind(const std::string& name, const std::string& where) {
+  std::string names;
+  for (const retro_model_kind* k : retro_model_kinds()) {
+    if (k->name == name) return *k;
+    names += (names.empty() ? "" : ", ") + k->name;
   }
-  throw input_error("retroreflector.model.type: unknown model");
+  throw input_error(where + ".type: unknown model '" + name + "' (" + names + ")");
+}
+
+retro_model_params with_model_type(const retro_model_params& p, const std::string& type) {
+  const retro_model_kind& kind = find_retro_model_kind(type);
+  retro_model_params out;
+  out.type = type;
+  for (const auto& [key, value] : p.values) {
+    if (find_field(kind.fields, key)) set_model_value(out, kind.fields, key, value);
+  }
+  return out;
+}
+
+void set_model_value(retro_model_params& p, const std::string& key, std::optional<param_value> value) {
+  set_model_value(p, find_retro_model_kind(p.type).fields, key, std::move(value));
+}
+
+model_values read_model_values(const retro_model_params& p, const std::string& where) {
+  return model_values(p, find_retro_model_kind(p.type, where).fields, where);
+}
+
+std::unique_ptr<retro_model> make_retro_model(const retro_model_params& p, const std::string& base_dir,
+                                              const std::string& where) {
+  const retro_model_kind& kind = find_retro_model_kind(p.type, where);
+  validate_model_values(p, kind.fields, where);
+  return kind.make(model_values(p, kind.fields, where), base_dir);
 }
 
 }  // namespace airr

@@ -4,28 +4,79 @@
 #include <cmath>
 
 #include "airr/optics/error.hpp"
+#include "airr/optics/files.hpp"
 #include "airr/optics/geometry.hpp"
 #include "airr/optics/sinc_lobe.hpp"
 
 namespace airr {
 
-sinc_shift_params resolve_sinc_shift_params(const retro_model_params& m, const std::string& base_dir) {
+sinc_shift_params resolve_sinc_shift_params(const model_values& v, const std::string& base_dir) {
   sinc_shift_params p;
-  if (!m.preset.empty()) {
-    const sheet_preset preset = load_preset(m.preset, base_dir);
+  const std::string preset_name = v.text("preset");
+  const auto a = v.optional_number("a_per_mm"), mu = v.optional_number("mu"), c = v.optional_number("c_mm"),
+             r = v.optional_number("reference_distance_mm");
+  if (!preset_name.empty()) {
+    const sheet_preset preset = load_preset(preset_name, base_dir);
     p.theta_deg = preset.theta_deg;
     p.a_per_mm = preset.a_per_mm;
     p.mu = preset.mu;
     p.c_mm = preset.c_mm;
     p.reference_distance_mm = preset.reference_distance_mm;
-  } else if (!m.a_per_mm) {
-    throw input_error("retroreflector.model.a_per_mm: needed by the sinc_shift model without a preset");
+  } else if (!a) {
+    v.fail("a_per_mm", "needed by the sinc_shift model without a preset");
   }
-  if (m.a_per_mm) p.a_per_mm = {*m.a_per_mm};
-  if (m.mu) p.mu = {*m.mu};
-  if (m.c_mm) p.c_mm = *m.c_mm;
-  if (m.reference_distance_mm) p.reference_distance_mm = *m.reference_distance_mm;
+  if (a) p.a_per_mm = {*a};
+  if (mu) p.mu = {*mu};
+  if (c) p.c_mm = *c;
+  if (r) p.reference_distance_mm = *r;
   return p;
+}
+
+sinc_shift_params resolve_sinc_shift_params(const retro_model_params& p, const std::string& base_dir) {
+  return resolve_sinc_shift_params(model_values(p, sinc_shift_retro_kind().fields, "model"), base_dir);
+}
+
+const retro_model_kind& sinc_shift_retro_kind() {
+  static const retro_model_kind kind = [] {
+    retro_model_kind k;
+    k.name = "sinc_shift";
+    k.help = "The paper's model: a sinc^2 angular spread and a corner-cube exit shift";
+    k.fields = {
+        text_field("preset", field_kind::preset,
+                   "A sheet preset: a name in assets/presets (rf-ay, rf-an) or a JSON file"),
+        optional_number_field("mu", "", 0, 1, false, "Reflectance weight; unset: the preset's mu(theta)"),
+        optional_number_field("a_per_mm", "1/mm", 0, 1000, true, "Spread parameter a; unset: the preset's a(theta)",
+                              20),
+        optional_number_field("c_mm", "mm", 0, 100, false, "Corner size c (0: no exit shift); unset: the preset's c",
+                              3),
+        optional_number_field("reference_distance_mm", "mm", 0, 1e5, true,
+                              "Reference distance R; unset: the preset's, else 300", 1000),
+        text_field("shift_table", field_kind::path, "Corner-cube shift table (JSON); empty: the shipped table"),
+    };
+    k.make = [](const model_values& v, const std::string& base_dir) -> std::unique_ptr<retro_model> {
+      sinc_shift_params sp = resolve_sinc_shift_params(v, base_dir);
+      std::shared_ptr<const shift_table> shifts;
+      if (sp.c_mm > 0) {
+        const std::string table = v.text("shift_table");
+        shifts = cached_shift_table(table.empty() ? default_shift_table_path() : resolve_path(table, base_dir));
+      }
+      return std::make_unique<sinc_shift_retro>(std::move(sp), std::move(shifts));
+    };
+    k.derived = [](const model_values& v, const std::string& key, const std::string& base_dir,
+                   double theta_deg) -> std::optional<double> {
+      try {
+        const sinc_shift_params p = resolve_sinc_shift_params(v, base_dir);
+        if (key == "a_per_mm") return interpolate_by_angle(p.theta_deg, p.a_per_mm, theta_deg);
+        if (key == "mu") return interpolate_by_angle(p.theta_deg, p.mu, theta_deg);
+        if (key == "c_mm") return p.c_mm;
+        if (key == "reference_distance_mm") return p.reference_distance_mm;
+      } catch (const std::exception&) {
+      }
+      return std::nullopt;
+    };
+    return k;
+  }();
+  return kind;
 }
 
 sinc_shift_retro::sinc_shift_retro(sinc_shift_params p, std::shared_ptr<const shift_table> shifts)

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 
@@ -11,6 +13,15 @@
 #include "airr/optics/json_reader.hpp"
 
 namespace airr {
+
+std::shared_ptr<const shift_table> cached_shift_table(const std::string& path) {
+  static std::mutex mutex;
+  static std::map<std::string, std::shared_ptr<const shift_table>> cache;
+  std::lock_guard lock(mutex);
+  auto& entry = cache[path];
+  if (!entry) entry = std::make_shared<const shift_table>(load_shift_table(path));
+  return entry;
+}
 
 namespace {
 

@@ -39,8 +39,7 @@ embree_mesh_scene::embree_mesh_scene(const embree_device& device, const triangle
 
 embree_mesh_scene::~embree_mesh_scene() { rtcReleaseScene(scene_); }
 
-embree_layout_scene::embree_layout_scene(const embree_device& device,
-                                         const std::array<std::string, part_count>& mesh_paths)
+embree_layout_scene::embree_layout_scene(const embree_device& device, const std::vector<std::string>& mesh_paths)
     : paths_(mesh_paths) {
   for (const auto& path : paths_) {
     if (!prototypes_.count(path)) {
@@ -49,7 +48,8 @@ embree_layout_scene::embree_layout_scene(const embree_device& device,
     }
   }
   top_ = rtcNewScene(device.get());
-  for (unsigned i = 0; i < part_count; ++i) {
+  instances_.resize(paths_.size());
+  for (unsigned i = 0; i < paths_.size(); ++i) {
     instances_[i] = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
     rtcSetGeometryInstancedScene(instances_[i], prototypes_.at(paths_[i])->get());
     rtcSetGeometryTimeStepCount(instances_[i], 1);
@@ -67,8 +67,8 @@ embree_layout_scene::~embree_layout_scene() {
   prototypes_.clear();
 }
 
-void embree_layout_scene::set_transforms(const std::array<glm::dmat4, part_count>& transforms) {
-  for (unsigned i = 0; i < part_count; ++i) {
+void embree_layout_scene::set_transforms(const std::vector<glm::dmat4>& transforms) {
+  for (unsigned i = 0; i < instances_.size() && i < transforms.size(); ++i) {
     const glm::mat4 m(transforms[i]);
     rtcSetGeometryTransform(instances_[i], 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, glm::value_ptr(m));
     rtcCommitGeometry(instances_[i]);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <utility>
 
 #include <sys/resource.h>
 #include <sys/syscall.h>
@@ -43,10 +44,10 @@ void render_session::stop() {
   if (worker_.joinable()) worker_.join();
 }
 
-std::uint64_t render_session::edit(const scene& s, std::shared_ptr<const retro_model> model) {
+std::uint64_t render_session::edit(const scene& s, retro_model_list models) {
   std::lock_guard lock(mutex_);
   pending_ = s;
-  pending_model_ = std::move(model);
+  pending_models_ = std::move(models);
   cancel_ = true;
   changed_.notify_all();
   return ++generation_;
@@ -181,14 +182,14 @@ void render_session::run() {
       if (stopping_) return;
       if (pending_) {
         const scene s = std::move(*pending_);
-        std::shared_ptr<const retro_model> model = std::move(pending_model_);
+        retro_model_list models = std::exchange(pending_models_, {});
         pending_.reset();
         gen = generation_;
         cancel_ = false;
         lock.unlock();
         std::string error;
         try {
-          build_tracer_scene(scene_, device_, s, std::move(model));
+          build_tracer_scene(scene_, device_, s, std::move(models));
         } catch (const std::exception& e) {
           error = e.what();
         }

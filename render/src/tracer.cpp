@@ -12,12 +12,10 @@ namespace airr {
 // Surfaces are infinitely thin; new rays start this far along to skip the surface they leave.
 static constexpr float ray_epsilon_mm = 1e-3f;
 
-void build_tracer_scene(tracer_scene& ts, const embree_device& device, const scene& s,
-                        std::shared_ptr<const retro_model> model) {
+void build_tracer_scene(tracer_scene& ts, const embree_device& device, const scene& s, retro_model_list models) {
   // Everything that can fail is built first, so a bad edit leaves the previous state intact.
-  const std::array<std::string, part_count> meshes = {resolve_scene_path(s, s.source.mesh),
-                                                      resolve_scene_path(s, s.half_mirror.mesh),
-                                                      resolve_scene_path(s, s.retroreflector.mesh)};
+  std::vector<std::string> meshes = {resolve_scene_path(s, s.source.mesh), resolve_scene_path(s, s.half_mirror.mesh)};
+  for (const auto& r : s.retroreflectors) meshes.push_back(resolve_scene_path(s, r.mesh));
   std::unique_ptr<embree_layout_scene> embree;
   if (!ts.embree || ts.embree->mesh_paths() != meshes) embree = std::make_unique<embree_layout_scene>(device, meshes);
   const std::string tex = resolve_scene_path(s, s.source.image);
@@ -25,25 +23,41 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   if (tex != ts.texture_path || (!tex.empty() && !texture)) {
     texture = tex.empty() ? nullptr : std::make_shared<const image_rgb>(load_image(tex).pixels);
   }
-  std::shared_ptr<const retro_model> retro =
-      model ? std::move(model) : make_retro_model(s.retroreflector.model, s.base_dir);
+  std::shared_ptr<const emission_profile> emission;
+  if (!s.source.emission_profile.empty()) {
+    emission = load_emission_profile(resolve_scene_path(s, s.source.emission_profile));
+  }
+  if (models.size() != s.retroreflectors.size()) {
+    models.clear();
+    for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) {
+      models.push_back(
+          make_retro_model(s.retroreflectors[i].model, s.base_dir, "retroreflectors[" + std::to_string(i) + "].model"));
+    }
+  }
 
   if (embree) ts.embree = std::move(embree);
   ts.texture = std::move(texture);
   ts.texture_path = tex;
-  ts.retro = std::move(retro);
+  ts.emission = std::move(emission);
+  ts.retro = std::move(models);
   ts.layout = s;
-  ts.frames = {source_frame(s), half_mirror_frame(s), retroreflector_frame(s)};
+  ts.frames = {source_panel_frame(s), half_mirror_frame(s)};
+  for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) ts.frames.push_back(retroreflector_frame(s, i));
+  ts.source_area = source_frame(s);
   ts.camera = make_camera(s);
-  ts.embree->set_transforms({part_transform(ts.frames[0]), part_transform(ts.frames[1]), part_transform(ts.frames[2])});
+  std::vector<glm::dmat4> transforms;
+  for (const auto& f : ts.frames) transforms.push_back(part_transform(f));
+  ts.embree->set_transforms(transforms);
 }
 
-// Bilinear lookup; local (x, y) in mm from the source centre, image top towards +v.
+// Bilinear lookup; local (x, y) in mm from the source centre, image top towards +v. The bezel
+// around the emitting area is black.
 static glm::vec3 source_radiance(const tracer_scene& ts, const glm::dvec2& local) {
+  const part_frame& f = ts.source_area;
+  if (!inside_part(f, local)) return glm::vec3(0.0f);
   const float intensity = float(ts.layout.source.intensity);
   if (!ts.texture) return glm::vec3(intensity);
   const image_rgb& img = *ts.texture;
-  const part_frame& f = ts.frames[part_source];
   const double s = (local.x / f.width + 0.5) * img.width - 0.5;
   const double t = (0.5 - local.y / f.height) * img.height - 0.5;
   const int x0 = int(std::floor(s)), y0 = int(std::floor(t));
@@ -91,13 +105,16 @@ glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sam
   const std::array<double, 6> q = r6_point(sample_index, rotation);
   pcg32 rng = sample_rng(std::uint64_t(py) * cam.width + px, sample_index, ts.layout.seed);
   const double jx = q[0], jy = q[1];
+  glm::dvec2 lens(0.5);
+  if (cam.aperture_mm > 0) lens = {rng.next_double(), rng.next_double()};
+  const camera_ray first = make_camera_ray(cam, px + jx, py + jy, lens);
   bool first_retro = true;
   const auto& hm = ts.layout.half_mirror;
   const double hm_total = hm.reflectance + hm.transmittance;
 
   path_state stack[max_half_mirror_splits + 1];
   int pending = 0, splits_left = max_half_mirror_splits;
-  stack[pending++] = {cam.position, camera_direction(cam, px + jx, py + jy), glm::vec3(1.0f), 0};
+  stack[pending++] = {first.origin, first.dir, glm::vec3(1.0f), 0};
   glm::vec3 radiance(0.0f);
 
   while (pending > 0) {
@@ -127,7 +144,10 @@ glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sam
       const double cos_n = glm::dot(p.dir, f.n);
 
       if (part == part_source) {
-        if (cos_n < 0) radiance += p.throughput * source_radiance(ts, part_local(f, hit));
+        if (cos_n < 0) {
+          const float profile = ts.emission ? float(ts.emission->at(degrees(std::acos(std::min(1.0, -cos_n))))) : 1.0f;
+          radiance += p.throughput * profile * source_radiance(ts, part_local(f, hit));
+        }
         break;  // the display absorbs what it does not emit; its back emits nothing
       }
       if (part == part_half_mirror) {
@@ -157,7 +177,7 @@ glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sam
         u.shift = {rng.next_double(), rng.next_double()};
       }
       u.more = rng.split();
-      const retro_sample rs = ts.retro->sample(wi, u);
+      const retro_sample rs = ts.retro[part - part_first_sheet]->sample(wi, u);
       if (!(rs.weight > 0)) break;
       p.dir = glm::normalize(to_world(f, rs.wo));
       p.origin = hit + rs.shift_mm.x * f.u + rs.shift_mm.y * f.v;

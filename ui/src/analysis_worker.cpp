@@ -26,7 +26,7 @@ predicted_plots compute_predicted(const scene& s, std::uint64_t generation, cons
   out.generation = generation;
   try {
     const auto t0 = clock_type::now();
-    if (!model) model = make_retro_model(s.retroreflector.model, s.base_dir);
+    if (!model) model = make_retro_model(s.sheet().model, s.base_dir);
     const double pixel_mm = make_camera(s).mm_per_pixel;
     const psf_samples psf = scene_psf(s, *model, p.psf_samples);
     const auto curve = analysis::psf_mtf(psf, {.max_lp_per_mm = 2.0, .points = 41, .pixel_mm = pixel_mm});
@@ -57,7 +57,7 @@ predicted_plots compute_predicted(const scene& s, std::uint64_t generation, cons
     const auto t1 = clock_type::now();
     for (double d = 150; d <= 300 + 1e-9; d += 25) {
       scene sd = s;
-      sd.floating_distance_mm = d;
+      set_floating_distance(sd, d);
       try {
         const psf_samples pd = scene_psf(sd, *model, p.sweep_psf_samples);
         out.sweep_mean_mtf.push_back(psf_route_mtf(pd, make_camera(sd).mm_per_pixel).mean_mtf);

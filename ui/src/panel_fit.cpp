@@ -36,13 +36,9 @@ void apply_fitted_preset(studio& st, const sheet_preset& preset) {
     st.fit_saved_path = (dir / (name + ".json")).string();
     save_preset(preset, st.fit_saved_path);
   }
-  auto& m = st.doc.retroreflector.model;
-  m.type = retro_model_type::sinc_shift;
-  m.preset = st.fit_saved_path;
-  m.a_per_mm.reset();
-  m.c_mm.reset();
-  m.mu.reset();
-  m.reference_distance_mm.reset();
+  auto& m = st.doc.sheet().model;
+  m = {.type = "sinc_shift", .values = {}};
+  set_model_value(m, "preset", st.fit_saved_path);
   st.status = "the scene now uses the fitted preset " + st.fit_saved_path;
 }
 

@@ -1,12 +1,14 @@
-// The layout panel: every parameter of the scene as a slider plus a typed value, with units.
+// The layout panel: every field of the scene as a slider plus a typed value, with units. The
+// retroreflector models' rows come from their field tables.
+#include <algorithm>
 #include <filesystem>
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
 #include "airr/optics/assets.hpp"
-#include "airr/optics/preset.hpp"
-#include "airr/optics/retro_sinc_shift.hpp"
+#include "airr/optics/layout.hpp"
+#include "airr/optics/retro_model.hpp"
 #include "airr/ui/studio.hpp"
 
 namespace airr::ui {
@@ -14,7 +16,8 @@ namespace airr::ui {
 namespace {
 
 // One row: slider over [lo, hi], a typed field (may go beyond the slider), label with unit.
-bool edit_number(const char* label, double& v, double lo, double hi, const char* unit, const char* fmt = "%.2f") {
+bool edit_number(const char* label, double& v, double lo, double hi, const char* unit, const char* fmt = "%.2f",
+                 const char* help = nullptr) {
   ImGui::PushID(label);
   const float w = ImGui::GetContentRegionAvail().x;
   bool changed = false;
@@ -32,7 +35,12 @@ bool edit_number(const char* label, double& v, double lo, double hi, const char*
     changed = true;
   }
   ImGui::SameLine();
-  ImGui::Text("%s (%s)", label, unit);
+  if (unit && *unit) {
+    ImGui::Text("%s (%s)", label, unit);
+  } else {
+    ImGui::TextUnformatted(label);
+  }
+  if (help && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", help);
   ImGui::PopID();
   return changed;
 }
@@ -44,20 +52,18 @@ bool edit_int(const char* label, int& v, int lo, int hi, const char* unit) {
   return true;
 }
 
-// A value that is either taken from the preset (unchecked) or set here.
-void edit_optional(const char* label, std::optional<double>& v, double from_preset, double lo, double hi,
-                   const char* unit, const char* fmt) {
-  ImGui::PushID(label);
-  bool set = v.has_value();
-  if (ImGui::Checkbox("##set", &set)) v = set ? std::optional<double>(from_preset) : std::nullopt;
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("checked: override the preset's value");
-  ImGui::SameLine();
-  if (v) {
-    edit_number(label, *v, lo, hi, unit, fmt);
-  } else {
-    ImGui::TextDisabled("%s: from preset (%g %s at the chief ray)", label, from_preset, unit);
-  }
-  ImGui::PopID();
+// The pose rows of a part: centre and the three angles.
+void edit_pose(pose& p, double reach_mm) {
+  static const char* axes[3] = {"centre x", "centre y", "centre z"};
+  for (int i = 0; i < 3; ++i) edit_number(axes[i], p.center_mm[i], -reach_mm, reach_mm, "mm", "%.1f");
+  edit_number("yaw", p.yaw_deg, -180, 180, "deg", "%.1f", "turns the part about the world's y axis");
+  edit_number("pitch", p.pitch_deg, -180, 180, "deg", "%.1f", "raises the part's normal towards +y");
+  edit_number("roll", p.roll_deg, -180, 180, "deg", "%.1f", "turns the part about its own normal");
+}
+
+void edit_part_size(part_params& p, double max_mm) {
+  edit_number("width", p.width_mm, 1, max_mm, "mm", "%.1f");
+  edit_number("height", p.height_mm, 1, max_mm, "mm", "%.1f");
 }
 
 std::vector<std::string> shipped_presets() {
@@ -70,53 +76,152 @@ std::vector<std::string> shipped_presets() {
   return names;
 }
 
-void model_section(studio& st) {
-  auto& m = st.doc.retroreflector.model;
-  int type = int(m.type);
-  if (ImGui::BeginCombo("model", retro_model_type_names[type])) {
-    for (int i = 0; i < int(retro_model_type_names.size()); ++i) {
-      if (ImGui::Selectable(retro_model_type_names[i], i == type)) m.type = retro_model_type(i);
+// One model field as a row, driven by its description.
+void edit_model_field(const model_field& f, retro_model_params& m, const model_values& v, const retro_model_kind& kind,
+                      const studio& st, double theta_deg) {
+  ImGui::PushID(f.key.c_str());
+  const double hi = f.slider_hi > 0 ? std::min(f.slider_hi, f.hi) : f.hi;
+  switch (f.kind) {
+    case field_kind::number: {
+      double x = v.number(f.key);
+      if (edit_number(f.key.c_str(), x, f.lo, hi, f.unit.c_str(), "%.4f", f.help.c_str())) set_model_value(m, f.key, x);
+      break;
+    }
+    case field_kind::optional_number: {
+      const std::optional<double> x = v.optional_number(f.key);
+      // What the model makes of the value when unset (a preset's value at this angle), if it says.
+      double derived = 0;
+      bool has_derived = false;
+      if (kind.derived) {
+        if (const auto d = kind.derived(v, f.key, st.doc.base_dir, theta_deg)) {
+          derived = *d;
+          has_derived = true;
+        }
+      }
+      bool set = x.has_value();
+      if (ImGui::Checkbox("##set", &set)) {
+        const double start = has_derived ? derived : (f.lo_open ? hi : f.lo);
+        set_model_value(m, f.key, set ? std::optional<param_value>(start) : std::nullopt);
+      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("checked: set here; unchecked: %s", f.help.c_str());
+      ImGui::SameLine();
+      if (x) {
+        double y = *x;
+        if (edit_number(f.key.c_str(), y, f.lo, hi, f.unit.c_str(), "%.4f", f.help.c_str()))
+          set_model_value(m, f.key, y);
+      } else if (has_derived) {
+        ImGui::TextDisabled("%s: unset (%g %s at the chief ray)", f.key.c_str(), derived, f.unit.c_str());
+      } else {
+        ImGui::TextDisabled("%s: unset", f.key.c_str());
+      }
+      break;
+    }
+    case field_kind::preset: {
+      static const std::vector<std::string> presets = shipped_presets();
+      const std::string now = v.text(f.key);
+      if (ImGui::BeginCombo(f.key.c_str(), now.empty() ? "(none)" : now.c_str())) {
+        if (ImGui::Selectable("(none)", now.empty())) set_model_value(m, f.key, std::nullopt);
+        for (const auto& p : presets) {
+          if (ImGui::Selectable(p.c_str(), p == now)) set_model_value(m, f.key, p);
+        }
+        ImGui::EndCombo();
+      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", f.help.c_str());
+      break;
+    }
+    case field_kind::choice: {
+      const std::string now = v.text(f.key);
+      if (ImGui::BeginCombo(f.key.c_str(), now.c_str())) {
+        for (const auto& c : f.choices) {
+          if (ImGui::Selectable(c.c_str(), c == now)) set_model_value(m, f.key, c);
+        }
+        ImGui::EndCombo();
+      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", f.help.c_str());
+      break;
+    }
+    case field_kind::text:
+    case field_kind::path: {
+      std::string text = v.text(f.key);
+      ImGui::SetNextItemWidth(-8.0f * ImGui::GetFontSize());
+      if (ImGui::InputText(f.key.c_str(), &text, ImGuiInputTextFlags_EnterReturnsTrue)) set_model_value(m, f.key, text);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", f.help.c_str());
+      break;
+    }
+  }
+  ImGui::PopID();
+}
+
+void model_section(studio& st, retroreflector_params& sheet, double theta_deg) {
+  retro_model_params& m = sheet.model;
+  if (ImGui::BeginCombo("model", m.type.c_str())) {
+    for (const retro_model_kind* k : retro_model_kinds()) {
+      if (ImGui::Selectable(k->name.c_str(), k->name == m.type)) m = with_model_type(m, k->name);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", k->help.c_str());
     }
     ImGui::EndCombo();
   }
-  if (m.type == retro_model_type::ideal) {
-    double mu = m.mu.value_or(1.0);
-    if (edit_number("mu", mu, 0, 1, "reflectance", "%.3f")) m.mu = mu;
-    return;
-  }
-  if (m.type == retro_model_type::sinc_shift) {
-    static const std::vector<std::string> presets = shipped_presets();
-    if (ImGui::BeginCombo("preset", m.preset.empty() ? "(none)" : m.preset.c_str())) {
-      if (ImGui::Selectable("(none)", m.preset.empty())) m.preset.clear();
-      for (const auto& p : presets) {
-        if (ImGui::Selectable(p.c_str(), p == m.preset)) m.preset = p;
-      }
-      ImGui::EndCombo();
+  const retro_model_kind& kind = find_retro_model_kind(m.type);
+  const retro_model_params before = m;  // the rows read the values as they were this frame
+  const model_values v(before, kind.fields, "model");
+  for (const auto& f : kind.fields) edit_model_field(f, m, v, kind, st, theta_deg);
+}
+
+void observer_section(scene& s) {
+  observer_params& o = s.observer;
+  int placement = int(o.placement);
+  ImGui::RadioButton("orbit the aerial image", &placement, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("position and look-at", &placement, 1);
+  if (placement != int(o.placement)) {
+    // Keep the observer where it is when switching.
+    const glm::dvec3 p = observer_position(s), t = observer_target(s), a = aerial_image_center(s);
+    o.position_mm = {p.x, p.y, p.z};
+    o.look_at_mm = {t.x, t.y, t.z};
+    if (placement == 0) {
+      const glm::dvec3 d = p - a;
+      o.distance_mm = glm::length(d);
+      o.elevation_deg = degrees(std::asin(std::clamp(d.y / o.distance_mm, -1.0, 1.0)));
+      o.azimuth_deg = degrees(std::atan2(d.x, d.z));
     }
-    // The preset's values at the chief ray's incidence angle (= tilt), shown when not overridden.
-    sinc_shift_params base;
-    try {
-      retro_model_params probe = m;
-      probe.mu.reset();
-      probe.a_per_mm.reset();
-      probe.c_mm.reset();
-      probe.reference_distance_mm.reset();
-      if (!probe.preset.empty()) base = resolve_sinc_shift_params(probe, st.doc.base_dir);
-    } catch (const std::exception&) {
-    }
-    const double tilt = std::abs(st.doc.retroreflector.tilt_deg);
-    edit_optional("a", m.a_per_mm, interpolate_by_angle(base.theta_deg, base.a_per_mm, tilt), 0.1, 20, "1/mm", "%.4f");
-    edit_optional("c", m.c_mm, base.c_mm, 0, 3, "mm", "%.4f");
-    edit_optional("mu", m.mu, interpolate_by_angle(base.theta_deg, base.mu, tilt), 0, 1, "reflectance", "%.4f");
-    edit_optional("R", m.reference_distance_mm, base.reference_distance_mm, 50, 1000, "mm", "%.0f");
-    return;
+    o.placement = observer_placement(placement);
   }
-  edit_number("alpha surface", m.alpha_surface, 0, 0.5, "roughness", "%.4f");
-  edit_number("alpha internal", m.alpha_internal, 0, 0.05, "roughness", "%.5f");
-  edit_number("internal reflectance", m.internal_reflectance, 0, 1, "fraction", "%.3f");
-  edit_number("eta", m.eta, 1, 2, "index", "%.4f");
-  double mu = m.mu.value_or(1.0);
-  if (edit_number("mu", mu, 0, 1, "weight", "%.3f")) m.mu = mu;
+  if (o.placement == observer_placement::orbit) {
+    edit_number("azimuth", o.azimuth_deg, -90, 90, "deg", "%.1f", "from +z towards +x, about the aerial image");
+    edit_number("elevation", o.elevation_deg, -60, 60, "deg", "%.1f", "towards +y, about the aerial image");
+    edit_number("distance", o.distance_mm, 50, 2000, "mm", "%.0f", "from the aerial image's centre");
+  } else {
+    static const char* p[3] = {"position x", "position y", "position z"};
+    static const char* t[3] = {"look at x", "look at y", "look at z"};
+    for (int i = 0; i < 3; ++i) edit_number(p[i], o.position_mm[i], -2000, 2000, "mm", "%.1f");
+    for (int i = 0; i < 3; ++i) edit_number(t[i], o.look_at_mm[i], -2000, 2000, "mm", "%.1f");
+  }
+  int lens = int(o.lens);
+  ImGui::RadioButton("pinhole", &lens, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("thin lens", &lens, 1);
+  o.lens = observer_lens(lens);
+  if (o.lens == observer_lens::thin_lens) {
+    edit_number("focal length", o.focal_length_mm, 4, 300, "mm", "%.1f");
+    edit_number("f-number", o.f_number, 0.5, 32, "", "%.2f", "aperture diameter = focal length / f-number");
+    bool on_image = !o.focus_distance_mm;
+    if (ImGui::Checkbox("focus on the aerial image", &on_image)) {
+      o.focus_distance_mm = on_image ? std::nullopt : std::optional<double>(make_camera(s).target_distance);
+    }
+    if (o.focus_distance_mm) edit_number("focus distance", *o.focus_distance_mm, 10, 3000, "mm", "%.0f");
+  }
+  if (ImGui::Button("camera of the paper")) apply_observer_preset(s, observer_preset::paper_camera);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("50 mm lens at f/4, 300 mm from the aerial image, focused on it");
+  ImGui::SameLine();
+  if (ImGui::Button("eye")) apply_observer_preset(s, observer_preset::eye);
+  if (ImGui::IsItemHovered()) ImGui::SetTooltip("a 4 mm pupil focused on the aerial image");
+  edit_number("field of view", o.fov_deg, 1, 120, "deg", "%.2f", "vertical");
+  if (ImGui::Button("frame the aerial image")) o.fov_deg = std::round(fov_for_aerial_image(s) * 100) / 100;
+  ImGui::SameLine();
+  if (ImGui::Button("frame the whole device")) o.fov_deg = std::round(fov_for_whole_device(s) * 100) / 100;
+  edit_int("image width", o.width, 16, 2048, "px");
+  edit_int("image height", o.height, 16, 2048, "px");
+  ImGui::Text("%.4f mm per pixel on the aerial image", make_camera(s).mm_per_pixel);
 }
 
 }  // namespace
@@ -125,39 +230,81 @@ void draw_layout_panel(studio& st) {
   ImGui::Begin("Layout");
   scene& s = st.doc;
   if (ImGui::CollapsingHeader("Arrangement", ImGuiTreeNodeFlags_DefaultOpen)) {
-    edit_number("floating distance D", s.floating_distance_mm, 30, 400, "mm", "%.1f");
-    edit_number("retroreflector tilt", s.retroreflector.tilt_deg, -45, 60, "deg", "%.1f");
-    edit_number("retroreflector distance", s.retroreflector.distance_mm, 50, 400, "mm", "%.1f");
+    double d = floating_distance(s);
+    if (edit_number("floating distance D", d, 30, 400, "mm", "%.1f",
+                    "half mirror centre to aerial image centre; moves the display") &&
+        d > 0) {
+      try {
+        set_floating_distance(s, d);
+      } catch (const std::exception&) {
+      }
+    }
+    edit_number("retroreflector tilt", s.sheet().pose.pitch_deg, -45, 60, "deg", "%.1f", "the first sheet's pitch");
+    const glm::dvec3 a = aerial_image_center(s);
+    ImGui::Text("aerial image at (%.1f, %.1f, %.1f) mm", a.x + 0.0, a.y + 0.0, a.z + 0.0);  // + 0: no "-0.0"
   }
-  if (ImGui::CollapsingHeader("Source", ImGuiTreeNodeFlags_DefaultOpen)) {
+  if (ImGui::CollapsingHeader("Display")) {
+    ImGui::PushID("display");
     ImGui::SetNextItemWidth(-5.0f * ImGui::GetFontSize());
     ImGui::InputText("image", &s.source.image);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("empty: uniform white; drop an image file on the window to use it");
-    edit_number("width", s.source.width_mm, 1, 200, "mm", "%.1f");
-    edit_number("height", s.source.height_mm, 1, 200, "mm", "%.1f");
+    edit_part_size(s.source, 300);
     edit_number("intensity", s.source.intensity, 0, 100, "radiance", "%.2f");
-    edit_number("offset x", s.source.offset_mm[0], -50, 50, "mm", "%.1f");
-    edit_number("offset y", s.source.offset_mm[1], -50, 50, "mm", "%.1f");
-    edit_number("offset z", s.source.offset_mm[2], -50, 50, "mm", "%.1f");
+    edit_number("bezel", s.source.bezel_mm, 0, 50, "mm", "%.1f", "black border around the emitting area");
+    ImGui::SetNextItemWidth(-8.0f * ImGui::GetFontSize());
+    ImGui::InputText("emission profile", &s.source.emission_profile);
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetTooltip("CSV angle_deg,relative_luminance; empty: Lambertian (assets/displays/lcd_typical.csv)");
+    }
+    edit_pose(s.source.pose, 500);
+    ImGui::PopID();
   }
-  if (ImGui::CollapsingHeader("Half mirror", ImGuiTreeNodeFlags_DefaultOpen)) {
+  if (ImGui::CollapsingHeader("Half mirror")) {
+    ImGui::PushID("mirror");
     edit_number("reflectance R", s.half_mirror.reflectance, 0, 1, "fraction", "%.3f");
     edit_number("transmittance T", s.half_mirror.transmittance, 0, 1, "fraction", "%.3f");
-    edit_number("mirror width", s.half_mirror.width_mm, 10, 600, "mm", "%.0f");
-    edit_number("mirror height", s.half_mirror.height_mm, 10, 600, "mm", "%.0f");
+    edit_part_size(s.half_mirror, 1000);
+    edit_pose(s.half_mirror.pose, 500);
+    ImGui::PopID();
   }
-  if (ImGui::CollapsingHeader("Retroreflector", ImGuiTreeNodeFlags_DefaultOpen)) {
-    edit_number("sheet width", s.retroreflector.width_mm, 10, 600, "mm", "%.0f");
-    edit_number("sheet height", s.retroreflector.height_mm, 10, 600, "mm", "%.0f");
-    model_section(st);
+  if (ImGui::CollapsingHeader("Retroreflectors", ImGuiTreeNodeFlags_DefaultOpen)) {
+    std::optional<std::size_t> remove;
+    for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) {
+      ImGui::PushID(int(i));
+      const std::string title = "sheet " + std::to_string(i) + (i == 0 ? " (tilt, PSF, sweeps, fit)" : "");
+      if (ImGui::TreeNodeEx(title.c_str(), i == 0 ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
+        retroreflector_params& r = s.retroreflectors[i];
+        const double theta = polar_angle_deg(to_local(
+            retroreflector_frame(s, i), glm::normalize(aerial_image_center(s) - retroreflector_frame(s, i).center)));
+        model_section(st, r, theta);
+        edit_part_size(r, 1000);
+        edit_pose(r.pose, 500);
+        if (s.retroreflectors.size() > 1 && ImGui::Button("remove this sheet")) remove = i;
+        ImGui::TreePop();
+      }
+      ImGui::PopID();
+    }
+    if (remove) s.retroreflectors.erase(s.retroreflectors.begin() + std::ptrdiff_t(*remove));
+    if (s.retroreflectors.size() < std::size_t(max_retroreflectors) && ImGui::Button("add the second sheet")) {
+      // The common second sheet: across the half mirror from the display, facing it, so that the
+      // display's light reaches it through the half mirror and returns by reflection.
+      retroreflector_params r = s.sheet();
+      const glm::dvec3 hm = half_mirror_frame(s).center, src = source_frame(s).center;
+      const glm::dvec3 dir = glm::normalize(hm - src);
+      const glm::dvec3 c = hm + dir * glm::length(retroreflector_frame(s).center - hm);
+      r.pose = {};
+      r.pose.center_mm = {c.x, c.y, c.z};
+      r.pose.pitch_deg = degrees(std::asin(std::clamp(-dir.y, -1.0, 1.0)));
+      r.pose.yaw_deg = std::hypot(dir.x, dir.z) < 1e-9 ? 0.0 : degrees(std::atan2(-dir.x, -dir.z));
+      s.retroreflectors.push_back(r);
+    }
   }
-  if (ImGui::CollapsingHeader("Camera")) {
-    edit_number("camera distance", s.camera.distance_mm, 50, 1000, "mm", "%.0f");
-    edit_number("field of view", s.camera.fov_deg, 1, 60, "deg", "%.2f");
-    edit_int("image width", s.camera.width, 16, 2048, "px");
-    edit_int("image height", s.camera.height, 16, 2048, "px");
+  if (ImGui::CollapsingHeader("Observer")) {
+    ImGui::PushID("observer");
+    observer_section(s);
     double seed = double(s.seed);
     if (edit_number("seed", seed, 0, 1000, "", "%.0f")) s.seed = std::uint64_t(std::max(0.0, seed));
+    ImGui::PopID();
   }
   ImGui::End();
 }

@@ -24,8 +24,8 @@ void draw_plots_panel(studio& st) {
   }
   if (ImGui::Button("Pin MTF") && pred && !pred->mtf.empty()) {
     char label[64];
-    std::snprintf(label, sizeof label, "pinned D=%.0f tilt=%.0f", st.doc.floating_distance_mm,
-                  st.doc.retroreflector.tilt_deg);
+    std::snprintf(label, sizeof label, "pinned D=%.0f tilt=%.0f", airr::floating_distance(st.doc),
+                  st.doc.sheet().pose.pitch_deg);
     st.pinned_mtf.push_back({label, pred->lp_per_mm, pred->mtf});
     if (st.pinned_mtf.size() > 4) st.pinned_mtf.erase(st.pinned_mtf.begin());
   }
@@ -74,7 +74,7 @@ void draw_plots_panel(studio& st) {
   if (pred && !pred->sweep_d_mm.empty()) {
     sweep.push_back({"mean MTF (0-1 lp/mm)", pred->sweep_d_mm, pred->sweep_mean_mtf});
     sweep.push_back({"current D",
-                     {st.doc.floating_distance_mm, st.doc.floating_distance_mm},
+                     {airr::floating_distance(st.doc), airr::floating_distance(st.doc)},
                      {0.0, 1.0},
                      IM_COL32(160, 160, 160, 255),
                      true});

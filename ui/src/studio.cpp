@@ -43,11 +43,11 @@ void studio_apply_edits(studio& st, double now) {
   if (st.doc == st.applied) return;
   st.applied = st.doc;
   try {
-    // The model is built once per accepted edit and shared by the tracer and the plots.
-    const std::shared_ptr<const retro_model> model = check_scene(st.doc, "layout");
+    // The models are built once per accepted edit and shared by the tracer and the plots.
+    const retro_model_list models = check_scene(st.doc, "layout");
     st.doc_error.clear();
-    st.generation = st.session->edit(st.doc, model);
-    st.analysis.submit_scene(st.doc, st.generation, model);
+    st.generation = st.session->edit(st.doc, models);
+    st.analysis.submit_scene(st.doc, st.generation, models.front());
     st.edit_time = now;
   } catch (const std::exception& e) {
     st.doc_error = e.what();
@@ -391,7 +391,7 @@ void studio_frame(studio& st, double now) {
   place(left_w, 0, mid_w, render_h);
   draw_render_view(st, now);
   place(left_w, render_h, mid_w, h - render_h);
-  draw_side_view(st);
+  draw_layout_view(st);
   place(left_w + mid_w, 0, right_w, h);
   draw_plots_panel(st);
   draw_fit_window(st);

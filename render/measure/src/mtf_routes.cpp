@@ -15,7 +15,7 @@
 namespace airr {
 
 psf_samples scene_psf(const scene& s, std::uint64_t samples) {
-  return scene_psf(s, *make_retro_model(s.retroreflector.model, s.base_dir), samples);
+  return scene_psf(s, *make_retro_model(s.sheet().model, s.base_dir), samples);
 }
 
 psf_samples scene_psf(const scene& s, const retro_model& model, std::uint64_t samples) {

@@ -77,7 +77,7 @@ std::vector<double> sweep_values(const sweep_axis& a) {
 
 sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_progress& progress) {
   if (p.axes.empty()) throw input_error("--vary: give floating_distance=start:end:step and/or tilt=start:end:step");
-  std::vector<double> distances = {base.floating_distance_mm}, tilts = {base.retroreflector.tilt_deg};
+  std::vector<double> distances = {airr::floating_distance(base)}, tilts = {base.sheet().pose.pitch_deg};
   bool d_set = false, tilt_set = false;
   for (const auto& a : p.axes) {
     bool& seen = a.key == "floating_distance" ? d_set : tilt_set;
@@ -94,11 +94,17 @@ sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_pro
 
   // Every point's layout is checked before the first one is measured.
   std::vector<scene> scenes;
+  std::vector<std::pair<double, double>> grid;  // (D, tilt) as asked, for the results
   for (double tilt : tilts) {
     for (double d : distances) {
       scene s = base;
-      s.floating_distance_mm = d;
-      s.retroreflector.tilt_deg = tilt;
+      try {
+        airr::set_floating_distance(s, d);
+      } catch (const input_error& e) {
+        throw input_error(point_label(d, tilt) + ": " + e.what());
+      }
+      s.sheet().pose.pitch_deg = tilt;
+      grid.emplace_back(d, tilt);
       if (!p.psf_route) s = with_edge_chart(s, chart);
       check_scene(s, point_label(d, tilt));
       scenes.push_back(std::move(s));
@@ -112,8 +118,8 @@ sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_pro
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     const scene& s = scenes[i];
     sweep_point pt;
-    pt.floating_distance_mm = s.floating_distance_mm;
-    pt.tilt_deg = s.retroreflector.tilt_deg;
+    pt.floating_distance_mm = grid[i].first;
+    pt.tilt_deg = grid[i].second;
     const std::string label = point_label(pt.floating_distance_mm, pt.tilt_deg);
     const std::string detail = "D " + number(pt.floating_distance_mm) + " mm, tilt " + number(pt.tilt_deg) + " deg";
     if (progress) progress(double(i) / n, detail);

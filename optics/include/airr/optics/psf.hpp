@@ -29,7 +29,8 @@ struct psf_samples {
   double brightness() const;
 };
 
-// Throws input_error when the chief ray through `aerial_point` misses a part.
+// The PSF of the first sheet (the one behind the half mirror). Throws input_error when the chief
+// ray through `aerial_point` misses a part.
 psf_samples sample_psf(const scene& s, const retro_model& model, const psf_params& p, const glm::dvec3& aerial_point);
 psf_samples sample_psf(const scene& s, const retro_model& model, const psf_params& p);
 

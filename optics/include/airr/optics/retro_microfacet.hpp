@@ -48,9 +48,20 @@ struct microfacet_trace {
 //   shift     retro: x the prism orientation, y the first face; diffuse: the cosine-weighted direction
 //   more      in order: the front-surface facet on entry (2); retro: the first facet (2), the second
 //             face (1), the second and third facets (2 + 2), the front-surface facet on exit (2).
+struct microfacet_params {
+  double alpha_surface = 0.0;
+  double alpha_internal = 0.0005;
+  double internal_reflectance = 0.83;
+  double eta = 1.5046;
+  double mu = 1.0;
+};
+
+// The model's scene-file entry ("microfacet").
+const retro_model_kind& microfacet_retro_kind();
+
 class microfacet_retro final : public retro_model {
  public:
-  explicit microfacet_retro(const retro_model_params& p);
+  explicit microfacet_retro(const microfacet_params& p);
   retro_sample sample(const glm::dvec3& wi, retro_samples u) const override;
   // The same sample, with the branch it took (for tests and analysis).
   microfacet_trace trace(const glm::dvec3& wi, retro_samples u) const;

@@ -1,12 +1,15 @@
 #pragma once
 // The retroreflector model interface. Directions are in the sheet's local frame (normal +z) and
 // point away from the surface: wi towards where the light came from, wo where it leaves.
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
+#include "airr/optics/model_fields.hpp"
 #include "airr/optics/random.hpp"
 #include "airr/optics/scene.hpp"
 
@@ -53,7 +56,36 @@ class ideal_retro final : public retro_model {
   double mu_;
 };
 
-// Builds the model a scene names; files (presets, shift tables) resolve against base_dir.
-std::unique_ptr<retro_model> make_retro_model(const retro_model_params& p, const std::string& base_dir = "");
+// A model as the scene file knows it: its name, its parameters and how to build it. A new model
+// adds one of these in its own file and registers it in retro_model.cpp.
+struct retro_model_kind {
+  std::string name;
+  std::string help;
+  model_fields fields;
+  // Files (presets, tables) resolve against base_dir; errors name values.where().
+  std::function<std::unique_ptr<retro_model>(const model_values& values, const std::string& base_dir)> make;
+  // What an unset optional number stands for at incidence angle theta (shown beside it), if known.
+  std::function<std::optional<double>(const model_values& values, const std::string& key, const std::string& base_dir,
+                                      double theta_deg)>
+      derived;
+};
+
+const std::vector<const retro_model_kind*>& retro_model_kinds();
+// Throws input_error "<where>.type: unknown model '...' (ideal, ...)".
+const retro_model_kind& find_retro_model_kind(const std::string& name, const std::string& where = "model");
+
+// The parameters with another type: values the new model shares keep, the others go.
+retro_model_params with_model_type(const retro_model_params& p, const std::string& type);
+// Sets one value through the model's field table (see set_model_value).
+void set_model_value(retro_model_params& p, const std::string& key, std::optional<param_value> value);
+// Reads values through the model's field table (defaults for absent keys).
+model_values read_model_values(const retro_model_params& p, const std::string& where = "model");
+
+const retro_model_kind& ideal_retro_kind();
+
+// Builds the model a sheet names; files (presets, shift tables) resolve against base_dir; errors
+// name `where`, e.g. "retroreflectors[0].model".
+std::unique_ptr<retro_model> make_retro_model(const retro_model_params& p, const std::string& base_dir = "",
+                                              const std::string& where = "retroreflectors[0].model");
 
 }  // namespace airr

@@ -21,7 +21,11 @@ struct sinc_shift_params {
 
 // Combines an optional preset with the scene's overrides (a set value applies at every angle).
 // Throws input_error when a needed value has no source.
+sinc_shift_params resolve_sinc_shift_params(const model_values& v, const std::string& base_dir);
 sinc_shift_params resolve_sinc_shift_params(const retro_model_params& p, const std::string& base_dir);
+
+// The model's scene-file entry ("sinc_shift").
+const retro_model_kind& sinc_shift_retro_kind();
 
 class sinc_shift_retro final : public retro_model {
  public:

@@ -1,80 +1,115 @@
 #pragma once
-// The AIRR layout description: plain structs with the defaults of the canonical layout.
+// The AIRR layout description: plain structs with the defaults of the canonical layout (the
+// paper's measurement bench). Every part has a pose; the floating distance is derived from the
+// display's pose (see layout.hpp).
 #include <array>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
+#include <variant>
+#include <vector>
 
 namespace airr {
 
-inline constexpr int scene_format_version = 1;
+inline constexpr int scene_format_version = 2;
 
 // Largest accepted render size, per side and in total.
 inline constexpr int max_resolution_side = 8192;
 inline constexpr long long max_resolution_pixels = 8192LL * 8192LL / 2;
+// Most retroreflective sheets in one layout.
+inline constexpr int max_retroreflectors = 8;
 
-enum class retro_model_type { ideal, sinc_shift, microfacet };
-inline constexpr std::array retro_model_type_names = {"ideal", "sinc_shift", "microfacet"};
+// Where a part is. Its optical face is its local +z, its width runs along local +x and its height
+// along local +y. The world orientation is R = Ry(yaw) Rx(-pitch) Rz(roll), applied in that order
+// from the right: roll turns the part about its own normal, pitch then raises the normal towards
+// +y, yaw turns the result about the world's y axis from +z towards +x. The normal is therefore
+// (sin yaw cos pitch, sin pitch, cos yaw cos pitch).
+struct pose {
+  std::array<double, 3> center_mm{0, 0, 0};
+  double yaw_deg = 0;
+  double pitch_deg = 0;
+  double roll_deg = 0;
 
-struct source_params {
-  std::string image;  // path relative to the scene file; empty = uniform white
-  std::string mesh;   // glTF file relative to the scene file; empty: the built-in unit panel
-  double width_mm = 50.0;
-  double height_mm = 50.0;
-  double intensity = 10.0;                   // radiance = image value x intensity
-  std::array<double, 3> offset_mm{0, 0, 0};  // added to the canonical centre (0, -D, 0)
-
-  bool operator==(const source_params&) const = default;
+  bool operator==(const pose&) const = default;
 };
 
-struct half_mirror_params {
+// What every part has: a rectangle (or a mesh scaled to it) at a pose.
+struct part_params {
   std::string mesh;  // glTF file relative to the scene file; empty: the built-in unit panel
   double width_mm = 300.0;
   double height_mm = 300.0;
+  airr::pose pose;
+
+  bool operator==(const part_params&) const = default;
+};
+
+// The display. width/height are its active (emitting) area; the bezel is a black border around it.
+struct source_params : part_params {
+  std::string image;             // path relative to the scene file; empty = uniform white
+  double intensity = 10.0;       // radiance = image value x intensity
+  std::string emission_profile;  // CSV of angle (deg) -> relative luminance; empty: Lambertian
+  double bezel_mm = 0.0;
+
+  source_params() {
+    width_mm = height_mm = 50.0;
+    pose.center_mm = {0, -150, 0};
+    pose.pitch_deg = 90;  // facing +y; the image's top lies towards -z
+  }
+  bool operator==(const source_params&) const = default;
+};
+
+struct half_mirror_params : part_params {
   double reflectance = 0.5;
   double transmittance = 0.5;
 
+  half_mirror_params() { pose.pitch_deg = 45; }
   bool operator==(const half_mirror_params&) const = default;
 };
 
-// Parameters of every retroreflector model; each model reads the ones that concern it.
-// Unset optionals come from the preset (sinc_shift) or from the documented default.
+// A model's parameter values by key; an absent key takes the model's default (see the model's
+// field table in retro_model.hpp), so only values that differ from the defaults are stored.
+using param_value = std::variant<double, std::string>;
+
 struct retro_model_params {
-  retro_model_type type = retro_model_type::ideal;
-  std::optional<double> mu;  // reflectance weight; default: the preset's mu(theta), else 1
-  // sinc_shift
-  std::string preset;                           // a name in assets/presets or a path; empty: none
-  std::optional<double> a_per_mm;               // spread parameter a; default: the preset's a(theta)
-  std::optional<double> c_mm;                   // corner size c; default: the preset's c
-  std::optional<double> reference_distance_mm;  // R; default: the preset's, else 300
-  std::string shift_table;                      // path; empty: the shipped corner-cube table
-  // microfacet (the baseline model)
-  double alpha_surface = 0.0;
-  double alpha_internal = 0.0005;
-  double internal_reflectance = 0.83;
-  double eta = 1.5046;
+  std::string type = "ideal";  // a registered model name: ideal, sinc_shift, microfacet
+  std::map<std::string, param_value> values;
 
   bool operator==(const retro_model_params&) const = default;
 };
 
-struct retroreflector_params {
-  std::string mesh;  // glTF file relative to the scene file; empty: the built-in unit panel
-  double width_mm = 300.0;
-  double height_mm = 300.0;
-  double distance_mm = 150.0;  // d_rr: the sheet centre sits at z = -d_rr
-  double tilt_deg = 0.0;       // rotation about x; positive leans the top edge away from the mirror
+// One retroreflective sheet. In the canonical layout, its tilt is the pose's pitch and its
+// distance behind the half mirror is -center_mm[2]; the roll is the prism azimuth.
+struct retroreflector_params : part_params {
   retro_model_params model;
 
+  retroreflector_params() { pose.center_mm = {0, 0, -150}; }
   bool operator==(const retroreflector_params&) const = default;
 };
 
-struct camera_params {
-  double distance_mm = 300.0;  // in front of the aerial image, on the +z axis
-  double fov_deg = 14.0;       // vertical field of view
+enum class observer_placement { orbit, look_at };
+enum class observer_lens { pinhole, thin_lens };
+
+// The camera (or eye) that looks at the layout.
+struct observer_params {
+  observer_placement placement = observer_placement::orbit;
+  // Orbit around the aerial image's centre: azimuth turns from +z towards +x, elevation raises
+  // towards +y; at 0, 0 the observer is on the aerial image's +z side.
+  double azimuth_deg = 0;
+  double elevation_deg = 0;
+  double distance_mm = 300.0;
+  // Position and look-at point (placement look_at).
+  std::array<double, 3> position_mm{0, 0, 450};
+  std::array<double, 3> look_at_mm{0, 0, 150};
+  observer_lens lens = observer_lens::pinhole;
+  double focal_length_mm = 50.0;
+  double f_number = 4.0;
+  std::optional<double> focus_distance_mm;  // default: the distance to the aerial image
+  double fov_deg = 14.0;                    // vertical field of view
   int width = 256;
   int height = 256;
 
-  bool operator==(const camera_params&) const = default;
+  bool operator==(const observer_params&) const = default;
 };
 
 struct render_params {
@@ -85,16 +120,19 @@ struct render_params {
 
 struct scene {
   int version = scene_format_version;
-  double floating_distance_mm = 150.0;  // D: half mirror to aerial image
   std::uint64_t seed = 1;
   source_params source;
   half_mirror_params half_mirror;
-  retroreflector_params retroreflector;
-  camera_params camera;
+  std::vector<retroreflector_params> retroreflectors{retroreflector_params{}};  // at least one
+  observer_params observer;
   render_params render;
   std::string base_dir;  // directory relative paths resolve against; not saved
 
   bool operator==(const scene&) const = default;
+
+  // The first sheet: the one the tilt drag, sweeps, the PSF and the fit act on.
+  retroreflector_params& sheet() { return retroreflectors.front(); }
+  const retroreflector_params& sheet() const { return retroreflectors.front(); }
 };
 
 // Resolves a path from the scene file against the scene's directory.

@@ -9,22 +9,35 @@
 #include <vector>
 
 #include "airr/optics/files.hpp"
+#include "airr/optics/retro_model.hpp"
 #include "airr/optics/scene.hpp"
 
 namespace airr {
 
-class retro_model;
+// The retroreflector models of a scene's sheets, in order.
+using retro_model_list = std::vector<std::shared_ptr<const retro_model>>;
 
-// A command-line override "dotted.key=value", e.g. "retroreflector.tilt_deg=20".
+// A command-line key that is not a field: the floating distance (see set_floating_distance).
+inline constexpr const char* floating_distance_key = "floating_distance_mm";
+// Short for the first sheet's pitch, retroreflectors.0.pose.pitch_deg: the tilt.
+inline constexpr const char* tilt_key = "tilt_deg";
+
+// A command-line override "dotted.key=value", e.g. "retroreflectors.0.pose.pitch_deg=20"
+// (array elements by index), "floating_distance_mm=200" or "tilt_deg=20".
 struct scene_override {
   std::string key;
   std::string value;
 };
 scene_override parse_override(const std::string& text);
 
+// The current version's form (version 2).
 nlohmann::json scene_to_json(const scene& s);
-// `origin` names the file (or "--set") in error messages.
+// Reads version 2, or version 1 through migrate_scene_v1. `origin` names the file (or "--set") in
+// error messages.
 scene scene_from_json(const nlohmann::json& j, const std::string& origin);
+// A version 1 document (the canonical bench with D, offsets, tilt and an on-axis camera) in the
+// version 2 form of the same layout; unknown keys are errors, as in version 1.
+nlohmann::json migrate_scene_v1(const nlohmann::json& j, const std::string& origin);
 
 // Applies overrides to the JSON form; the key must name an existing field.
 void apply_overrides(nlohmann::json& j, const std::vector<scene_override>& overrides);
@@ -34,9 +47,9 @@ void validate_scene(const scene& s, const std::string& origin);
 // Checks that every referenced file exists.
 void validate_scene_files(const scene& s, const std::string& origin);
 
-// All of the above plus the layout and the retroreflector model (presets, tables) resolving;
-// returns the model it built, for the caller to share.
-std::shared_ptr<const retro_model> check_scene(const scene& s, const std::string& origin);
+// All of the above plus the layout, the emission profile and the retroreflector models (presets,
+// tables) resolving; returns the models it built, for the caller to share.
+retro_model_list check_scene(const scene& s, const std::string& origin);
 
 // Reads, overrides, validates (values, files and layout). Throws input_error.
 scene load_scene(const std::string& path, const std::vector<scene_override>& overrides = {});

@@ -2,6 +2,7 @@
 // Corner-cube exit-point shift distributions P(theta) (spec section 3): for each tabulated
 // incidence angle, a normalised histogram of the shift between entry and exit points on the
 // aperture plane, in cube edge lengths, plus the retroreflected fraction of the aperture.
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,8 @@ void finalize_shift_table(shift_table& table);
 
 // Throws input_error naming the file and the problem (malformed, rows not normalised, ...).
 shift_table load_shift_table(const std::string& path);
+// The same, loaded once per path and shared.
+std::shared_ptr<const shift_table> cached_shift_table(const std::string& path);
 // Atomic write (temporary file, then rename).
 void save_shift_table(const shift_table& table, const std::string& path);
 

@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <embree3/rtcore.h>
 #include <glm/glm.hpp>
@@ -38,26 +39,27 @@ class embree_mesh_scene {
   RTCScene scene_ = nullptr;
 };
 
-// The parts of an AIRR layout; the instance id of a hit says which one.
-enum part_id : unsigned { part_source = 0, part_half_mirror = 1, part_retroreflector = 2, part_count = 3 };
+// The parts of an AIRR layout; the instance id of a hit says which one: the display, the half
+// mirror, then the retroreflective sheets in order from part_first_sheet.
+enum part_id : unsigned { part_source = 0, part_half_mirror = 1, part_first_sheet = 2 };
 
 class embree_layout_scene {
  public:
   // Mesh files per part (empty: the built-in unit panel); the same file is built once and instanced.
-  embree_layout_scene(const embree_device& device, const std::array<std::string, part_count>& mesh_paths);
+  embree_layout_scene(const embree_device& device, const std::vector<std::string>& mesh_paths);
   ~embree_layout_scene();
   embree_layout_scene(const embree_layout_scene&) = delete;
   embree_layout_scene& operator=(const embree_layout_scene&) = delete;
 
   // Moves the parts: updates the instance transforms and recommits the top level only.
-  void set_transforms(const std::array<glm::dmat4, part_count>& transforms);
+  void set_transforms(const std::vector<glm::dmat4>& transforms);
   RTCScene get() const { return top_; }
-  const std::array<std::string, part_count>& mesh_paths() const { return paths_; }
+  const std::vector<std::string>& mesh_paths() const { return paths_; }
 
  private:
-  std::array<std::string, part_count> paths_;
+  std::vector<std::string> paths_;
   std::map<std::string, std::unique_ptr<embree_mesh_scene>> prototypes_;
-  std::array<RTCGeometry, part_count> instances_{};
+  std::vector<RTCGeometry> instances_;
   RTCScene top_ = nullptr;
 };
 

@@ -53,8 +53,8 @@ class render_session {
 
   // Replaces the layout: cancels the wave in progress, resets accumulation, restarts.
   // Returns the generation whose snapshots show the new layout.
-  // `model`, when given, is the scene's retroreflector model already built (shared, not rebuilt).
-  std::uint64_t edit(const scene& s, std::shared_ptr<const retro_model> model = nullptr);
+  // `models`, when given, are the sheets' retroreflector models already built (shared, not rebuilt).
+  std::uint64_t edit(const scene& s, retro_model_list models = {});
   void set_paused(bool paused);
   void set_target_spp(std::uint64_t spp);
 
@@ -79,7 +79,7 @@ class render_session {
   mutable std::mutex mutex_;
   mutable std::condition_variable changed_;
   std::optional<scene> pending_;  // the latest edit not yet applied
-  std::shared_ptr<const retro_model> pending_model_;
+  retro_model_list pending_models_;
   std::uint64_t generation_ = 0;  // of the latest edit
   bool paused_ = false;
   bool stopping_ = false;

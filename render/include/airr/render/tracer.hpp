@@ -9,10 +9,12 @@
 
 #include <glm/glm.hpp>
 
+#include "airr/optics/emission_profile.hpp"
 #include "airr/optics/image.hpp"
 #include "airr/optics/layout.hpp"
 #include "airr/optics/retro_model.hpp"
 #include "airr/optics/scene.hpp"
+#include "airr/optics/scene_json.hpp"
 #include "airr/render/embree_scene.hpp"
 
 namespace airr {
@@ -20,19 +22,20 @@ namespace airr {
 // Everything a render needs, built from a scene; cheap to update when only parts move.
 struct tracer_scene {
   scene layout;
-  std::array<part_frame, part_count> frames;
+  std::vector<part_frame> frames;  // by part_id: the display's whole panel, the half mirror, the sheets
+  part_frame source_area;          // the display's emitting area
   pinhole_camera camera;
   std::shared_ptr<const image_rgb> texture;  // null: uniform white source
   std::string texture_path;
-  std::shared_ptr<const retro_model> retro;
+  std::shared_ptr<const emission_profile> emission;  // null: Lambertian
+  retro_model_list retro;                            // one per sheet
   std::unique_ptr<embree_layout_scene> embree;
 };
 
 // Builds (or, given the previous state, updates in place: meshes and textures are reused when
-// their files did not change, and moved parts only get new instance transforms). `model`, when
-// given, is the scene's retroreflector model already built; otherwise it is built here.
-void build_tracer_scene(tracer_scene& ts, const embree_device& device, const scene& s,
-                        std::shared_ptr<const retro_model> model = nullptr);
+// their files did not change, and moved parts only get new instance transforms). `models`, when
+// given, are the sheets' retroreflector models already built; otherwise they are built here.
+void build_tracer_scene(tracer_scene& ts, const embree_device& device, const scene& s, retro_model_list models = {});
 
 // The pixel's random rotation of the low-discrepancy sequence its samples share.
 std::array<double, 6> pixel_sequence_rotation(const tracer_scene& ts, int px, int py);

@@ -107,7 +107,7 @@ void studio_frame(studio& st, double now_seconds);
 
 // Panels, one file each.
 void draw_layout_panel(studio& st);
-void draw_side_view(studio& st);
+void draw_layout_view(studio& st);
 void draw_render_view(studio& st, double now_seconds);
 void draw_plots_panel(studio& st);
 void draw_fit_window(studio& st);
