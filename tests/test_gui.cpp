@@ -166,7 +166,7 @@ TEST(Gui, FitFromTheDesignerAppliesThePreset) {
   const std::string log_text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
   ASSERT_EQ(status, 0) << log_text;
   const auto scene_json = nlohmann::json::parse(std::ifstream(scene_out));
-  const auto& model = scene_json.at("retroreflector").at("model");
+  const auto& model = scene_json.at("retroreflectors").at(0).at("model");
   EXPECT_EQ(model.at("type"), "sinc_shift");
   const auto preset = nlohmann::json::parse(std::ifstream(model.at("preset").get<std::string>()));
   EXPECT_NEAR(preset.at("c_mm").get<double>(), 0.94966, 0.05 * 0.94966);

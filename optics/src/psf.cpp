@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+
 #include "airr/optics/error.hpp"
 #include "airr/optics/geometry.hpp"
 #include "airr/optics/layout.hpp"
@@ -49,28 +51,42 @@ psf_samples sample_psf(const scene& s, const retro_model& model, const psf_param
   std::array<double, 6> rotation;
   pcg32 rotation_rng = sample_rng(0, 0, p.seed ^ 0x5eedu);
   for (double& r : rotation) r = rotation_rng.next_double();
-  for (std::uint64_t i = 0; i < p.samples; ++i) {
-    // The lobe and shift samples stratify each other across the PSF's samples (a rotated R6
-    // sequence, as the tracer's pixels use); the rest comes from the per-sample generator.
-    const std::array<double, 6> q = r6_point(i, rotation);
-    pcg32 rng = sample_rng(i, 0, p.seed);
-    retro_samples u;
-    u.lobe = {q[2], q[3]};
-    u.shift = {q[4], q[5]};
-    u.more = rng.split();
-    const retro_sample rs = model.sample(wi, u);
-    if (!(rs.weight > 0)) continue;
-    const glm::dvec3 dir = to_world(rr, rs.wo);
-    const glm::dvec3 origin = *p2 + rs.shift_mm.x * rr.u + rs.shift_mm.y * rr.v;
-    const auto a = hit_part(hm, origin, dir);
-    if (!a) continue;
-    const auto b = hit_part(src, *a, reflect(dir, hm.n), false);
-    if (!b) continue;
-    // The image of a point shows where rays land relative to the ideal point, point-mirrored;
-    // source (u, v) map to aerial (x, y).
-    const glm::dvec3 delta = *b - ideal;
-    out.offset_mm.emplace_back(-glm::dot(delta, src.u), -glm::dot(delta, src.v));
-    out.weight.push_back(rs.weight * hm_factor);
+
+  // Blocks of samples run in parallel and are joined in order, so the result does not depend on
+  // the number of threads.
+  constexpr std::uint64_t block = 8192;
+  const std::size_t blocks = std::size_t((p.samples + block - 1) / block);
+  std::vector<psf_samples> parts(blocks);
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+    psf_samples& part = parts[b];
+    const std::uint64_t end = std::min<std::uint64_t>(p.samples, (b + 1) * block);
+    for (std::uint64_t i = b * block; i < end; ++i) {
+      // The lobe and shift samples stratify each other across the PSF's samples (a rotated R6
+      // sequence, as the tracer's pixels use); the rest comes from the per-sample generator.
+      const std::array<double, 6> q = r6_point(i, rotation);
+      pcg32 rng = sample_rng(i, 0, p.seed);
+      retro_samples u;
+      u.lobe = {q[2], q[3]};
+      u.shift = {q[4], q[5]};
+      u.more = rng.split();
+      const retro_sample rs = model.sample(wi, u);
+      if (!(rs.weight > 0)) continue;
+      const glm::dvec3 dir = to_world(rr, rs.wo);
+      const glm::dvec3 origin = *p2 + rs.shift_mm.x * rr.u + rs.shift_mm.y * rr.v;
+      const auto at_hm = hit_part(hm, origin, dir);
+      if (!at_hm) continue;
+      const auto at_source = hit_part(src, *at_hm, reflect(dir, hm.n), false);
+      if (!at_source) continue;
+      // The image of a point shows where rays land relative to the ideal point, point-mirrored;
+      // source (u, v) map to aerial (x, y).
+      const glm::dvec3 delta = *at_source - ideal;
+      part.offset_mm.emplace_back(-glm::dot(delta, src.u), -glm::dot(delta, src.v));
+      part.weight.push_back(rs.weight * hm_factor);
+    }
+  });
+  for (const psf_samples& part : parts) {
+    out.offset_mm.insert(out.offset_mm.end(), part.offset_mm.begin(), part.offset_mm.end());
+    out.weight.insert(out.weight.end(), part.weight.begin(), part.weight.end());
   }
   return out;
 }
