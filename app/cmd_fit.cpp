@@ -124,7 +124,7 @@ void run_synthesise(const options& opt) {
     airr::set_floating_distance(s, d);
     s.sheet().model = {.type = "sinc_shift", .values = {}};
     airr::set_model_value(s.sheet().model, "preset", fs::absolute(preset_path).string());
-    const auto model = airr::make_retro_model(s.sheet().model, s.base_dir);
+    const auto model = airr::make_sheet_model(s);
     return airr::sample_psf(s, *model, {.samples = samples, .seed = seed});
   };
   auto write_csv = [&](const airr::psf_samples& psf, const std::string& name) {

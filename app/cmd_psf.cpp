@@ -74,6 +74,16 @@ void add_psf_command(CLI::App& app) {
 
     std::printf("retroreflector: %s, %.6g mm from the aerial image, chief-ray incidence %.4g deg\n",
                 s.sheet().model.type.c_str(), psf.rr_distance_mm, psf.incidence_deg);
+    const airr::retro_model_params& model = s.sheet().model;
+    if (airr::find_field(airr::find_retro_model_kind(model.type).fields, "lookup")) {
+      const std::string lookup = airr::read_model_values(model).text("lookup");
+      if (lookup == "per_render") {
+        std::printf("angle lookup: per_render, at the sheet's chief-ray incidence %.4g deg\n",
+                    airr::sheet_chief_incidence_deg(s));
+      } else {
+        std::printf("angle lookup: %s\n", lookup.c_str());
+      }
+    }
     std::printf("50%%-energy radius: %.4f mm\n", r50);
     if (pixel_mm > 0)
       std::printf("pixel aperture: %.6g mm on the aerial-image plane (included; --no-pixel for the optics alone)\n",

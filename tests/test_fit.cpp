@@ -256,7 +256,7 @@ TEST(SheetFit, MeasuredLikeMtfWithoutWindowIsPsfMtf) {
   scene s = test::uniform_source_scene(50.0);
   s.sheet().model.type = "sinc_shift";
   airr::set_model_value(s.sheet().model, "preset", "rf-an");
-  const auto model = make_retro_model(s.sheet().model);
+  const auto model = make_sheet_model(s);
   const psf_samples psf = sample_psf(s, *model, {.samples = 5000, .seed = 3});
   const analysis::psf_mtf_params params{.max_lp_per_mm = 1.5, .points = 31, .pixel_mm = 0.2};
   const auto expected = analysis::psf_mtf(psf, params);
@@ -272,7 +272,7 @@ TEST(SheetFit, WhiteSquareImageKeepsTheLight) {
   // An ideal retroreflector: the square's image is the square itself, R T mu x intensity bright.
   scene s = test::uniform_source_scene(50.0, 64);
   airr::set_model_value(s.sheet().model, "mu", 0.5);
-  const auto model = make_retro_model(s.sheet().model);
+  const auto model = make_sheet_model(s);
   const psf_samples psf = sample_psf(s, *model, {.samples = 1000, .seed = 1});
   const cv::Mat img = analysis::white_square_image(s, psf, 10.0, 10.0);
   const double mm = make_camera(s).mm_per_pixel, level = s.source.intensity * 0.25 * 0.5;

@@ -8,6 +8,7 @@
 #include "airr/optics/retro_model.hpp"
 #include "airr/optics/scene.hpp"
 #include "airr/render/render_session.hpp"
+#include "error_of.hpp"
 
 namespace airr::test {
 

@@ -13,14 +13,7 @@ using namespace airr;
 
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const input_error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 // Writes a scene file into dir (with the shipped models), after editing its JSON.
 std::string write_scene(const test::temp_dir& dir, const std::function<void(nlohmann::json&)>& edit) {

@@ -9,6 +9,7 @@
 #include "airr/optics/emission_profile.hpp"
 #include "airr/optics/error.hpp"
 #include "airr/optics/layout.hpp"
+#include "airr/optics/retro_sinc_shift.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "test_helpers.hpp"
 
@@ -16,14 +17,7 @@ using namespace airr;
 
 namespace {
 
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const input_error& e) {
-    return e.what();
-  }
-  return "";
-}
+using test::error_of;
 
 void expect_near(const glm::dvec3& a, const glm::dvec3& b, double tol = 1e-12) {
   EXPECT_NEAR(a.x, b.x, tol);
@@ -262,6 +256,57 @@ TEST(BadLayout, ModelFieldsAreCheckedByTheirDescriptions) {
   const scene s = load_scene(path, {parse_override("retroreflectors.0.model.type=microfacet")});
   EXPECT_EQ(s.sheet().model.type, "microfacet");
   EXPECT_TRUE(s.sheet().model.values.empty());
+}
+
+TEST(SincLookup, ChoiceIsCheckedAndSaved) {
+  test::temp_dir dir;
+  save_scene(test::uniform_source_scene(20), dir.file("s.json"));
+  const std::string path = dir.file("s.json");
+  const std::string e = error_of([&] {
+    load_scene(path, {parse_override("retroreflectors.0.model.type=sinc_shift"),
+                      parse_override("retroreflectors.0.model.preset=rf-ay"),
+                      parse_override("retroreflectors.0.model.lookup=per_pixel")});
+  });
+  EXPECT_EQ(e,
+            path + " (with --set): retroreflectors[0].model.lookup: unknown value 'per_pixel' (per_ray, per_render)");
+  const scene s = load_scene(path, {parse_override("retroreflectors.0.model.type=sinc_shift"),
+                                    parse_override("retroreflectors.0.model.preset=rf-ay"),
+                                    parse_override("retroreflectors.0.model.lookup=per_render")});
+  save_scene(s, dir.file("t.json"));
+  EXPECT_EQ(load_scene(dir.file("t.json")).sheet().model.values.at("lookup"), param_value(std::string("per_render")));
+}
+
+// The angle a per-render lookup uses: the sheet's tilt in the canonical layout, for a sheet beyond
+// the half mirror (lit through it) the angle to the display's centre.
+TEST(SincLookup, SheetChiefIncidenceIsTheTiltOnTheBenchAndFollowsTheDisplayBeyondTheMirror) {
+  scene s = test::uniform_source_scene(20);
+  for (double tilt : {0.0, 5.0, 20.0, 45.0}) {
+    s.sheet().pose.pitch_deg = tilt;
+    EXPECT_NEAR(sheet_chief_incidence_deg(s), tilt, 1e-9);
+  }
+  s.sheet().pose.pitch_deg = 0;
+  s.retroreflectors.push_back(s.sheet());
+  s.retroreflectors[1].pose = {.center_mm = {0, 160, 0}, .pitch_deg = -90};  // above the mirror, facing down
+  EXPECT_NEAR(sheet_chief_incidence_deg(s, 1), 0.0, 1e-9);
+  s.source.pose.center_mm = {0, -150, 40};  // the display towards the viewer: 40 mm off the sheet's axis
+  EXPECT_NEAR(sheet_chief_incidence_deg(s, 1), degrees(std::atan2(40.0, 310.0)), 1e-9);
+  // The first sheet sees the display's mirror image, which moved with it.
+  EXPECT_NEAR(sheet_chief_incidence_deg(s, 0), degrees(std::atan2(40.0, 300.0)), 1e-9);
+
+  // A per-render sheet looks a and mu up there for every ray; a per-ray sheet at each ray's angle.
+  s.sheet().model = with_model_type(s.sheet().model, "sinc_shift");
+  set_model_value(s.sheet().model, "preset", std::string("rf-ay"));
+  const auto per_ray = make_sheet_model(s);
+  set_model_value(s.sheet().model, "lookup", std::string("per_render"));
+  const auto per_render = make_sheet_model(s);
+  const auto& ray = dynamic_cast<const sinc_shift_retro&>(*per_ray);
+  const auto& render = dynamic_cast<const sinc_shift_retro&>(*per_render);
+  const double chief = sheet_chief_incidence_deg(s);
+  for (double theta : {0.0, 10.0, 30.0}) {
+    EXPECT_EQ(render.a_at(theta), ray.a_at(chief));
+    EXPECT_EQ(render.mu_at(theta), ray.mu_at(chief));
+  }
+  EXPECT_NE(ray.a_at(0), ray.a_at(chief));
 }
 
 TEST(EmissionProfile, BadFilesNameTheLineAndTheProblem) {

@@ -12,6 +12,7 @@
 #include "airr/optics/psf.hpp"
 #include "airr/optics/random.hpp"
 #include "airr/optics/retro_sinc_shift.hpp"
+#include "airr/optics/sheet_models.hpp"
 #include "airr/optics/sinc_lobe.hpp"
 #include "chi_square.hpp"
 #include "test_helpers.hpp"
@@ -52,7 +53,7 @@ scene preset_scene(const std::string& preset, double distance_mm, double tilt_de
 }
 
 double blur_r50(const scene& s, std::uint64_t samples = 200000) {
-  const auto model = make_retro_model(s.sheet().model);
+  const auto model = make_sheet_model(s);
   return energy_radius(sample_psf(s, *model, {.samples = samples, .seed = 3}));
 }
 
@@ -187,7 +188,7 @@ TEST(SincShift, LobeBlurGrowsLinearlyWithDistanceAndAsOneOverA) {
     std::vector<double> l, r;
     for (double d = 150; d <= 300; d += 25) {
       const scene s = sinc_scene(a, 0.0, d);
-      const auto model = make_retro_model(s.sheet().model);
+      const auto model = make_sheet_model(s);
       const psf_samples psf = sample_psf(s, *model, {.samples = 200000, .seed = 5});
       l.push_back(psf.rr_distance_mm);
       r.push_back(energy_radius(psf));
@@ -234,7 +235,7 @@ TEST(Presets, SceneOverridesApplyAtEveryAngle) {
   m.type = "sinc_shift";
   set_model_value(m, "preset", "rf-ay");
   set_model_value(m, "mu", 0.5);
-  const sinc_shift_params p = resolve_sinc_shift_params(m, "");
+  const sinc_shift_params p = resolve_sinc_shift_params(m, {});
   EXPECT_EQ(p.mu, std::vector<double>{0.5});
   EXPECT_EQ(p.a_per_mm.size(), 10u);
   EXPECT_DOUBLE_EQ(p.c_mm, 0.94966);

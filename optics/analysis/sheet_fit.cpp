@@ -28,7 +28,7 @@ namespace {
 double reference_distance(const scene& setup) {
   const auto& m = setup.sheet().model;
   if (m.type != "sinc_shift") return 300.0;
-  return resolve_sinc_shift_params(m, setup.base_dir).reference_distance_mm;
+  return resolve_sinc_shift_params(m, {.base_dir = setup.base_dir}).reference_distance_mm;
 }
 
 // A measured curve resampled on the grid the simulation is compared on.
@@ -120,7 +120,7 @@ class sheet_fitter {
 
   psf_samples psf(double tilt, double distance, double a, double c) {
     const scene s = fit_scene(d_.setup, tilt, distance, a, c, 1.0);
-    const auto model = make_retro_model(s.sheet().model, s.base_dir);
+    const auto model = make_sheet_model(s);
     psf_samples out = sample_psf(s, *model, {.samples = p_.psf_samples, .seed = p_.seed});
     ++simulations_;
     meter_.add(1);
@@ -216,6 +216,10 @@ scene fit_scene(const scene& setup, double tilt_deg, double floating_distance_mm
   airr::set_floating_distance(s, floating_distance_mm);
   auto& m = s.sheet().model;
   m = {.type = "sinc_shift", .values = {}};
+  // The setup's angle lookup carries over (at the image centre, where the fit's PSF is taken, both
+  // lookups see the chief ray's angle).
+  if (setup.sheet().model.type == "sinc_shift")
+    set_model_value(m, "lookup", read_model_values(setup.sheet().model).text("lookup"));
   set_model_value(m, "reference_distance_mm", reference_distance(setup));
   set_model_value(m, "a_per_mm", a_per_mm);
   set_model_value(m, "c_mm", c_mm);

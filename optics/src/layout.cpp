@@ -79,6 +79,14 @@ part_frame aerial_image_frame(const scene& s) {
 
 glm::dvec3 aerial_image_center(const scene& s) { return aerial_image_frame(s).center; }
 
+double sheet_chief_incidence_deg(const scene& s, std::size_t sheet) {
+  const part_frame hm = half_mirror_frame(s), rr = retroreflector_frame(s, sheet);
+  const glm::dvec3 display = source_frame(s).center;
+  const bool display_side = glm::dot(rr.center - hm.center, hm.n) * glm::dot(display - hm.center, hm.n) > 0;
+  const glm::dvec3 from = display_side ? aerial_image_center(s) : display;
+  return polar_angle_deg(to_local(rr, glm::normalize(from - rr.center)));
+}
+
 double floating_distance(const scene& s) { return glm::length(aerial_image_center(s) - half_mirror_frame(s).center); }
 
 void set_floating_distance(scene& s, double d_mm) {

@@ -1,17 +1,23 @@
-// The microfacet retroreflector of spec 2.3. Every choice is made with the random numbers
-// (Russian roulette), so a sample's weight is mu, mu times the exit transmission, or 0:
+// The microfacet retroreflector of spec 2.3. The branches are chosen with the random numbers
+// (Russian roulette); a sample's weight is mu (surface reflection, diffuse lobe), mu R_int^3 times
+// the exit transmission (retroreflection), or 0:
 // - Front surface: a facet normal visible from wi (Beckmann, alpha_surface; +z when smooth).
-//   With probability F(wi.m) the light reflects about it, otherwise it refracts in (Snell).
-// - Inside: with probability ERA(x, phi) * internal_reflectance it is retroreflected by the
-//   cube corner, otherwise it leaves in a cosine-weighted lobe about +z (the remainder, as
-//   specified, without further loss). x and phi are measured on the refracted ray (pointing back
-//   out), which for a smooth surface has the azimuth of wi.
+//   With probability F(wi.m) the light reflects about it, otherwise it refracts in (Snell). The
+//   entry transmission 1 - F is counted once, by this choice.
+// - Inside: with probability ERA(x, phi) it takes the retroreflective path through the cube
+//   corner, otherwise it leaves in a cosine-weighted lobe about +z (the remainder, as specified,
+//   without further loss). x and phi are measured on the refracted ray (pointing back out), which
+//   for a smooth surface has the azimuth of wi.
 // - Cube corner: one of the two prism orientations (probability 1/2 each); the first face is
 //   drawn with probability proportional to its projected cosine max(0, -d.n) with the ray d, the
 //   second likewise among the two remaining faces with the once-reflected ray, the third is the
 //   one left. Each face reflects about a facet normal drawn from the Beckmann normals visible to
 //   the ray (alpha_internal, about the face normal). A ray that faces none of the candidate
 //   faces, or that a reflection sends through the face, is lost.
+// - Coating: each of the three faces is an aluminium mirror of reflectance internal_reflectance
+//   (R_int), so the retroreflected weight carries R_int once per reflection, R_int^3 in all. The
+//   light the coating does not reflect is absorbed; it never reaches the diffuse lobe, whose
+//   share stays 1 - ERA of the refracted light.
 // - Exit: refraction through a facet visible from inside; the weight is multiplied by the Fresnel
 //   transmission. The internally reflected part, including total internal reflection, is
 //   absorbed.
@@ -165,7 +171,7 @@ const retro_model_kind& microfacet_retro_kind() {
         number_field("internal_reflectance", "", 0, 1, 0.83, "Reflectance of each aluminium-coated cube face"),
         number_field("eta", "", 1, 3, 1.5046, "Refractive index of the prism sheet"),
     };
-    k.make = [](const model_values& v, const std::string&) -> std::unique_ptr<retro_model> {
+    k.make = [](const model_values& v, const model_setting&) -> std::unique_ptr<retro_model> {
       microfacet_params p;
       p.alpha_surface = v.number("alpha_surface");
       p.alpha_internal = v.number("alpha_internal");
@@ -219,7 +225,8 @@ microfacet_trace microfacet_retro::trace(const glm::dvec3& wi, retro_samples u) 
 
   const double x_deg = polar_angle_deg(-d);
   const double phi_deg = degrees(std::atan2(-d.y, -d.x));
-  const double p_retro = std::min(1.0, era(x_deg, phi_deg) * internal_reflectance_);
+  // The retroreflective path's share is the effective area alone; the coating loss is a weight.
+  const double p_retro = std::min(1.0, era(x_deg, phi_deg));
   if (u.lobe.y >= p_retro) {
     out.branch = microfacet_branch::diffuse;
     const double s = std::sqrt(u.shift.x);
@@ -228,8 +235,10 @@ microfacet_trace microfacet_retro::trace(const glm::dvec3& wi, retro_samples u) 
     return out;
   }
 
-  // Cube corner: three reflections, the face order drawn by projected cosine.
+  // Cube corner: three reflections, the face order drawn by projected cosine, each on a coated
+  // face that reflects internal_reflectance of the light and absorbs the rest.
   out.branch = microfacet_branch::retro;
+  double coating = 1;
   const std::array<glm::dvec3, 3> faces = cube_faces(u.shift.x < 0.5);
   std::array<int, 3> left{0, 1, 2};
   int n_left = 3;
@@ -256,6 +265,7 @@ microfacet_trace microfacet_retro::trace(const glm::dvec3& wi, retro_samples u) 
     const glm::dvec3 mf =
         f.to_world(sample_beckmann_visible(f.to_local(-d), alpha_internal_, facet_u[step][0], facet_u[step][1]));
     d = reflect(d, mf);
+    coating *= internal_reflectance_;
     if (glm::dot(d, n) <= 0) return out;
     left[pick] = left[--n_left];
   }
@@ -269,7 +279,7 @@ microfacet_trace microfacet_retro::trace(const glm::dvec3& wi, retro_samples u) 
   const double f_out = fresnel_dielectric(glm::dot(v, m_in), 1 / eta_);
   const auto wo = refract(d, m_in, eta_);
   if (f_out >= 1 || !wo || wo->z <= 0) return out;
-  out.sample = {*wo, {0, 0}, mu_ * (1 - f_out)};
+  out.sample = {*wo, {0, 0}, mu_ * coating * (1 - f_out)};
   return out;
 }
 

@@ -15,7 +15,7 @@ const retro_model_kind& ideal_retro_kind() {
     k.name = "ideal";
     k.help = "Sends light exactly back where it came from";
     k.fields = {number_field("mu", "", 0, 1, 1, "Weight of every retroreflected path")};
-    k.make = [](const model_values& v, const std::string&) -> std::unique_ptr<retro_model> {
+    k.make = [](const model_values& v, const model_setting&) -> std::unique_ptr<retro_model> {
       return std::make_unique<ideal_retro>(v.number("mu"));
     };
     return k;
@@ -57,11 +57,11 @@ model_values read_model_values(const retro_model_params& p, const std::string& w
   return model_values(p, find_retro_model_kind(p.type, where).fields, where);
 }
 
-std::unique_ptr<retro_model> make_retro_model(const retro_model_params& p, const std::string& base_dir,
+std::unique_ptr<retro_model> make_retro_model(const retro_model_params& p, const model_setting& setting,
                                               const std::string& where) {
   const retro_model_kind& kind = find_retro_model_kind(p.type, where);
   validate_model_values(p, kind.fields, where);
-  return kind.make(model_values(p, kind.fields, where), base_dir);
+  return kind.make(model_values(p, kind.fields, where), setting);
 }
 
 }  // namespace airr

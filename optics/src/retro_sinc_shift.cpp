@@ -10,13 +10,13 @@
 
 namespace airr {
 
-sinc_shift_params resolve_sinc_shift_params(const model_values& v, const std::string& base_dir) {
+sinc_shift_params resolve_sinc_shift_params(const model_values& v, const model_setting& setting) {
   sinc_shift_params p;
   const std::string preset_name = v.text("preset");
   const auto a = v.optional_number("a_per_mm"), mu = v.optional_number("mu"), c = v.optional_number("c_mm"),
              r = v.optional_number("reference_distance_mm");
   if (!preset_name.empty()) {
-    const sheet_preset preset = load_preset(preset_name, base_dir);
+    const sheet_preset preset = load_preset(preset_name, setting.base_dir);
     p.theta_deg = preset.theta_deg;
     p.a_per_mm = preset.a_per_mm;
     p.mu = preset.mu;
@@ -29,11 +29,12 @@ sinc_shift_params resolve_sinc_shift_params(const model_values& v, const std::st
   if (mu) p.mu = {*mu};
   if (c) p.c_mm = *c;
   if (r) p.reference_distance_mm = *r;
+  if (v.text("lookup") == "per_render") p.lookup_angle_deg = setting.chief_incidence_deg;
   return p;
 }
 
-sinc_shift_params resolve_sinc_shift_params(const retro_model_params& p, const std::string& base_dir) {
-  return resolve_sinc_shift_params(model_values(p, sinc_shift_retro_kind().fields, "model"), base_dir);
+sinc_shift_params resolve_sinc_shift_params(const retro_model_params& p, const model_setting& setting) {
+  return resolve_sinc_shift_params(model_values(p, sinc_shift_retro_kind().fields, "model"), setting);
 }
 
 const retro_model_kind& sinc_shift_retro_kind() {
@@ -52,20 +53,23 @@ const retro_model_kind& sinc_shift_retro_kind() {
         optional_number_field("reference_distance_mm", "mm", 0, 1e5, true,
                               "Reference distance R; unset: the preset's, else 300", 1000),
         text_field("shift_table", field_kind::path, "Corner-cube shift table (JSON); empty: the shipped table"),
+        choice_field("lookup", {"per_ray", "per_render"},
+                     "Angle of a, mu and the shift distribution: each ray's incidence (per_ray) or the sheet's "
+                     "chief ray for the whole render (per_render, as the paper's fit)"),
     };
-    k.make = [](const model_values& v, const std::string& base_dir) -> std::unique_ptr<retro_model> {
-      sinc_shift_params sp = resolve_sinc_shift_params(v, base_dir);
+    k.make = [](const model_values& v, const model_setting& setting) -> std::unique_ptr<retro_model> {
+      sinc_shift_params sp = resolve_sinc_shift_params(v, setting);
       std::shared_ptr<const shift_table> shifts;
       if (sp.c_mm > 0) {
         const std::string table = v.text("shift_table");
-        shifts = cached_shift_table(table.empty() ? default_shift_table_path() : resolve_path(table, base_dir));
+        shifts = cached_shift_table(table.empty() ? default_shift_table_path() : resolve_path(table, setting.base_dir));
       }
       return std::make_unique<sinc_shift_retro>(std::move(sp), std::move(shifts));
     };
     k.derived = [](const model_values& v, const std::string& key, const std::string& base_dir,
                    double theta_deg) -> std::optional<double> {
       try {
-        const sinc_shift_params p = resolve_sinc_shift_params(v, base_dir);
+        const sinc_shift_params p = resolve_sinc_shift_params(v, {.base_dir = base_dir});
         if (key == "a_per_mm") return interpolate_by_angle(p.theta_deg, p.a_per_mm, theta_deg);
         if (key == "mu") return interpolate_by_angle(p.theta_deg, p.mu, theta_deg);
         if (key == "c_mm") return p.c_mm;
@@ -83,9 +87,11 @@ sinc_shift_retro::sinc_shift_retro(sinc_shift_params p, std::shared_ptr<const sh
     : p_(std::move(p)), shifts_(std::move(shifts)) {}
 
 double sinc_shift_retro::a_at(double theta_deg) const {
-  return interpolate_by_angle(p_.theta_deg, p_.a_per_mm, theta_deg);
+  return interpolate_by_angle(p_.theta_deg, p_.a_per_mm, p_.lookup_angle_deg.value_or(theta_deg));
 }
-double sinc_shift_retro::mu_at(double theta_deg) const { return interpolate_by_angle(p_.theta_deg, p_.mu, theta_deg); }
+double sinc_shift_retro::mu_at(double theta_deg) const {
+  return interpolate_by_angle(p_.theta_deg, p_.mu, p_.lookup_angle_deg.value_or(theta_deg));
+}
 
 retro_sample sinc_shift_retro::sample(const glm::dvec3& wi, retro_samples u) const {
   if (wi.z <= 0) return {};
@@ -102,7 +108,8 @@ retro_sample sinc_shift_retro::sample(const glm::dvec3& wi, retro_samples u) con
 
   if (p_.c_mm > 0 && shifts_) {
     const double pick = u.more.next_double();
-    const double shift = sample_shift(*shifts_, theta_deg, pick, u.shift.x, u.more.next_double()) * p_.c_mm;
+    const double shift_theta = p_.lookup_angle_deg.value_or(theta_deg);
+    const double shift = sample_shift(*shifts_, shift_theta, pick, u.shift.x, u.more.next_double()) * p_.c_mm;
     const double psi = 2.0 * pi * u.shift.y;
     s.shift_mm = {shift * std::cos(psi), shift * std::sin(psi)};
   }

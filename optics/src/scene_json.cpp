@@ -354,7 +354,7 @@ retro_model_list check_scene(const scene& s, const std::string& origin) {
     const std::string where = "retroreflectors[" + std::to_string(i) + "]";
     try {
       // Presets and tables load, values resolve.
-      models.push_back(make_retro_model(s.retroreflectors[i].model, s.base_dir, where + ".model"));
+      models.push_back(make_sheet_model(s, i));
     } catch (const input_error& e) {
       const std::string what = e.what();
       throw input_error(what.rfind(where, 0) == 0 ? origin + ": " + what : what);

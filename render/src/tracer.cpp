@@ -27,13 +27,7 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   if (!s.source.emission_profile.empty()) {
     emission = load_emission_profile(resolve_scene_path(s, s.source.emission_profile));
   }
-  if (models.size() != s.retroreflectors.size()) {
-    models.clear();
-    for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) {
-      models.push_back(
-          make_retro_model(s.retroreflectors[i].model, s.base_dir, "retroreflectors[" + std::to_string(i) + "].model"));
-    }
-  }
+  if (models.size() != s.retroreflectors.size()) models = make_sheet_models(s);
 
   if (embree) ts.embree = std::move(embree);
   ts.texture = std::move(texture);

@@ -2,10 +2,11 @@
 // Scratch directories and hand-written image files for the analysis tests.
 #include <filesystem>
 #include <optional>
-#include <stdexcept>
 #include <string>
 
 #include <opencv2/core.hpp>
+
+#include "../error_of.hpp"
 
 namespace airr::analysis::testing {
 
@@ -19,16 +20,7 @@ struct scratch_dir {
   std::filesystem::path operator/(const std::string& name) const { return path / name; }
 };
 
-// The message of the std::runtime_error thrown by f, or "" when none is thrown.
-template <class F>
-std::string error_of(F&& f) {
-  try {
-    f();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  return "";
-}
+using airr::test::error_of;
 
 enum class attribute_kind { none, string, floating };
 

@@ -12,6 +12,7 @@
 #include "airr/optics/layout.hpp"
 #include "airr/optics/psf.hpp"
 #include "airr/optics/retro_model.hpp"
+#include "airr/optics/sheet_models.hpp"
 
 namespace airr::ui {
 
@@ -26,7 +27,7 @@ predicted_plots compute_predicted(const scene& s, std::uint64_t generation, cons
   out.generation = generation;
   try {
     const auto t0 = clock_type::now();
-    if (!model) model = make_retro_model(s.sheet().model, s.base_dir);
+    if (!model) model = make_sheet_model(s);
     const double pixel_mm = make_camera(s).mm_per_pixel;
     const psf_samples psf = scene_psf(s, *model, p.psf_samples);
     const auto curve = analysis::psf_mtf(psf, {.max_lp_per_mm = 2.0, .points = 41, .pixel_mm = pixel_mm});
@@ -59,7 +60,8 @@ predicted_plots compute_predicted(const scene& s, std::uint64_t generation, cons
       scene sd = s;
       set_floating_distance(sd, d);
       try {
-        const psf_samples pd = scene_psf(sd, *model, p.sweep_psf_samples);
+        // Built again at each D: a per-render lookup follows the sheet's chief ray there.
+        const psf_samples pd = scene_psf(sd, *make_sheet_model(sd), p.sweep_psf_samples);
         out.sweep_mean_mtf.push_back(psf_route_mtf(pd, make_camera(sd).mm_per_pixel).mean_mtf);
         out.sweep_d_mm.push_back(d);
       } catch (const std::exception&) {

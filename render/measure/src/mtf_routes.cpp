@@ -11,12 +11,11 @@
 #include "airr/optics/geometry.hpp"
 #include "airr/optics/layout.hpp"
 #include "airr/optics/retro_model.hpp"
+#include "airr/optics/sheet_models.hpp"
 
 namespace airr {
 
-psf_samples scene_psf(const scene& s, std::uint64_t samples) {
-  return scene_psf(s, *make_retro_model(s.sheet().model, s.base_dir), samples);
-}
+psf_samples scene_psf(const scene& s, std::uint64_t samples) { return scene_psf(s, *make_sheet_model(s), samples); }
 
 psf_samples scene_psf(const scene& s, const retro_model& model, std::uint64_t samples) {
   return sample_psf(s, model, {.samples = samples, .seed = s.seed});

@@ -26,6 +26,13 @@ part_frame retroreflector_frame(const scene& s, std::size_t sheet = 0);
 part_frame aerial_image_frame(const scene& s);
 glm::dvec3 aerial_image_center(const scene& s);
 
+// The incidence angle (degrees) at sheet i's centre of the light from the display's centre: from
+// the aerial image's centre (the display's mirror image) when the sheet is on the display's side of
+// the half mirror (light reaches it by reflection), from the display's centre when it is on the
+// other side (light reaches it through the mirror). In the canonical layout it is the sheet's tilt.
+// Models that look their parameters up once per render use it.
+double sheet_chief_incidence_deg(const scene& s, std::size_t sheet = 0);
+
 // The floating distance D: from the half mirror's centre to the aerial image's centre. Setting it
 // moves the display along the line from the half mirror's centre through the display's centre,
 // which moves the aerial image along the line from the half mirror's centre through it (in the

@@ -56,14 +56,21 @@ class ideal_retro final : public retro_model {
   double mu_;
 };
 
+// What building a model may need beyond its values: where its files (presets, tables) resolve,
+// and the incidence angle of its sheet's chief ray (for parameters looked up once per render).
+struct model_setting {
+  std::string base_dir;
+  double chief_incidence_deg = 0;
+};
+
 // A model as the scene file knows it: its name, its parameters and how to build it. A new model
 // adds one of these in its own file and registers it in retro_model.cpp.
 struct retro_model_kind {
   std::string name;
   std::string help;
   model_fields fields;
-  // Files (presets, tables) resolve against base_dir; errors name values.where().
-  std::function<std::unique_ptr<retro_model>(const model_values& values, const std::string& base_dir)> make;
+  // Errors name values.where().
+  std::function<std::unique_ptr<retro_model>(const model_values& values, const model_setting& setting)> make;
   // What an unset optional number stands for at incidence angle theta (shown beside it), if known.
   std::function<std::optional<double>(const model_values& values, const std::string& key, const std::string& base_dir,
                                       double theta_deg)>
@@ -83,9 +90,9 @@ model_values read_model_values(const retro_model_params& p, const std::string& w
 
 const retro_model_kind& ideal_retro_kind();
 
-// Builds the model a sheet names; files (presets, shift tables) resolve against base_dir; errors
-// name `where`, e.g. "retroreflectors[0].model".
-std::unique_ptr<retro_model> make_retro_model(const retro_model_params& p, const std::string& base_dir = "",
+// Builds a model from its parameters; errors name `where`, e.g. "retroreflectors[0].model".
+// A scene's sheets are built with make_sheet_model (sheet_models.hpp), which knows their setting.
+std::unique_ptr<retro_model> make_retro_model(const retro_model_params& p, const model_setting& setting = {},
                                               const std::string& where = "retroreflectors[0].model");
 
 }  // namespace airr

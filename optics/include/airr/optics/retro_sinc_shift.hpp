@@ -1,8 +1,10 @@
 #pragma once
 // The sinc-shift retroreflector (the default model): a sinc^2 angular spread whose blur grows
 // with the distance to the aerial image, an exit-point shift drawn from the corner-cube shift
-// distribution for the ray's incidence angle, and weight mu; a and mu follow the incidence angle.
+// distribution for the ray's incidence angle, and weight mu; a and mu follow the incidence angle
+// (or, with the "per_render" lookup, the incidence angle of the sheet's chief ray).
 #include <memory>
+#include <optional>
 
 #include "airr/optics/preset.hpp"
 #include "airr/optics/retro_model.hpp"
@@ -17,12 +19,15 @@ struct sinc_shift_params {
   std::vector<double> mu{1.0};
   double c_mm = 0.0;
   double reference_distance_mm = 300.0;
+  // Lookup "per_render": a, mu and the shift distribution at this one angle (the sheet's chief
+  // ray) for every ray; unset ("per_ray"): at each ray's own incidence angle.
+  std::optional<double> lookup_angle_deg;
 };
 
 // Combines an optional preset with the scene's overrides (a set value applies at every angle).
 // Throws input_error when a needed value has no source.
-sinc_shift_params resolve_sinc_shift_params(const model_values& v, const std::string& base_dir);
-sinc_shift_params resolve_sinc_shift_params(const retro_model_params& p, const std::string& base_dir);
+sinc_shift_params resolve_sinc_shift_params(const model_values& v, const model_setting& setting);
+sinc_shift_params resolve_sinc_shift_params(const retro_model_params& p, const model_setting& setting);
 
 // The model's scene-file entry ("sinc_shift").
 const retro_model_kind& sinc_shift_retro_kind();
@@ -38,6 +43,7 @@ class sinc_shift_retro final : public retro_model {
   std::optional<double> pdf(const glm::dvec3& wi, const glm::dvec3& wo) const override;
   std::optional<double> eval(const glm::dvec3& wi, const glm::dvec3& wo) const override;
 
+  // At a ray's incidence angle, or at the lookup angle when there is one.
   double a_at(double theta_deg) const;
   double mu_at(double theta_deg) const;
   const sinc_shift_params& params() const { return p_; }

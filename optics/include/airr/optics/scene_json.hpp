@@ -11,11 +11,9 @@
 #include "airr/optics/files.hpp"
 #include "airr/optics/retro_model.hpp"
 #include "airr/optics/scene.hpp"
+#include "airr/optics/sheet_models.hpp"
 
 namespace airr {
-
-// The retroreflector models of a scene's sheets, in order.
-using retro_model_list = std::vector<std::shared_ptr<const retro_model>>;
 
 // A command-line key that is not a field: the floating distance (see set_floating_distance).
 inline constexpr const char* floating_distance_key = "floating_distance_mm";
