@@ -2,9 +2,11 @@
 // the aerial image where it forms, the observer's sight lines and the chief ray, and handles that
 // pose every part: move (centre), rotate (pitch in the side view, yaw in the top view), the
 // floating distance (the aerial image's handle) and the observer (orbit or position).
+#include <algorithm>
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <imgui.h>
 #include <imgui_internal.h>
@@ -155,9 +157,19 @@ void draw_projection(studio& st, projection proj, ImVec2 canvas0, ImVec2 canvas,
   dl->AddCircleFilled(es, 4 * lw, IM_COL32(200, 200, 200, 255));
 
   const ImU32 text = IM_COL32(220, 220, 220, 255);
+  // Labels step down a line while they would overlap one already drawn (parts seen edge-on in
+  // one projection often share a spot).
+  std::vector<ImVec4> placed;
   auto label = [&](const glm::dvec3& p, const char* t) {
-    const ImVec2 q = m.to_screen(p);
-    dl->AddText(ImVec2(q.x + 6, q.y + 4), text, t);
+    const ImVec2 q = m.to_screen(p), size = ImGui::CalcTextSize(t);
+    ImVec2 at(q.x + 6, q.y + 4);
+    if (at.x + size.x > canvas0.x + canvas.x) at.x = q.x - 6 - size.x;  // left of the point at the right edge
+    auto overlaps = [&](const ImVec4& r) {
+      return at.x < r.z && r.x < at.x + size.x && at.y < r.w && r.y < at.y + size.y;
+    };
+    for (int tries = 0; tries < 8 && std::any_of(placed.begin(), placed.end(), overlaps); ++tries) at.y += size.y;
+    placed.emplace_back(at.x, at.y, at.x + size.x, at.y + size.y);
+    dl->AddText(at, text, t);
   };
   for (std::size_t i = 0; i < parts.size(); ++i) {
     const std::string name = i >= 2 && s.retroreflectors.size() > 1 ? "sheet " + std::to_string(i - 2)
