@@ -1,9 +1,11 @@
 // airr bench: tracer rays/s, raw Embree rtcIntersect1 rays/s on the same geometry and ray count,
-// their ratio, and the render session's latency from an edit to its first new image.
+// their ratio, and the render session's latency from an edit to its first new image; with --noise
+// the time to a noise level (noise_bench.cpp).
 #include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include <tbb/blocked_range.h>
@@ -15,6 +17,7 @@
 #include "airr/render/render_session.hpp"
 #include "airr/render/tracer.hpp"
 #include "commands.hpp"
+#include "noise_bench.hpp"
 
 namespace {
 
@@ -59,55 +62,6 @@ double raw_embree_seconds(const airr::tracer_scene& ts, std::uint64_t ray_count,
   return since(t0);
 }
 
-// Relative RMS difference between two images (relative to the reference's mean).
-double relative_rms(const std::vector<float>& a, const std::vector<float>& ref) {
-  double se = 0, mean = 0;
-  for (std::size_t i = 0; i < ref.size(); ++i) {
-    se += double(a[i] - ref[i]) * (a[i] - ref[i]);
-    mean += ref[i];
-  }
-  mean /= double(ref.size());
-  return mean > 0 ? std::sqrt(se / double(ref.size())) / mean : 0.0;
-}
-
-// Time until a render of the RF-Ay preset scene is within `target` relative RMS of a reference
-// rendered with many more samples (a different seed, so the two are independent).
-void time_to_noise_level(const airr::scene& base, double target) {
-  airr::scene s = base;
-  s.sheet().model.type = "sinc_shift";
-  airr::set_model_value(s.sheet().model, "preset", "rf-ay");
-  s.observer.width = s.observer.height = 64;
-  const std::uint64_t reference_spp = 4096;
-  airr::scene ref_scene = s;
-  ref_scene.seed = s.seed + 1000;
-  const auto r0 = clock_type::now();
-  airr::render_session reference(ref_scene, {.target_spp = reference_spp});
-  std::fprintf(stderr, "noise benchmark: rendering the %llu-spp reference...\n",
-               static_cast<unsigned long long>(reference_spp));
-  const airr::render_snapshot ref = reference.wait_for(0, reference_spp);
-  const double reference_s = since(r0);
-  reference.stop();
-  std::fprintf(stderr, "noise benchmark: reference done in %.1f s; timing a fresh render...\n", reference_s);
-
-  airr::render_session session(s, {.target_spp = reference_spp});
-  const auto t0 = clock_type::now();
-  std::uint64_t spp = 0;
-  double err = 1e9, seconds = 0;
-  while (spp < reference_spp) {
-    const airr::render_snapshot snap = session.wait_for(0, spp + 1);
-    seconds = since(t0);
-    spp = snap.spp;
-    err = relative_rms(*snap.rgb, *ref.rgb);
-    if (err <= target) break;
-  }
-  session.stop();
-  std::printf(
-      "noise level:   %.1f%% relative RMS reached after %.2f s at %llu spp (RF-Ay, 64x64; reference %llu spp in %.1f "
-      "s)\n",
-      100 * err, seconds, static_cast<unsigned long long>(spp), static_cast<unsigned long long>(reference_spp),
-      reference_s);
-}
-
 }  // namespace
 
 void add_bench_command(CLI::App& app) {
@@ -115,13 +69,37 @@ void add_bench_command(CLI::App& app) {
     std::string scene_path = airr::default_scene_path();
     std::uint64_t spp = 16;
     int edits = 20;
+    bool noise = false;
+    noise_bench_options noise_options;
   };
   auto opt = std::make_shared<options>();
-  auto* cmd = app.add_subcommand("bench", "Measure tracer and Embree ray throughput and edit-to-image latency");
+  auto* cmd = app.add_subcommand(
+      "bench",
+      "Measure tracer and Embree ray throughput and edit-to-image latency, or (--noise) the time to a noise level");
   cmd->add_option("scene", opt->scene_path, "Scene JSON file")->capture_default_str();
   cmd->add_option("--spp", opt->spp, "Samples per pixel for the throughput runs")->check(CLI::Range(1, 4096));
   cmd->add_option("--edits", opt->edits, "Edits for the latency measurement")->check(CLI::Range(1, 10000));
+  cmd->add_flag("--noise", opt->noise,
+                "Instead: time and samples per pixel to 2% and 1% relative RMS noise at 512 x 512 for RF-Ay and RF-AN, "
+                "from pairs of renders with independent seeds");
+  cmd->add_option("--compare", opt->noise_options.compare,
+                  "With --noise: also measure another build's airr executable, side by side");
+  cmd->add_option("--noise-spp", opt->noise_options.spp,
+                  "With --noise: samples per pixel of the measured render pairs (two or more)")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  cmd->add_option("--size", opt->noise_options.size, "With --noise: image width and height")
+      ->check(CLI::Range(8, 4096))
+      ->capture_default_str();
+  cmd->add_option("--presets", opt->noise_options.presets, "With --noise: sheet presets")->capture_default_str();
+  cmd->add_option("--threads", opt->noise_options.threads, "With --noise: worker threads (0: all cores)")
+      ->check(CLI::Range(0, 1024));
   cmd->callback([opt] {
+    if (opt->noise) {
+      opt->noise_options.scene_path = std::filesystem::absolute(opt->scene_path).string();
+      run_noise_bench(opt->noise_options);
+      return;
+    }
     const airr::scene s = airr::load_scene(opt->scene_path);
     airr::embree_device device;
     airr::tracer_scene ts;
@@ -171,7 +149,6 @@ void add_bench_command(CLI::App& app) {
     std::printf("raw embree:    %12.0f rays/s  (%llu rays in %.3f s, checksum %.1f)\n", raw_rate,
                 static_cast<unsigned long long>(raw_rays), raw_s, checksum);
     std::printf("ratio:         %12.3f  (tracer / raw rtcIntersect1)\n", tracer_rate / raw_rate);
-    time_to_noise_level(s, 0.02);
     std::printf(
         "edit latency:  median %.1f ms, min %.1f ms, max %.1f ms over %zu edits (to the first image, a preview)\n",
         first_images[first_images.size() / 2], first_images.front(), first_images.back(), first_images.size());

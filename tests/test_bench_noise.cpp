@@ -1,0 +1,29 @@
+// `airr bench --noise` end to end on a small image: pairs rendered through `airr render`, the law,
+// the forecast, and a side-by-side comparison (here with the same build, so the ratio is near 1).
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "test_helpers.hpp"
+
+using namespace airr;
+
+TEST(BenchNoise, MeasuresPairsAndComparesBuildsSideBySide) {
+  const test::command_result r =
+      test::run_cli(std::string("bench --noise --size 32 --noise-spp 2 8 --presets rf-an ") + "--compare " + AIRR_CLI);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  for (const char* expected : {"rf-an", "this build", "other build", "2 spp:", "8 spp:", "law: noise =", "1%:",
+                               "speed-up (other build's time / this build's):"}) {
+    EXPECT_NE(r.out.find(expected), std::string::npos) << expected << "\n" << r.out;
+  }
+  // The same binary twice: the same seeds give the same noise figures.
+  const auto first = r.out.find("8 spp: "), second = r.out.find("8 spp: ", first + 1);
+  ASSERT_NE(second, std::string::npos) << r.out;
+  EXPECT_EQ(r.out.substr(first, 14), r.out.substr(second, 14)) << r.out;
+}
+
+TEST(BenchNoise, BadComparisonBuildIsNamed) {
+  const test::command_result r = test::run_cli("bench --noise --size 16 --compare /nonexistent/airr");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.out.find("/nonexistent/airr: not an executable airr"), std::string::npos) << r.out;
+}
