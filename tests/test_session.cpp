@@ -76,3 +76,23 @@ TEST(Session, SnapshotsAreWholeWavesOfOneGeneration) {
   EXPECT_EQ(bad, 0);
   EXPECT_GT(seen, 0);
 }
+
+TEST(Session, EvenAndOddHalvesMakeUpTheWholeAndDiffer) {
+  // 7 spp: samples 0, 2, 4, 6 are even, 1, 3, 5 odd; the halves recombine into the mean exactly
+  // (to float rounding), and as independent estimates they differ.
+  scene s = test::uniform_source_scene(20.0, 32);
+  const render_snapshot one = test::render_to(s, 1);
+  EXPECT_FALSE(one.even_rgb);
+  EXPECT_FALSE(one.odd_rgb);
+  render_session session(s, {.target_spp = 7, .max_wave_spp = 2});
+  const render_snapshot snap = session.wait_for(0, 7);
+  ASSERT_EQ(snap.spp, 7u);
+  ASSERT_TRUE(snap.even_rgb && snap.odd_rgb);
+  bool differ = false;
+  for (std::size_t i = 0; i < snap.rgb->size(); ++i) {
+    const double whole = (4.0 * (*snap.even_rgb)[i] + 3.0 * (*snap.odd_rgb)[i]) / 7.0;
+    EXPECT_NEAR(whole, (*snap.rgb)[i], 1e-5 * (1 + std::abs(whole))) << i;
+    differ = differ || (*snap.even_rgb)[i] != (*snap.odd_rgb)[i];
+  }
+  EXPECT_TRUE(differ);
+}

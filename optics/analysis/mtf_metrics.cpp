@@ -58,4 +58,27 @@ double least_squares_slope(const std::vector<double>& x, const std::vector<doubl
   return sxx > 0 ? sxy / sxx : 0;
 }
 
+std::vector<double> mtf_sigma_from_halves(const std::vector<double>& a, const std::vector<double>& b, int half_window) {
+  const int n = int(std::min(a.size(), b.size()));
+  std::vector<double> sigma(std::size_t(n), 0.0);
+  for (int i = 0; i < n; ++i) {
+    double sum = 0;
+    int count = 0;
+    for (int j = std::max(0, i - half_window); j <= std::min(n - 1, i + half_window); ++j, ++count) {
+      sum += (a[j] - b[j]) * (a[j] - b[j]);
+    }
+    sigma[std::size_t(i)] = 0.5 * std::sqrt(sum / count);
+  }
+  return sigma;
+}
+
+double readable_up_to(const std::vector<double>& frequency, const std::vector<double>& sigma, double max_sigma) {
+  double last = 0;
+  for (std::size_t i = 0; i < std::min(frequency.size(), sigma.size()); ++i) {
+    if (!(sigma[i] <= max_sigma)) break;
+    last = frequency[i];
+  }
+  return last;
+}
+
 }  // namespace airr::analysis

@@ -90,14 +90,14 @@ void lower_thread_priority() {
 }  // namespace detail
 
 bool render_session::render_wave(std::uint64_t first, std::uint64_t count, std::vector<double>& sums,
-                                 std::uint64_t& rays) {
+                                 std::vector<double>& odd_sums, std::uint64_t& rays) {
   const int h = scene_.camera.height;
   std::atomic<std::uint64_t> total_rays{0};
   std::atomic<bool> complete{true};
   detail::parallel_rows(h, params_.threads, [&](int y0, int y1) {
     if (params_.background_priority) detail::lower_thread_priority();
     std::uint64_t local = 0;
-    if (!trace_rows(scene_, y0, y1, first, count, sums, cancel_, local)) complete = false;
+    if (!trace_rows(scene_, y0, y1, first, count, sums, cancel_, local, &odd_sums)) complete = false;
     total_rays += local;
   });
   rays += total_rays;
@@ -141,17 +141,30 @@ void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb) 
   snapshot_.height = scene_.camera.height;
   snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
   snapshot_.rgb = std::move(shared);
+  snapshot_.even_rgb.reset();
+  snapshot_.odd_rgb.reset();
   snapshot_.rays = 0;
   snapshot_.seconds = 0;
   snapshot_.error.clear();
   changed_.notify_all();
 }
 
-void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::vector<double>& sums, std::uint64_t rays,
-                             double seconds) {
+void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::vector<double>& sums,
+                             const std::vector<double>& odd_sums, std::uint64_t rays, double seconds) {
   auto rgb = std::make_shared<std::vector<float>>(sums.size());
   const double inv = spp ? 1.0 / double(spp) : 0.0;
   for (std::size_t i = 0; i < sums.size(); ++i) (*rgb)[i] = float(sums[i] * inv);
+  std::shared_ptr<std::vector<float>> even, odd;
+  if (spp >= 2) {
+    // Samples 0 .. spp-1: spp / 2 odd-numbered ones, the rest even-numbered.
+    const double odd_n = double(spp / 2), even_n = double(spp - spp / 2);
+    even = std::make_shared<std::vector<float>>(sums.size());
+    odd = std::make_shared<std::vector<float>>(sums.size());
+    for (std::size_t i = 0; i < sums.size(); ++i) {
+      (*odd)[i] = float(odd_sums[i] / odd_n);
+      (*even)[i] = float((sums[i] - odd_sums[i]) / even_n);
+    }
+  }
   std::lock_guard lock(mutex_);
   if (gen != generation_) return;  // an edit arrived meanwhile: this result is stale
   snapshot_.generation = gen;
@@ -160,6 +173,8 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::ve
   snapshot_.height = scene_.camera.height;
   snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
   snapshot_.rgb = std::move(rgb);
+  snapshot_.even_rgb = std::move(even);
+  snapshot_.odd_rgb = std::move(odd);
   snapshot_.preview = false;
   snapshot_.rays = rays;
   snapshot_.seconds = seconds;
@@ -169,10 +184,11 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::ve
 
 void render_session::run() {
   using clock = std::chrono::steady_clock;
-  std::vector<double> sums, wave;
+  std::vector<double> sums, wave, odd_sums, odd_wave;
   std::uint64_t gen = 0, spp = 0, rays = 0, next_wave = 1;
   double seconds = 0;
   sums.assign(std::size_t(scene_.camera.width) * scene_.camera.height * 3, 0.0);
+  odd_sums = sums;
 
   while (true) {
     std::uint64_t count = 0;
@@ -194,6 +210,7 @@ void render_session::run() {
           error = e.what();
         }
         sums.assign(std::size_t(scene_.camera.width) * scene_.camera.height * 3, 0.0);
+        odd_sums = sums;
         spp = rays = 0;
         seconds = 0;
         next_wave = 1;
@@ -217,15 +234,17 @@ void render_session::run() {
     }
     const auto t0 = clock::now();
     wave = sums;  // a cancelled wave leaves the accumulation untouched
+    odd_wave = odd_sums;
     std::uint64_t wave_rays = 0;
-    const bool done = render_wave(spp, count, wave, wave_rays);
+    const bool done = render_wave(spp, count, wave, odd_wave, wave_rays);
     if (!done) continue;
     sums.swap(wave);
+    odd_sums.swap(odd_wave);
     spp += count;
     rays += wave_rays;
     seconds += std::chrono::duration<double>(clock::now() - t0).count();
     next_wave = std::min(2 * next_wave, params_.max_wave_spp);  // capped: doubling forever would overflow
-    publish(gen, spp, sums, rays, seconds);
+    publish(gen, spp, sums, odd_sums, rays, seconds);
   }
 }
 

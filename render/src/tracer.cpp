@@ -182,18 +182,25 @@ glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sam
 }
 
 bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
-                std::vector<double>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays) {
+                std::vector<double>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays,
+                std::vector<double>* odd_sums) {
   const int w = ts.camera.width;
   for (int y = y0; y < y1; ++y) {
     if (cancel.load(std::memory_order_relaxed)) return false;
     for (int x = 0; x < w; ++x) {
       double* acc = sums.data() + 3 * (std::size_t(y) * w + x);
+      double* odd = odd_sums ? odd_sums->data() + 3 * (std::size_t(y) * w + x) : nullptr;
       const std::array<double, 6> rotation = pixel_sequence_rotation(ts, x, y);
       for (std::uint64_t i = first; i < first + count; ++i) {
         const glm::vec3 L = trace_sample(ts, x, y, i, rotation, rays);
         acc[0] += L.x;
         acc[1] += L.y;
         acc[2] += L.z;
+        if (odd && (i & 1)) {
+          odd[0] += L.x;
+          odd[1] += L.y;
+          odd[2] += L.z;
+        }
       }
     }
   }

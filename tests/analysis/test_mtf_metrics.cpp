@@ -1,13 +1,16 @@
 // MTF50, mean MTF over (0, 1] lp/mm and the CSV report.
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "airr/analysis/mtf_csv.hpp"
 #include "airr/analysis/mtf_metrics.hpp"
+#include "airr/analysis/slanted_edge_mtf.hpp"
 #include "synthetic_edge.hpp"
 #include "test_files.hpp"
 
@@ -134,4 +137,52 @@ TEST(MtfCsv, WritesAtomicallyAndReplacesOldFile) {
   EXPECT_EQ(text.str(), "cycles_per_pixel,lp_per_mm,mtf\n0,0,1\n0.5,5,0.25\n");
   EXPECT_FALSE(std::filesystem::exists(dir / "mtf.csv.tmp"));
   EXPECT_THROW(aa::write_mtf_csv(dir / "no_such_dir" / "mtf.csv", c, 0.1), std::runtime_error);
+}
+
+TEST(MtfSigma, HalvesPredictTheSpreadOfTheFullEstimate) {
+  // Thirty renders, each the mean of two independent noisy halves of a slanted edge: the sigma
+  // the halves predict matches the spread of the full image's MTF over the thirty.
+  const int renders = 30;
+  at::synthetic_edge_params p;
+  p.sigma_px = 1.5;
+  p.noise_sigma = 0.04;
+  std::vector<std::vector<double>> full;
+  std::vector<double> predicted_var;
+  std::vector<double> cycles;
+  for (int r = 0; r < renders; ++r) {
+    p.seed = 2 * r + 1;
+    const cv::Mat a = at::make_slanted_edge(p);
+    p.seed = 2 * r + 2;
+    const cv::Mat b = at::make_slanted_edge(p);
+    const cv::Mat mean = 0.5 * (a + b);
+    const aa::mtf_curve ca = aa::slanted_edge_mtf(a), cb = aa::slanted_edge_mtf(b), cm = aa::slanted_edge_mtf(mean);
+    ASSERT_EQ(ca.mtf.size(), cm.mtf.size());
+    ASSERT_EQ(cb.mtf.size(), cm.mtf.size());
+    const std::vector<double> sigma = aa::mtf_sigma_from_halves(ca.mtf, cb.mtf);
+    if (predicted_var.empty()) predicted_var.assign(sigma.size(), 0.0), cycles = cm.cycles_per_pixel;
+    for (std::size_t i = 0; i < sigma.size(); ++i) predicted_var[i] += sigma[i] * sigma[i] / renders;
+    full.push_back(cm.mtf);
+  }
+  double predicted = 0, measured = 0;
+  int count = 0;
+  for (std::size_t i = 0; i < cycles.size(); ++i) {
+    if (cycles[i] < 0.05 || cycles[i] > 0.5) continue;
+    double m = 0, m2 = 0;
+    for (const auto& c : full) m += c[i] / renders, m2 += c[i] * c[i] / renders;
+    measured += m2 - m * m;
+    predicted += predicted_var[i];
+    ++count;
+  }
+  ASSERT_GT(count, 10);
+  const double ratio = std::sqrt(predicted / measured);
+  std::printf("MTF sigma from halves / spread over %d renders: %.3f (%d frequencies)\n", renders, ratio, count);
+  EXPECT_GT(ratio, 0.8);
+  EXPECT_LT(ratio, 1.25);
+}
+
+TEST(MtfSigma, ReadableUpToStopsAtTheFirstNoisyFrequency) {
+  const std::vector<double> f{0, 0.5, 1, 1.5, 2}, sigma{0.01, 0.02, 0.05, 0.01, 0.01};
+  EXPECT_DOUBLE_EQ(airr::analysis::readable_up_to(f, sigma, 0.03), 0.5);
+  EXPECT_DOUBLE_EQ(airr::analysis::readable_up_to(f, {0.1, 0, 0, 0, 0}, 0.03), 0.0);
+  EXPECT_DOUBLE_EQ(airr::analysis::readable_up_to(f, {0, 0, 0, 0, 0}, 0.03), 2.0);
 }

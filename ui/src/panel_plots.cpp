@@ -36,10 +36,19 @@ void draw_plots_panel(studio& st) {
                                        (ImGui::GetFontSize() / 13.0f));
   std::vector<plot_curve> mtf;
   if (pred) mtf.push_back({"predicted (model PSF)", pred->lp_per_mm, pred->mtf});
-  if (meas && meas->found && meas->generation == st.generation) {
+  if (meas && meas->found && meas->generation == st.generation && meas->readable_lp_per_mm > 0) {
+    // Only where the noise allows a reading, with a band of two standard deviations.
+    plot_curve c;
     char label[80];
-    std::snprintf(label, sizeof label, "measured on render (%llu spp)", static_cast<unsigned long long>(meas->spp));
-    mtf.push_back({label, meas->lp_per_mm, meas->mtf});
+    std::snprintf(label, sizeof label, "measured on render (%llu spp, +-2 sd)",
+                  static_cast<unsigned long long>(meas->spp));
+    c.label = label;
+    for (std::size_t i = 0; i < meas->lp_per_mm.size() && meas->lp_per_mm[i] <= meas->readable_lp_per_mm; ++i) {
+      c.x.push_back(meas->lp_per_mm[i]);
+      c.y.push_back(meas->mtf[i]);
+      c.band.push_back(2 * meas->mtf_sigma[i]);
+    }
+    mtf.push_back(std::move(c));
   }
   for (std::size_t i = 0; i < st.pinned_mtf.size(); ++i) {
     mtf.push_back({st.pinned_mtf[i].label, st.pinned_mtf[i].x, st.pinned_mtf[i].y, plot_palette(int(i) + 2), true});
@@ -59,6 +68,16 @@ void draw_plots_panel(studio& st) {
                               .auto_y = false,
                               .height = h}));
   if (meas && !meas->found && !meas->note.empty()) ImGui::TextDisabled("render MTF: %s", meas->note.c_str());
+  if (meas && meas->found && meas->generation == st.generation) {
+    const double top = meas->lp_per_mm.empty() ? 0 : meas->lp_per_mm.back();
+    if (meas->readable_lp_per_mm <= 0) {
+      ImGui::TextDisabled("render MTF: held back until its noise allows a reading (%llu spp)",
+                          static_cast<unsigned long long>(meas->spp));
+    } else if (meas->readable_lp_per_mm < top) {
+      ImGui::TextDisabled("render MTF: readable to %.2f lp/mm at %llu spp (sd <= %.2f); beyond, noise",
+                          meas->readable_lp_per_mm, static_cast<unsigned long long>(meas->spp), measured_mtf_max_sigma);
+    }
+  }
 
   std::vector<plot_curve> psf;
   if (pred) psf.push_back({"PSF cross-section", pred->psf_x_mm, pred->psf_density});

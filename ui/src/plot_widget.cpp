@@ -114,6 +114,15 @@ plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, cons
   for (std::size_t ci = 0; ci < curves.size(); ++ci) {
     const auto& c = curves[ci];
     const ImU32 col = c.colour ? c.colour : plot_palette(int(ci));
+    const ImU32 band_col = (col & 0x00ffffffu) | 0x40000000u;  // the curve's colour at a quarter opacity
+    for (std::size_t i = 1; i < c.x.size() && i < c.y.size() && i < c.band.size(); ++i) {
+      const double x0 = c.x[i - 1], x1 = c.x[i];
+      const double lo0 = c.y[i - 1] - c.band[i - 1], hi0 = c.y[i - 1] + c.band[i - 1];
+      const double lo1 = c.y[i] - c.band[i], hi1 = c.y[i] + c.band[i];
+      if (!std::isfinite(lo0 + hi0 + lo1 + hi1)) continue;
+      dl->AddQuadFilled(ImVec2(sx(x0), sy(hi0)), ImVec2(sx(x1), sy(hi1)), ImVec2(sx(x1), sy(lo1)),
+                        ImVec2(sx(x0), sy(lo0)), band_col);
+    }
     for (std::size_t i = 1; i < c.x.size() && i < c.y.size(); ++i) {
       if (!std::isfinite(c.y[i - 1]) || !std::isfinite(c.y[i])) continue;
       const ImVec2 p0(sx(c.x[i - 1]), sy(c.y[i - 1])), p1(sx(c.x[i]), sy(c.y[i]));

@@ -62,8 +62,10 @@ cv::Rect source_image_roi(const scene& s, double fraction) {
   return r;
 }
 
-cv::Mat snapshot_luminance(const render_snapshot& snap) {
-  cv::Mat rgb(snap.height, snap.width, CV_32FC3, const_cast<float*>(snap.rgb->data()));
+cv::Mat snapshot_luminance(const render_snapshot& snap) { return snapshot_luminance(snap, *snap.rgb); }
+
+cv::Mat snapshot_luminance(const render_snapshot& snap, const std::vector<float>& rgb_values) {
+  cv::Mat rgb(snap.height, snap.width, CV_32FC3, const_cast<float*>(rgb_values.data()));
   return analysis::rec709_luminance(rgb);
 }
 

@@ -21,7 +21,7 @@ struct sinc_shift_params {
   double reference_distance_mm = 300.0;
   // Lookup "per_render": a, mu and the shift distribution at this one angle (the sheet's chief
   // ray) for every ray; unset ("per_ray"): at each ray's own incidence angle.
-  std::optional<double> lookup_angle_deg;
+  std::optional<double> lookup_angle_deg{};
 };
 
 // Combines an optional preset with the scene's overrides (a set value applies at every angle).

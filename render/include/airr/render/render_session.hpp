@@ -35,10 +35,13 @@ struct render_snapshot {
   int height = 0;
   double mm_per_pixel = 0;
   std::shared_ptr<const std::vector<float>> rgb;  // mean radiance, 3 floats per pixel
-  std::uint64_t rays = 0;                         // intersection queries so far in this generation
-  double seconds = 0;                             // time spent so far in this generation
-  std::string error;                              // set when the last edit could not be applied
-  bool preview = false;                           // a coarse first look at this generation (spp is 0)
+  // The mean of the even- and of the odd-numbered samples alone (null before 2 spp): two
+  // independent half estimates, for the noise of what is measured on the image.
+  std::shared_ptr<const std::vector<float>> even_rgb, odd_rgb;
+  std::uint64_t rays = 0;  // intersection queries so far in this generation
+  double seconds = 0;      // time spent so far in this generation
+  std::string error;       // set when the last edit could not be applied
+  bool preview = false;    // a coarse first look at this generation (spp is 0)
 
   image_rgb image() const;
 };
@@ -66,9 +69,10 @@ class render_session {
 
  private:
   void run();
-  bool render_wave(std::uint64_t first, std::uint64_t count, std::vector<double>& sums, std::uint64_t& rays);
-  void publish(std::uint64_t gen, std::uint64_t spp, const std::vector<double>& sums, std::uint64_t rays,
-               double seconds);
+  bool render_wave(std::uint64_t first, std::uint64_t count, std::vector<double>& sums, std::vector<double>& odd_sums,
+                   std::uint64_t& rays);
+  void publish(std::uint64_t gen, std::uint64_t spp, const std::vector<double>& sums,
+               const std::vector<double>& odd_sums, std::uint64_t rays, double seconds);
   bool render_preview(std::vector<float>& rgb, std::uint64_t& rays);
   void publish_preview(std::uint64_t gen, std::vector<float> rgb);
 

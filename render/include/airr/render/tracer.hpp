@@ -46,9 +46,11 @@ glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sam
 glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index, std::uint64_t& rays);
 
 // Accumulates samples [first, first + count) of every pixel in rows [y0, y1) into `sums`
-// (double RGB per pixel, added in sample order so that splitting into waves changes nothing).
-// Stops early (returns false) when `cancel` becomes true.
+// (double RGB per pixel, added in sample order so that splitting into waves changes nothing),
+// and the odd-numbered samples also into `odd_sums` when given (two independent half estimates,
+// whose difference measures the noise). Stops early (returns false) when `cancel` becomes true.
 bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
-                std::vector<double>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays);
+                std::vector<double>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays,
+                std::vector<double>* odd_sums = nullptr);
 
 }  // namespace airr

@@ -32,9 +32,17 @@ struct measured_plots {
   std::uint64_t spp = 0;
   bool found = false;  // an edge was found in the render
   std::vector<double> lp_per_mm, mtf;
+  // The curve's noise: its standard deviation per frequency, from the render's even- and
+  // odd-sample halves (empty before 2 spp), and the frequency up to which it reads within
+  // measured_mtf_max_sigma (0: not yet readable anywhere).
+  std::vector<double> mtf_sigma;
+  double readable_lp_per_mm = 0;
   double mean_mtf = 0, edge_angle_deg = 0;
   std::string note;
 };
+
+// The measured curve is shown where its standard deviation is at most this.
+inline constexpr double measured_mtf_max_sigma = 0.03;
 
 // PSF samples for the plots: enough for a smooth MTF, few enough to follow a drag.
 struct predicted_params {

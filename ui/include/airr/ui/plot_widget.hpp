@@ -12,6 +12,7 @@ struct plot_curve {
   std::vector<double> y;
   unsigned colour = 0;  // ImU32; 0 picks from the palette by index
   bool dashed = false;
+  std::vector<double> band{};  // optional half-width at each x: a translucent band y +- band
 };
 
 struct plot_params {

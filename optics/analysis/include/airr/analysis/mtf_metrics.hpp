@@ -40,4 +40,17 @@ double least_squares_slope(const std::vector<double>& x, const std::vector<doubl
 // (0.5 cycles/pixel) when that is lower.
 mean_mtf_result mean_mtf(const mtf_curve& curve, double mm_per_pixel, const mean_mtf_params& params = {});
 
+// The standard deviation of an MTF measured on the mean of two independent half estimates (the
+// even- and odd-numbered samples of a render), from the halves' MTFs a and b: the mean's error is
+// (e_a + e_b) / 2 and E[(a - b)^2] = 2 var(e), so sigma = rms(a - b) / 2, the RMS taken over
+// `half_window` neighbouring frequencies either side (one difference alone is a noisy estimate).
+// Halves of a stratified sequence err in opposite directions more often than independent ones,
+// which makes this an overestimate there.
+std::vector<double> mtf_sigma_from_halves(const std::vector<double>& a, const std::vector<double>& b,
+                                          int half_window = 3);
+
+// The frequency up to which every sigma stays at or below max_sigma (the last such point before
+// the first that exceeds it); 0 when the first point already exceeds it.
+double readable_up_to(const std::vector<double>& frequency, const std::vector<double>& sigma, double max_sigma);
+
 }  // namespace airr::analysis

@@ -41,6 +41,8 @@ cv::Rect source_image_roi(const scene& s, double fraction);
 
 // Rec.709 luminance of a render snapshot (CV_64FC1).
 cv::Mat snapshot_luminance(const render_snapshot& snap);
+// The same for another image of the snapshot's size (e.g. its even- or odd-sample half).
+cv::Mat snapshot_luminance(const render_snapshot& snap, const std::vector<float>& rgb);
 
 // Slanted-edge MTF of a render's Rec.709 luminance over source_image_roi(s, roi_fraction).
 // Throws std::runtime_error when no usable edge is found.
