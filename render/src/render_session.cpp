@@ -24,6 +24,17 @@ image_rgb render_snapshot::image() const {
   return img;
 }
 
+std::vector<float> render_snapshot::even_rgb() const {
+  if (!rgb || !odd_rgb || spp < 2) return {};
+  // Samples 0 .. spp-1: spp / 2 odd-numbered ones, the rest even-numbered.
+  const double odd_n = double(spp / 2), even_n = double(spp - spp / 2);
+  std::vector<float> even(rgb->size());
+  for (std::size_t i = 0; i < even.size(); ++i) {
+    even[i] = float((double(spp) * (*rgb)[i] - odd_n * (*odd_rgb)[i]) / even_n);
+  }
+  return even;
+}
+
 render_session::render_session(const scene& s, session_params p) : params_(p), target_spp_(p.target_spp) {
   build_tracer_scene(scene_, device_, s);
   snapshot_.width = scene_.camera.width;
@@ -141,7 +152,6 @@ void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb) 
   snapshot_.height = scene_.camera.height;
   snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
   snapshot_.rgb = std::move(shared);
-  snapshot_.even_rgb.reset();
   snapshot_.odd_rgb.reset();
   snapshot_.rays = 0;
   snapshot_.seconds = 0;
@@ -154,16 +164,11 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::ve
   auto rgb = std::make_shared<std::vector<float>>(sums.size());
   const double inv = spp ? 1.0 / double(spp) : 0.0;
   for (std::size_t i = 0; i < sums.size(); ++i) (*rgb)[i] = float(sums[i] * inv);
-  std::shared_ptr<std::vector<float>> even, odd;
+  std::shared_ptr<std::vector<float>> odd;
   if (spp >= 2) {
-    // Samples 0 .. spp-1: spp / 2 odd-numbered ones, the rest even-numbered.
-    const double odd_n = double(spp / 2), even_n = double(spp - spp / 2);
-    even = std::make_shared<std::vector<float>>(sums.size());
+    const double inv_odd = 1.0 / double(spp / 2);  // spp / 2 of samples 0 .. spp-1 are odd-numbered
     odd = std::make_shared<std::vector<float>>(sums.size());
-    for (std::size_t i = 0; i < sums.size(); ++i) {
-      (*odd)[i] = float(odd_sums[i] / odd_n);
-      (*even)[i] = float((sums[i] - odd_sums[i]) / even_n);
-    }
+    for (std::size_t i = 0; i < sums.size(); ++i) (*odd)[i] = float(odd_sums[i] * inv_odd);
   }
   std::lock_guard lock(mutex_);
   if (gen != generation_) return;  // an edit arrived meanwhile: this result is stale
@@ -173,7 +178,6 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::ve
   snapshot_.height = scene_.camera.height;
   snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
   snapshot_.rgb = std::move(rgb);
-  snapshot_.even_rgb = std::move(even);
   snapshot_.odd_rgb = std::move(odd);
   snapshot_.preview = false;
   snapshot_.rays = rays;

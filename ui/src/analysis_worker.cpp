@@ -98,9 +98,9 @@ measured_plots measure_render_mtf(const render_snapshot& snap, const scene& s) {
       out.mtf = curve.mtf;
       out.edge_angle_deg = curve.edge_angle_deg;
       out.mean_mtf = analysis::mean_mtf(curve, snap.mm_per_pixel).value;
-      if (snap.even_rgb && snap.odd_rgb) {
+      if (snap.odd_rgb) {
         try {
-          const auto even = analysis::slanted_edge_mtf(snapshot_luminance(snap, *snap.even_rgb), {.roi = roi});
+          const auto even = analysis::slanted_edge_mtf(snapshot_luminance(snap, snap.even_rgb()), {.roi = roi});
           const auto odd = analysis::slanted_edge_mtf(snapshot_luminance(snap, *snap.odd_rgb), {.roi = roi});
           if (even.mtf.size() == curve.mtf.size() && odd.mtf.size() == curve.mtf.size()) {
             out.mtf_sigma = analysis::mtf_sigma_from_halves(even.mtf, odd.mtf);

@@ -35,15 +35,17 @@ struct render_snapshot {
   int height = 0;
   double mm_per_pixel = 0;
   std::shared_ptr<const std::vector<float>> rgb;  // mean radiance, 3 floats per pixel
-  // The mean of the even- and of the odd-numbered samples alone (null before 2 spp): two
-  // independent half estimates, for the noise of what is measured on the image.
-  std::shared_ptr<const std::vector<float>> even_rgb, odd_rgb;
+  // The mean of the odd-numbered samples alone (null before 2 spp). With even_rgb() it makes two
+  // half estimates, for the noise of what is measured on the image.
+  std::shared_ptr<const std::vector<float>> odd_rgb;
   std::uint64_t rays = 0;  // intersection queries so far in this generation
   double seconds = 0;      // time spent so far in this generation
   std::string error;       // set when the last edit could not be applied
   bool preview = false;    // a coarse first look at this generation (spp is 0)
 
   image_rgb image() const;
+  // The mean of the even-numbered samples, derived from rgb and odd_rgb (empty without odd_rgb).
+  std::vector<float> even_rgb() const;
 };
 
 class render_session {
