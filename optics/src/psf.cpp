@@ -24,25 +24,42 @@ psf_samples sample_psf(const scene& s, const retro_model& model, const psf_param
   return sample_psf(s, model, p, aerial_image_center(s));
 }
 
-psf_samples sample_psf(const scene& s, const retro_model& model, const psf_params& p, const glm::dvec3& aerial_point) {
-  const part_frame hm = half_mirror_frame(s), rr = retroreflector_frame(s), src = source_frame(s);
+psf_chief_ray chief_ray_through(const scene& s, const glm::dvec3& aerial_point) {
+  psf_chief_ray c{half_mirror_frame(s), retroreflector_frame(s), source_frame(s)};
   const pinhole_camera cam = make_camera(s);
   const glm::dvec3 d0 = glm::normalize(aerial_point - cam.position);
-  const auto p1 = hit_part(hm, cam.position, d0);
+  const auto p1 = hit_part(c.hm, cam.position, d0);
   if (!p1) throw input_error("psf: the camera ray through the aerial image misses the half mirror");
-  const auto p2 = hit_part(rr, *p1, d0);
-  if (!p2 || glm::dot(d0, rr.n) >= 0) throw input_error("psf: the camera ray misses the retroreflector's front");
-
+  const auto p2 = hit_part(c.rr, *p1, d0);
+  if (!p2 || glm::dot(d0, c.rr.n) >= 0) throw input_error("psf: the camera ray misses the retroreflector's front");
   // The ideal landing point: exactly back, mirrored down to the source plane.
-  const auto q1 = hit_part(hm, *p2, -d0);
-  const auto q2 = q1 ? hit_part(src, *q1, reflect(-d0, hm.n), false) : std::nullopt;
+  const auto q1 = hit_part(c.hm, *p2, -d0);
+  const auto q2 = q1 ? hit_part(c.src, *q1, reflect(-d0, c.hm.n), false) : std::nullopt;
   if (!q2) throw input_error("psf: the retroreflected chief ray misses the source plane");
-  const glm::dvec3 ideal = *q2;
+  c.sheet_point = *p2;
+  c.ideal = *q2;
+  c.wi = -to_local(c.rr, d0);
+  c.rr_distance_mm = glm::length(*p2 - aerial_point);
+  return c;
+}
 
+std::optional<glm::dvec3> psf_landing_offset(const psf_chief_ray& c, const retro_sample& rs) {
+  const glm::dvec3 dir = to_world(c.rr, rs.wo);
+  const glm::dvec3 origin = c.sheet_point + rs.shift_mm.x * c.rr.u + rs.shift_mm.y * c.rr.v;
+  const auto at_hm = hit_part(c.hm, origin, dir);
+  if (!at_hm) return std::nullopt;
+  const auto at_source = hit_part(c.src, *at_hm, reflect(dir, c.hm.n), false);
+  if (!at_source) return std::nullopt;
+  return *at_source - c.ideal;
+}
+
+psf_samples sample_psf(const scene& s, const retro_model& model, const psf_params& p, const glm::dvec3& aerial_point) {
+  const psf_chief_ray chief = chief_ray_through(s, aerial_point);
+  const part_frame& src = chief.src;
   psf_samples out;
   out.launched = p.samples;
-  out.rr_distance_mm = glm::length(*p2 - aerial_point);
-  const glm::dvec3 wi = -to_local(rr, d0);
+  out.rr_distance_mm = chief.rr_distance_mm;
+  const glm::dvec3 wi = chief.wi;
   out.incidence_deg = polar_angle_deg(wi);
   out.offset_mm.reserve(p.samples);
   out.weight.reserve(p.samples);
@@ -71,16 +88,11 @@ psf_samples sample_psf(const scene& s, const retro_model& model, const psf_param
       u.more = rng.split();
       const retro_sample rs = model.sample(wi, u);
       if (!(rs.weight > 0)) continue;
-      const glm::dvec3 dir = to_world(rr, rs.wo);
-      const glm::dvec3 origin = *p2 + rs.shift_mm.x * rr.u + rs.shift_mm.y * rr.v;
-      const auto at_hm = hit_part(hm, origin, dir);
-      if (!at_hm) continue;
-      const auto at_source = hit_part(src, *at_hm, reflect(dir, hm.n), false);
-      if (!at_source) continue;
+      const auto delta = psf_landing_offset(chief, rs);
+      if (!delta) continue;
       // The image of a point shows where rays land relative to the ideal point, point-mirrored;
       // source (u, v) map to aerial (x, y).
-      const glm::dvec3 delta = *at_source - ideal;
-      part.offset_mm.emplace_back(-glm::dot(delta, src.u), -glm::dot(delta, src.v));
+      part.offset_mm.emplace_back(-glm::dot(*delta, src.u), -glm::dot(*delta, src.v));
       part.weight.push_back(rs.weight * hm_factor);
     }
   });

@@ -37,6 +37,7 @@ std::vector<float> render_snapshot::even_rgb() const {
 
 render_session::render_session(const scene& s, session_params p) : params_(p), target_spp_(p.target_spp) {
   build_tracer_scene(scene_, device_, s);
+  update_model_image(scene_);
   snapshot_.width = scene_.camera.width;
   snapshot_.height = scene_.camera.height;
   snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
@@ -124,7 +125,8 @@ bool render_session::render_preview(std::vector<float>& rgb, std::uint64_t& rays
     std::uint64_t local = 0;
     for (int r = r0; r < r1 && !cancel_.load(std::memory_order_relaxed); ++r) {
       for (int x0 = 0; x0 < w; x0 += n) {
-        const glm::vec3 L = trace_sample(scene_, x0, r * n, 0, local);
+        const glm::vec3 L = model_value(scene_, x0, r * n) +
+                            estimate_sample(scene_, x0, r * n, 0, pixel_sequence_rotation(scene_, x0, r * n), local);
         for (int y = r * n; y < std::min(h, (r + 1) * n); ++y) {
           for (int x = x0; x < std::min(w, x0 + n); ++x) {
             float* p = rgb.data() + 3 * (std::size_t(y) * w + x);
@@ -161,14 +163,18 @@ void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb) 
 
 void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::vector<double>& sums,
                              const std::vector<double>& odd_sums, std::uint64_t rays, double seconds) {
+  // Each pixel's estimate is the model image's value plus the mean of its samples.
+  const std::vector<float>* model = scene_.model ? &scene_.model->image.rgb : nullptr;
   auto rgb = std::make_shared<std::vector<float>>(sums.size());
   const double inv = spp ? 1.0 / double(spp) : 0.0;
-  for (std::size_t i = 0; i < sums.size(); ++i) (*rgb)[i] = float(sums[i] * inv);
+  for (std::size_t i = 0; i < sums.size(); ++i) (*rgb)[i] = float(sums[i] * inv + (model ? (*model)[i] : 0.0f));
   std::shared_ptr<std::vector<float>> odd;
   if (spp >= 2) {
     const double inv_odd = 1.0 / double(spp / 2);  // spp / 2 of samples 0 .. spp-1 are odd-numbered
     odd = std::make_shared<std::vector<float>>(sums.size());
-    for (std::size_t i = 0; i < sums.size(); ++i) (*odd)[i] = float(odd_sums[i] * inv_odd);
+    for (std::size_t i = 0; i < sums.size(); ++i) {
+      (*odd)[i] = float(odd_sums[i] * inv_odd + (model ? (*model)[i] : 0.0f));
+    }
   }
   std::lock_guard lock(mutex_);
   if (gen != generation_) return;  // an edit arrived meanwhile: this result is stale
@@ -229,6 +235,11 @@ void render_session::run() {
           std::vector<float> preview;
           std::uint64_t preview_rays = 0;
           if (render_preview(preview, preview_rays)) publish_preview(gen, std::move(preview));
+          lock.lock();
+        }
+        if (error.empty() && !pending_) {
+          lock.unlock();
+          update_model_image(scene_);
           lock.lock();
         }
         continue;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "airr/optics/error.hpp"
 #include "airr/optics/low_discrepancy.hpp"
 #include "airr/optics/random.hpp"
 #include "airr/optics/scene_json.hpp"
@@ -39,9 +40,20 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) ts.frames.push_back(retroreflector_frame(s, i));
   ts.source_area = source_frame(s);
   ts.camera = make_camera(s);
+  ts.model.reset();  // it no longer matches the layout
   std::vector<glm::dmat4> transforms;
   for (const auto& f : ts.frames) transforms.push_back(part_transform(f));
   ts.embree->set_transforms(transforms);
+}
+
+void update_model_image(tracer_scene& ts) {
+  ts.model.reset();
+  if (!ts.use_model_image || ts.retro.empty()) return;
+  try {
+    ts.model = compute_model_image(ts.layout, ts.retro.front(), ts.texture.get());
+  } catch (const input_error&) {
+    // A chief ray grazing a part's edge: the plain estimator serves.
+  }
 }
 
 // Bilinear lookup; local (x, y) in mm from the source centre, image top towards +v. The bezel
@@ -87,21 +99,61 @@ std::array<double, 6> pixel_sequence_rotation(const tracer_scene& ts, int px, in
   return rotation;
 }
 
+// The random numbers of one camera sample, drawn before it is traced: the pixel jitter and the
+// first retroreflection's lobe and shift samples come from the pixel's rotated R6 point; its
+// further numbers, the lens and the model image's bin choice from the sample's generators.
+struct sample_numbers {
+  glm::dvec2 jitter{0.5};
+  glm::dvec2 lens{0.5};
+  double bin_choice = 0;
+  retro_samples first_retro;
+  pcg32 rng{0, 0};  // everything later along the path
+};
+
+static sample_numbers draw_sample_numbers(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
+                                          const std::array<double, 6>& rotation) {
+  const std::array<double, 6> q = r6_point(sample_index, rotation);
+  const std::uint64_t pixel = std::uint64_t(py) * ts.camera.width + px;
+  sample_numbers n;
+  n.rng = sample_rng(pixel, sample_index, ts.layout.seed);
+  n.jitter = {q[0], q[1]};
+  if (ts.camera.aperture_mm > 0) n.lens = {n.rng.next_double(), n.rng.next_double()};
+  n.bin_choice = n.rng.next_double();
+  n.first_retro.lobe = {q[2], q[3]};
+  n.first_retro.shift = {q[4], q[5]};
+  n.first_retro.more = sample_rng(pixel, sample_index, ts.layout.seed ^ 0x6d6f7265u);
+  return n;
+}
+
+static glm::vec3 trace_path(const tracer_scene& ts, int px, int py, sample_numbers n, std::uint64_t& rays);
+
 glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index, std::uint64_t& rays) {
   return trace_sample(ts, px, py, sample_index, pixel_sequence_rotation(ts, px, py), rays);
 }
 
 glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
                        const std::array<double, 6>& rotation, std::uint64_t& rays) {
+  return trace_path(ts, px, py, draw_sample_numbers(ts, px, py, sample_index, rotation), rays);
+}
+
+glm::vec3 estimate_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
+                          const std::array<double, 6>& rotation, std::uint64_t& rays) {
+  const sample_numbers n = draw_sample_numbers(ts, px, py, sample_index, rotation);
+  const glm::vec3 radiance = trace_path(ts, px, py, n, rays);
+  if (!ts.model) return radiance;
+  return radiance - model_prediction(*ts.model, px, py, n.jitter, n.first_retro, n.bin_choice);
+}
+
+glm::vec3 model_value(const tracer_scene& ts, int px, int py) {
+  if (!ts.model) return glm::vec3(0.0f);
+  const float* p = ts.model->image.at(px, py);
+  return {p[0], p[1], p[2]};
+}
+
+static glm::vec3 trace_path(const tracer_scene& ts, int px, int py, sample_numbers n, std::uint64_t& rays) {
   const pinhole_camera& cam = ts.camera;
-  // This sample's point of the pixel's rotated R6 sequence: dimensions are pixel jitter (2) and
-  // the first retroreflection's lobe and shift samples (2 + 2).
-  const std::array<double, 6> q = r6_point(sample_index, rotation);
-  pcg32 rng = sample_rng(std::uint64_t(py) * cam.width + px, sample_index, ts.layout.seed);
-  const double jx = q[0], jy = q[1];
-  glm::dvec2 lens(0.5);
-  if (cam.aperture_mm > 0) lens = {rng.next_double(), rng.next_double()};
-  const camera_ray first = make_camera_ray(cam, px + jx, py + jy, lens);
+  pcg32& rng = n.rng;
+  const camera_ray first = make_camera_ray(cam, px + n.jitter.x, py + n.jitter.y, n.lens);
   bool first_retro = true;
   const auto& hm = ts.layout.half_mirror;
   const double hm_total = hm.reflectance + hm.transmittance;
@@ -161,16 +213,14 @@ glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sam
       // Retroreflector: only its front face retroreflects.
       if (cos_n >= 0) break;
       const glm::dvec3 wi = -to_local(f, p.dir);
-      retro_samples u;
+      retro_samples u = n.first_retro;
       if (first_retro) {
-        u.lobe = {q[2], q[3]};
-        u.shift = {q[4], q[5]};
         first_retro = false;
       } else {
         u.lobe = {rng.next_double(), rng.next_double()};
         u.shift = {rng.next_double(), rng.next_double()};
+        u.more = rng.split();
       }
-      u.more = rng.split();
       const retro_sample rs = ts.retro[part - part_first_sheet]->sample(wi, u);
       if (!(rs.weight > 0)) break;
       p.dir = glm::normalize(to_world(f, rs.wo));
@@ -192,7 +242,7 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
       double* odd = odd_sums ? odd_sums->data() + 3 * (std::size_t(y) * w + x) : nullptr;
       const std::array<double, 6> rotation = pixel_sequence_rotation(ts, x, y);
       for (std::uint64_t i = first; i < first + count; ++i) {
-        const glm::vec3 L = trace_sample(ts, x, y, i, rotation, rays);
+        const glm::vec3 L = estimate_sample(ts, x, y, i, rotation, rays);
         acc[0] += L.x;
         acc[1] += L.y;
         acc[2] += L.z;

@@ -8,6 +8,7 @@
 
 #include <glm/glm.hpp>
 
+#include "airr/optics/geometry.hpp"
 #include "airr/optics/retro_model.hpp"
 #include "airr/optics/scene.hpp"
 
@@ -28,6 +29,22 @@ struct psf_samples {
   // Aerial-image radiance per unit source radiance (what a uniform source would show).
   double brightness() const;
 };
+
+// The chief ray through one aerial-image point: the parts it meets on its way to the first sheet
+// and back, and its ideal landing point on the display plane.
+struct psf_chief_ray {
+  part_frame hm, rr, src;
+  glm::dvec3 sheet_point{0};  // where it meets the sheet
+  glm::dvec3 ideal{0};        // where an exact retroreflection lands on the display plane
+  glm::dvec3 wi{0, 0, 1};     // its incidence, sheet-local, pointing back towards the camera
+  double rr_distance_mm = 0;  // sheet to aerial point
+};
+// Throws input_error when the ray misses a part.
+psf_chief_ray chief_ray_through(const scene& s, const glm::dvec3& aerial_point);
+
+// Where one retroreflected sample lands on the display plane, relative to the ideal point (world
+// mm); empty when it misses the half mirror on the way back.
+std::optional<glm::dvec3> psf_landing_offset(const psf_chief_ray& c, const retro_sample& rs);
 
 // The PSF of the first sheet (the one behind the half mirror). Throws input_error when the chief
 // ray through `aerial_point` misses a part.

@@ -16,6 +16,7 @@
 #include "airr/optics/scene.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "airr/render/embree_scene.hpp"
+#include "airr/render/model_image.hpp"
 
 namespace airr {
 
@@ -30,12 +31,21 @@ struct tracer_scene {
   std::shared_ptr<const emission_profile> emission;  // null: Lambertian
   retro_model_list retro;                            // one per sheet
   std::unique_ptr<embree_layout_scene> embree;
+  // The model image, the control variate of every pixel's estimate (null: none, the plain
+  // estimator); see update_model_image.
+  bool use_model_image = true;
+  std::shared_ptr<const model_image> model;
 };
 
 // Builds (or, given the previous state, updates in place: meshes and textures are reused when
 // their files did not change, and moved parts only get new instance transforms). `models`, when
 // given, are the sheets' retroreflector models already built; otherwise they are built here.
 void build_tracer_scene(tracer_scene& ts, const embree_device& device, const scene& s, retro_model_list models = {});
+
+// Computes the model image for the built layout (or leaves none when use_model_image is off or
+// no pixel sees the first sheet). Building clears it: it takes longer than the rest (about a
+// second at 512 x 512), so the session shows its preview first.
+void update_model_image(tracer_scene& ts);
 
 // The pixel's random rotation of the low-discrepancy sequence its samples share.
 std::array<double, 6> pixel_sequence_rotation(const tracer_scene& ts, int px, int py);
@@ -45,7 +55,14 @@ glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sam
                        const std::array<double, 6>& rotation, std::uint64_t& rays);
 glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index, std::uint64_t& rays);
 
-// Accumulates samples [first, first + count) of every pixel in rows [y0, y1) into `sums`
+// One sample of the pixel's estimator: its radiance minus the model image's prediction for the
+// same random numbers. The pixel's estimate is the model image's value plus the mean of these.
+glm::vec3 estimate_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
+                          const std::array<double, 6>& rotation, std::uint64_t& rays);
+// The part of the pixel's estimate that needs no samples: the model image's value (0 without one).
+glm::vec3 model_value(const tracer_scene& ts, int px, int py);
+
+// Accumulates estimate_sample for samples [first, first + count) of every pixel in rows [y0, y1) into `sums`
 // (double RGB per pixel, added in sample order so that splitting into waves changes nothing),
 // and the odd-numbered samples also into `odd_sums` when given (two independent half estimates,
 // whose difference measures the noise). Stops early (returns false) when `cancel` becomes true.

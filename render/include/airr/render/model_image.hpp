@@ -1,0 +1,89 @@
+#pragma once
+// The noise-free model image (spec section 8) and its use as the tracer's control variate.
+//
+// Where no aperture cuts the light, the aerial image is the mirrored display seen through the
+// first sheet's PSF at the incidence angle of each image point. The PSF is sampled at a few
+// incidence angles across the image (angle bins) as offsets on the display's texel grid (the pixel's
+// own extent included), the display's radiance is convolved with each, and every pixel mixes the
+// two bins around its own angle.
+//
+// The same definition predicts single tracer samples: given a sample's pixel jitter and its first
+// retroreflection's random numbers, where the model sends it on the display and what it sees there.
+// Averaged over the samples, the prediction is the model image (up to the PSF's own sampling, drawn
+// from the scene's seed), so the tracer estimates only the difference between each true path and
+// its prediction, which is small wherever the model holds.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "airr/optics/image.hpp"
+#include "airr/optics/psf.hpp"
+#include "airr/optics/retro_model.hpp"
+#include "airr/optics/scene.hpp"
+
+namespace airr {
+
+struct model_image_params {
+  int angle_bins = 4;                  // PSFs across the image's range of incidence angles
+  std::uint64_t psf_samples = 200000;  // per bin
+  int max_texels = 512;                // the display's texels, on its longer side
+  int texel_refine = 2;                // fine grid nodes per texel and direction
+  double core_radius_mm = 2;           // offsets up to this go to the fine grid ...
+  int tail_texels = 128;               // ... the rest to a coarse grid this size (longer side)
+  double kernel_radius_mm = 32;        // ... up to this; farther ones are left out (of both uses)
+};
+
+// The display's radiance on one grid, with a black margin as wide as the grid's kernel reaches.
+struct model_grid {
+  image_rgb padded;
+  double node_w = 0, node_h = 0;  // mm between nodes
+  int radius = 0;                 // the kernel's reach, in nodes
+};
+
+// The two grids: near the ideal point the fine one, which follows the display's texels exactly;
+// the PSF's tail on a coarse one, so that its wide kernel stays cheap.
+inline constexpr int model_fine = 0, model_tail = 1;
+
+// One angle bin: the model's PSF at the incidence angle of one representative pixel.
+struct model_bin {
+  double theta_deg = 0;
+  psf_chief_ray chief;
+  glm::dmat2 jitter_mm{0.0};  // display-plane offset (u, v) per unit of pixel jitter (columns: x, y)
+  image_rgb convolved[2];     // each grid convolved with its part of this bin's PSF
+};
+
+// A pixel's ideal path: camera -> half mirror -> first sheet -> straight back -> display.
+struct model_pixel {
+  bool ok = false;       // false: the ideal path misses a part; the model predicts nothing here
+  glm::dvec2 node[2]{};  // where it lands, in each padded grid's node coordinates
+  double profile = 1;    // the display's relative luminance towards the half mirror
+  double theta_deg = 0;  // incidence on the sheet
+  int bin = 0;           // between bins `bin` and `bin + 1`, the latter with weight `mix`
+  double mix = 0;
+};
+
+struct model_image {
+  image_rgb image;  // the model image itself
+  std::vector<model_pixel> pixels;
+  std::vector<model_bin> bins;
+  model_grid grids[2];
+  double hm_factor = 0;  // R x T of the half mirror, once each way
+  std::shared_ptr<const retro_model> model;
+  double seconds = 0;        // to compute
+  double paths_seconds = 0;  // of which: the pixels' ideal paths
+};
+
+// Null when the layout has no ideal path at all (no sheet, or no pixel sees one). `display` is the
+// display's texture (null: uniform); the scene's intensity is applied here. Throws input_error for
+// parameters out of range.
+std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shared_ptr<const retro_model> model,
+                                                       const image_rgb* display, const model_image_params& p = {});
+
+// The model's prediction for one tracer sample of pixel (px, py): its pixel jitter in [0, 1)^2,
+// its first retroreflection's samples, and a uniform number choosing between the pixel's bins.
+glm::vec3 model_prediction(const model_image& m, int px, int py, const glm::dvec2& jitter, const retro_samples& u,
+                           double bin_choice);
+
+}  // namespace airr

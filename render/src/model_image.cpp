@@ -1,0 +1,394 @@
+#include "airr/render/model_image.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include <opencv2/imgproc.hpp>
+
+#include "airr/optics/emission_profile.hpp"
+#include "airr/optics/error.hpp"
+#include "airr/optics/geometry.hpp"
+#include "airr/optics/layout.hpp"
+#include "airr/optics/low_discrepancy.hpp"
+#include "airr/optics/random.hpp"
+#include "parallel_rows.hpp"
+
+namespace airr {
+
+namespace {
+
+// The parts an ideal path meets, built once per image.
+struct ideal_parts {
+  part_frame hm, rr, src, aerial;
+  pinhole_camera cam;
+  explicit ideal_parts(const scene& s)
+      : hm(half_mirror_frame(s)),
+        rr(retroreflector_frame(s)),
+        src(source_frame(s)),
+        aerial(aerial_image_frame(s)),
+        cam(make_camera(s)) {}
+};
+
+struct ideal_path {
+  glm::dvec2 display{0};  // display-local mm
+  glm::dvec3 aerial{0};   // where the camera ray crosses the aerial-image plane
+  glm::dvec3 towards_display{0};
+  double theta_deg = 0;
+};
+
+std::optional<ideal_path> trace_ideal(const ideal_parts& parts, double px, double py) {
+  const glm::dvec3 d = camera_direction(parts.cam, px, py);
+  const auto a = hit_part(parts.hm, parts.cam.position, d);
+  if (!a) return std::nullopt;
+  const auto b = hit_part(parts.rr, *a, d);
+  if (!b || glm::dot(d, parts.rr.n) >= 0) return std::nullopt;
+  const auto q1 = hit_part(parts.hm, *b, -d);
+  if (!q1) return std::nullopt;
+  const glm::dvec3 towards_display = reflect(-d, parts.hm.n);
+  if (glm::dot(towards_display, parts.src.n) >= 0) return std::nullopt;  // the display's back
+  const auto q2 = hit_part(parts.src, *q1, towards_display, false);
+  const auto p = hit_part(parts.aerial, parts.cam.position, d, false);
+  if (!q2 || !p) return std::nullopt;
+  return ideal_path{part_local(parts.src, *q2), *p, towards_display, polar_angle_deg(-to_local(parts.rr, d))};
+}
+
+// The display's radiance on a grid of at most max_texels on its longer side (area-averaged down
+// from the texture; uniform: a grid of that size).
+cv::Mat display_texels(const scene& s, const image_rgb* display, int max_texels) {
+  cv::Mat m;
+  if (display) {
+    m = cv::Mat(display->height, display->width, CV_32FC3, const_cast<float*>(display->rgb.data())).clone();
+    m *= s.source.intensity;
+  } else {
+    const part_frame src = source_frame(s);
+    const double longer = std::max(src.width, src.height);
+    m = cv::Mat(std::max(1, int(std::lround(max_texels * src.height / longer))),
+                std::max(1, int(std::lround(max_texels * src.width / longer))), CV_32FC3,
+                cv::Scalar::all(s.source.intensity));
+  }
+  const int longer = std::max(m.cols, m.rows);
+  if (longer > max_texels) {
+    const double f = double(max_texels) / longer;
+    cv::Mat small;
+    cv::resize(m, small, cv::Size(std::max(1, int(std::lround(m.cols * f))), std::max(1, int(std::lround(m.rows * f)))),
+               0, 0, cv::INTER_AREA);
+    m = small;
+  }
+  return m;
+}
+
+// The texels' bilinear surface (edges clamped, as the tracer reads its texture) sampled `refine`
+// times more densely: nodes at texel coordinates origin + j / refine. With an even `refine` the
+// nodes start half a texel out and include every texel centre, so the refined grid's bilinear
+// surface is the texels' own, exactly.
+image_rgb refined_grid(const cv::Mat& texels, int refine, double& origin) {
+  origin = refine % 2 == 0 ? -0.5 : 0.0;
+  image_rgb out;
+  out.width = int(std::lround((texels.cols - 1 - 2 * origin) * refine)) + 1;
+  out.height = int(std::lround((texels.rows - 1 - 2 * origin) * refine)) + 1;
+  out.rgb.resize(std::size_t(out.width) * out.height * 3);
+  auto texel = [&](int x, int y) {
+    const cv::Vec3f& v = texels.at<cv::Vec3f>(std::clamp(y, 0, texels.rows - 1), std::clamp(x, 0, texels.cols - 1));
+    return glm::vec3(v[0], v[1], v[2]);
+  };
+  for (int j = 0; j < out.height; ++j) {
+    const double ty = origin + double(j) / refine;
+    const int y0 = int(std::floor(ty));
+    const float fy = float(ty - y0);
+    for (int i = 0; i < out.width; ++i) {
+      const double tx = origin + double(i) / refine;
+      const int x0 = int(std::floor(tx));
+      const float fx = float(tx - x0);
+      const glm::vec3 v = glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx),
+                                   glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
+      std::copy_n(&v.x, 3, out.at(i, j));
+    }
+  }
+  return out;
+}
+
+image_rgb pad(const image_rgb& img, int radius) {
+  image_rgb out;
+  out.width = img.width + 2 * radius;
+  out.height = img.height + 2 * radius;
+  out.rgb.assign(std::size_t(out.width) * out.height * 3, 0.0f);
+  for (int y = 0; y < img.height; ++y) std::copy_n(img.at(0, y), 3 * img.width, out.at(radius, y + radius));
+  return out;
+}
+
+glm::vec3 bilinear(const image_rgb& m, const glm::dvec2& t) {
+  const int x0 = int(std::floor(t.x)), y0 = int(std::floor(t.y));
+  if (x0 < 0 || y0 < 0 || x0 + 1 >= m.width || y0 + 1 >= m.height) return glm::vec3(0.0f);
+  const float fx = float(t.x - x0), fy = float(t.y - y0);
+  auto texel = [&](int x, int y) {
+    const float* p = m.at(x, y);
+    return glm::vec3(p[0], p[1], p[2]);
+  };
+  return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx),
+                  glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
+}
+
+// Where the model sends one sample: the grid and the offset in its nodes from the ideal point (the
+// pixel jitter included), and its throughput; empty when it is absorbed, misses the half mirror or
+// lands beyond the kernels. Both the kernels and the predictions go through here.
+struct grid_offset {
+  int grid;
+  glm::dvec2 nodes;
+};
+std::optional<grid_offset> sample_offset(const model_image& m, const model_bin& b, const glm::dvec2& jitter,
+                                         const retro_samples& u, double& weight) {
+  const retro_sample rs = m.model->sample(b.chief.wi, u);
+  if (!(rs.weight > 0)) return std::nullopt;
+  const auto delta = psf_landing_offset(b.chief, rs);
+  if (!delta) return std::nullopt;
+  const glm::dvec2 mm =
+      glm::dvec2(glm::dot(*delta, b.chief.src.u), glm::dot(*delta, b.chief.src.v)) + b.jitter_mm * (jitter - 0.5);
+  weight = rs.weight * m.hm_factor;
+  for (int g : {model_fine, model_tail}) {
+    const model_grid& grid = m.grids[g];
+    const glm::dvec2 t(mm.x / grid.node_w, -mm.y / grid.node_h);  // node rows run down the display
+    if (std::abs(t.x) < grid.radius - 1 && std::abs(t.y) < grid.radius - 1) return grid_offset{g, t};
+  }
+  return std::nullopt;
+}
+
+// An offset between whole nodes spreads over the four around it with bilinear weights, in the
+// kernels and in the predictions alike, so that the kernels' mean is exactly the predictions'.
+template <typename F>
+void for_each_corner(const glm::dvec2& t, F&& f) {
+  const int x0 = int(std::floor(t.x)), y0 = int(std::floor(t.y));
+  const double fx = t.x - x0, fy = t.y - y0;
+  f(x0, y0, (1 - fx) * (1 - fy));
+  f(x0 + 1, y0, fx * (1 - fy));
+  f(x0, y0 + 1, (1 - fx) * fy);
+  f(x0 + 1, y0 + 1, fx * fy);
+}
+
+// The bin's kernels from its samples (a rotated R6 sequence for jitter, lobe and shift, as the
+// tracer's pixels use); blocks run in parallel and are summed in order, so the result does not
+// depend on the number of threads.
+std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std::size_t bin, std::uint64_t samples,
+                                   std::uint64_t seed) {
+  std::array<double, 6> rotation;
+  pcg32 rotation_rng = sample_rng(bin, 0, seed ^ 0x6b65726eu);
+  for (double& r : rotation) r = rotation_rng.next_double();
+  auto zero = [&] {
+    std::array<cv::Mat, 2> k;
+    for (int g : {model_fine, model_tail}) {
+      const int n = 2 * m.grids[g].radius + 1;
+      k[std::size_t(g)] = cv::Mat(n, n, CV_64F, cv::Scalar(0));
+    }
+    return k;
+  };
+  constexpr std::uint64_t block = 16384;
+  const std::size_t blocks = std::size_t((samples + block - 1) / block);
+  std::vector<std::array<cv::Mat, 2>> parts(blocks);
+  auto block_kernels = [&](std::size_t k) {
+    std::array<cv::Mat, 2> part = zero();
+    const std::uint64_t end = std::min<std::uint64_t>(samples, (k + 1) * block);
+    for (std::uint64_t i = k * block; i < end; ++i) {
+      const std::array<double, 6> q = r6_point(i, rotation);
+      retro_samples u;
+      u.lobe = {q[2], q[3]};
+      u.shift = {q[4], q[5]};
+      u.more = sample_rng(i, bin, seed ^ 0x6d6f7265u);
+      double w = 0;
+      const auto o = sample_offset(m, b, {q[0], q[1]}, u, w);
+      if (!o) continue;
+      cv::Mat& kernel = part[std::size_t(o->grid)];
+      const int r = m.grids[o->grid].radius;
+      for_each_corner(o->nodes, [&](int x, int y, double c) { kernel.at<double>(y + r, x + r) += w * c; });
+    }
+    return part;
+  };
+  detail::parallel_rows(int(blocks), 0, [&](int b0, int b1) {
+    for (int k = b0; k < b1; ++k) parts[std::size_t(k)] = block_kernels(std::size_t(k));
+  });
+  std::array<cv::Mat, 2> sum = zero(), out;
+  for (const auto& part : parts) {
+    for (std::size_t g = 0; g < 2; ++g) sum[g] += part[g];
+  }
+  for (std::size_t g = 0; g < 2; ++g) sum[g].convertTo(out[g], CV_32F, 1.0 / double(samples));
+  return out;
+}
+
+image_rgb convolve(const image_rgb& img, const cv::Mat& kernel) {
+  const cv::Mat src(img.height, img.width, CV_32FC3, const_cast<float*>(img.rgb.data()));
+  cv::Mat dst;
+  cv::filter2D(src, dst, -1, kernel, cv::Point(-1, -1), 0, cv::BORDER_CONSTANT);
+  image_rgb out;
+  out.width = dst.cols;
+  out.height = dst.rows;
+  out.rgb.resize(std::size_t(dst.cols) * dst.rows * 3);
+  for (int y = 0; y < dst.rows; ++y) std::copy_n(dst.ptr<float>(y), 3 * dst.cols, out.at(0, y));
+  return out;
+}
+
+// One grid over the display's texels (`refine` nodes per texel) and where display-local points
+// fall on it.
+struct grid_mapping {
+  double cols = 1, rows = 1, width = 1, height = 1, origin = 0, refine = 1, radius = 0;
+  glm::dvec2 node(const glm::dvec2& local) const {
+    const glm::dvec2 texel((local.x / width + 0.5) * cols - 0.5, (0.5 - local.y / height) * rows - 0.5);
+    return (texel - origin) * refine + radius;
+  }
+};
+
+grid_mapping make_grid(model_grid& grid, const cv::Mat& texels, int refine, double reach_mm, const part_frame& src) {
+  grid_mapping map;
+  const image_rgb nodes = refined_grid(texels, refine, map.origin);
+  grid.node_w = src.width / texels.cols / refine;
+  grid.node_h = src.height / texels.rows / refine;
+  grid.radius = std::clamp(int(std::ceil(reach_mm / std::min(grid.node_w, grid.node_h))) + 1, 2, 2048);
+  grid.padded = pad(nodes, grid.radius);
+  map.cols = texels.cols;
+  map.rows = texels.rows;
+  map.width = src.width;
+  map.height = src.height;
+  map.refine = refine;
+  map.radius = grid.radius;
+  return map;
+}
+
+}  // namespace
+
+std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shared_ptr<const retro_model> model,
+                                                       const image_rgb* display, const model_image_params& p) {
+  if (p.angle_bins < 1 || p.angle_bins > 64 || p.psf_samples < 1000 || p.max_texels < 16 || p.max_texels > 4096 ||
+      p.texel_refine < 1 || p.texel_refine > 4 || !(p.core_radius_mm > 0) || p.tail_texels < 4 ||
+      !(p.kernel_radius_mm >= p.core_radius_mm)) {
+    throw input_error("model image: parameters out of range");
+  }
+  if (s.retroreflectors.empty() || !model) return nullptr;
+  const auto t0 = std::chrono::steady_clock::now();
+  const ideal_parts parts(s);
+  const int w = parts.cam.width, h = parts.cam.height;
+  std::shared_ptr<const emission_profile> emission;
+  if (!s.source.emission_profile.empty()) {
+    emission = load_emission_profile(resolve_scene_path(s, s.source.emission_profile));
+  }
+
+  auto m = std::make_shared<model_image>();
+  m->model = std::move(model);
+  m->hm_factor = s.half_mirror.reflectance * s.half_mirror.transmittance;
+  // The grids' kernels stay within about 64 (fine) and 96 (tail) nodes of reach, however small
+  // the display: no finer grid than that pays.
+  const double longer_mm = std::max(parts.src.width, parts.src.height);
+  const int fine_texels = std::clamp(int(longer_mm / (p.core_radius_mm / 64) / p.texel_refine), 8, p.max_texels);
+  const int coarse_texels = std::clamp(int(longer_mm / (p.kernel_radius_mm / 96)), 4, p.tail_texels);
+  const cv::Mat texels = display_texels(s, display, fine_texels);
+  cv::Mat tail_texels = texels;
+  if (std::max(texels.cols, texels.rows) > coarse_texels) {
+    const double f = double(coarse_texels) / std::max(texels.cols, texels.rows);
+    cv::resize(texels, tail_texels,
+               cv::Size(std::max(1, int(std::lround(texels.cols * f))), std::max(1, int(std::lround(texels.rows * f)))),
+               0, 0, cv::INTER_AREA);
+  }
+  const grid_mapping maps[2] = {make_grid(m->grids[model_fine], texels, p.texel_refine, p.core_radius_mm, parts.src),
+                                make_grid(m->grids[model_tail], tail_texels, 1, p.kernel_radius_mm, parts.src)};
+
+  m->pixels.resize(std::size_t(w) * h);
+  detail::parallel_rows(h, 0, [&](int y0, int y1) {
+    for (int y = y0; y < y1; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const auto path = trace_ideal(parts, x + 0.5, y + 0.5);
+        if (!path) continue;
+        model_pixel& px = m->pixels[std::size_t(y) * w + x];
+        for (int g : {model_fine, model_tail}) px.node[g] = maps[g].node(path->display);
+        // Landing outside the tail's padded grid, it is farther from the display than any kernel
+        // offset. (Outside the fine grid, only the fine part sees nothing, in both uses alike.)
+        const glm::dvec2 t = px.node[model_tail];
+        const image_rgb& padded = m->grids[model_tail].padded;
+        px.ok = t.x >= 0 && t.y >= 0 && t.x < padded.width - 1 && t.y < padded.height - 1;
+        px.theta_deg = path->theta_deg;
+        if (emission) {
+          px.profile = emission->at(degrees(std::acos(std::min(1.0, -glm::dot(path->towards_display, parts.src.n)))));
+        }
+      }
+    }
+  });
+  m->paths_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  double lo = INFINITY, hi = -INFINITY;
+  for (const model_pixel& px : m->pixels) {
+    if (px.ok) lo = std::min(lo, px.theta_deg), hi = std::max(hi, px.theta_deg);
+  }
+  if (!(lo <= hi)) return nullptr;
+
+  // One PSF per bin, at the pixel whose angle is nearest the bin's.
+  const int bins = hi - lo < 0.1 ? 1 : p.angle_bins;
+  for (int k = 0; k < bins; ++k) {
+    const double want = bins == 1 ? 0.5 * (lo + hi) : lo + (hi - lo) * k / (bins - 1);
+    std::size_t best = 0;
+    bool found = false;
+    for (std::size_t i = 0; i < m->pixels.size(); ++i) {
+      const model_pixel& px = m->pixels[i];
+      if (px.ok && (!found || std::abs(px.theta_deg - want) < std::abs(m->pixels[best].theta_deg - want))) {
+        best = i;
+        found = true;
+      }
+    }
+    const double bx = double(best % std::size_t(w)) + 0.5, by = double(best / std::size_t(w)) + 0.5;
+    const auto centre = trace_ideal(parts, bx, by);
+    const auto right = trace_ideal(parts, bx + 0.5, by), left = trace_ideal(parts, bx - 0.5, by);
+    const auto down = trace_ideal(parts, bx, by + 0.5), up = trace_ideal(parts, bx, by - 0.5);
+    model_bin b;
+    b.theta_deg = centre->theta_deg;
+    b.chief = chief_ray_through(s, centre->aerial);
+    if (right && left && down && up) {
+      b.jitter_mm = glm::dmat2(right->display - left->display, down->display - up->display);
+    }
+    m->bins.push_back(std::move(b));
+  }
+  detail::parallel_rows(bins, 0, [&](int k0, int k1) {
+    for (int k = k0; k < k1; ++k) {
+      model_bin& b = m->bins[std::size_t(k)];
+      const std::array<cv::Mat, 2> kernels = bin_kernels(*m, b, std::size_t(k), p.psf_samples, s.seed);
+      for (int g : {model_fine, model_tail}) b.convolved[g] = convolve(m->grids[g].padded, kernels[std::size_t(g)]);
+    }
+  });
+
+  m->image.width = w;
+  m->image.height = h;
+  m->image.rgb.assign(std::size_t(w) * h * 3, 0.0f);
+  for (std::size_t i = 0; i < m->pixels.size(); ++i) {
+    model_pixel& px = m->pixels[i];
+    if (!px.ok) continue;
+    // Between the two bins around this pixel's angle (bin angles ascend).
+    int k = 0;
+    while (k + 1 < bins && m->bins[std::size_t(k + 1)].theta_deg < px.theta_deg) ++k;
+    px.bin = k;
+    if (k + 1 < bins) {
+      const double a0 = m->bins[std::size_t(k)].theta_deg, a1 = m->bins[std::size_t(k + 1)].theta_deg;
+      px.mix = a1 > a0 ? std::clamp((px.theta_deg - a0) / (a1 - a0), 0.0, 1.0) : 0.0;
+    }
+    glm::vec3 v(0.0f);
+    for (int g : {model_fine, model_tail}) {
+      v += bilinear(m->bins[std::size_t(k)].convolved[g], px.node[g]) * float(1 - px.mix);
+      if (px.mix > 0) v += bilinear(m->bins[std::size_t(k + 1)].convolved[g], px.node[g]) * float(px.mix);
+    }
+    v *= float(px.profile);
+    std::copy_n(&v.x, 3, m->image.rgb.data() + 3 * i);
+  }
+  m->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return m;
+}
+
+glm::vec3 model_prediction(const model_image& m, int px, int py, const glm::dvec2& jitter, const retro_samples& u,
+                           double bin_choice) {
+  const model_pixel& p = m.pixels[std::size_t(py) * m.image.width + px];
+  if (!p.ok) return glm::vec3(0.0f);
+  const int k = bin_choice < p.mix ? p.bin + 1 : p.bin;
+  double weight = 0;
+  const auto o = sample_offset(m, m.bins[std::size_t(k)], jitter, u, weight);
+  if (!o) return glm::vec3(0.0f);
+  glm::vec3 sum(0.0f);
+  const image_rgb& padded = m.grids[o->grid].padded;
+  const glm::dvec2 base = p.node[o->grid];
+  for_each_corner(o->nodes,
+                  [&](int x, int y, double c) { sum += bilinear(padded, base + glm::dvec2(x, y)) * float(c); });
+  return sum * float(weight * p.profile);
+}
+
+}  // namespace airr

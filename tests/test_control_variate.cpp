@@ -1,0 +1,139 @@
+// The model image as the tracer's control variate: the estimator's mean is the plain tracer's
+// (the same expectation, within the standard error), its variance is far lower where the model
+// holds, and the model image is exact where it can be worked out by hand.
+#include <cmath>
+
+#include <gtest/gtest.h>
+
+#include "airr/optics/assets.hpp"
+#include "airr/optics/scene_json.hpp"
+#include "airr/render/tracer.hpp"
+#include "test_helpers.hpp"
+
+using namespace airr;
+
+namespace {
+
+scene chart_scene(const std::string& preset, int size) {
+  return load_scene(default_scene_path(), {{"observer.width", std::to_string(size)},
+                                           {"observer.height", std::to_string(size)},
+                                           {"retroreflectors.0.model.type", "\"sinc_shift\""},
+                                           {"retroreflectors.0.model.preset", "\"" + preset + "\""}});
+}
+
+// Per-pixel mean and variance of one estimator's samples (green channel).
+struct pixel_stats {
+  std::vector<double> mean, variance;
+  std::vector<int> lit;  // samples that saw light
+};
+
+pixel_stats sample_pixels(const tracer_scene& ts, int spp) {
+  const int w = ts.camera.width, h = ts.camera.height;
+  pixel_stats out{std::vector<double>(std::size_t(w) * h), std::vector<double>(std::size_t(w) * h),
+                  std::vector<int>(std::size_t(w) * h)};
+  std::uint64_t rays = 0;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const auto rotation = pixel_sequence_rotation(ts, x, y);
+      double sum = 0, sum2 = 0;
+      int lit = 0;
+      for (int i = 0; i < spp; ++i) {
+        const double v = model_value(ts, x, y).y + estimate_sample(ts, x, y, std::uint64_t(i), rotation, rays).y;
+        sum += v;
+        sum2 += v * v;
+        lit += v != 0;
+      }
+      const std::size_t k = std::size_t(y) * w + x;
+      out.mean[k] = sum / spp;
+      out.variance[k] = std::max(0.0, (sum2 - sum * sum / spp) / (spp - 1));
+      out.lit[k] = lit;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+class ControlVariate : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ControlVariate, SameMeanAsThePlainTracerAndLessVariance) {
+  scene s = chart_scene(GetParam(), 40);
+  embree_device device;
+  tracer_scene plain, with_model;
+  plain.use_model_image = false;
+  build_tracer_scene(plain, device, s);
+  s.seed = 2;  // independent of the plain estimator's samples (and of its own model image's PSF)
+  build_tracer_scene(with_model, device, s);
+  update_model_image(plain);
+  update_model_image(with_model);
+  ASSERT_FALSE(plain.model);
+  ASSERT_TRUE(with_model.model);
+  const int spp = 128;
+  const pixel_stats a = sample_pixels(plain, spp), b = sample_pixels(with_model, spp);
+
+  // 5 x 5 blocks of pixels: z = difference of the blocks' means over its standard error, where
+  // the plain estimator saw light often enough (100 samples) for its variance to be measured; where
+  // light arrives only by rare tails, a sample variance says nothing.
+  const int w = 40, block = 5;
+  double chi2 = 0, worst = 0, diff = 0, var_sum = 0, plain_var = 0, model_var = 0, mean = 0;
+  int n = 0;
+  for (int by = 0; by < w / block; ++by) {
+    for (int bx = 0; bx < w / block; ++bx) {
+      double d = 0, se2 = 0;
+      int lit = 0;
+      for (int y = by * block; y < (by + 1) * block; ++y) {
+        for (int x = bx * block; x < (bx + 1) * block; ++x) {
+          const std::size_t k = std::size_t(y) * w + x;
+          d += b.mean[k] - a.mean[k];
+          lit += a.lit[k];
+          se2 += (a.variance[k] + b.variance[k]) / spp;
+          plain_var += a.variance[k];
+          model_var += b.variance[k];
+          mean += a.mean[k];
+        }
+      }
+      diff += d;
+      var_sum += se2;
+      if (lit < 100) continue;
+      chi2 += d * d / se2;
+      worst = std::max(worst, std::abs(d) / std::sqrt(se2));
+      ++n;
+    }
+  }
+  const double npix = double(w * w);
+  mean /= npix;
+  std::printf("%s: %d blocks, chi-square per block %.3f, worst |z| %.2f; image mean %.5f, difference %.5f (%.2f se)\n",
+              GetParam().c_str(), n, chi2 / n, worst, mean, diff / npix, diff / std::sqrt(var_sum));
+  EXPECT_LT(std::abs(diff), 4 * std::sqrt(var_sum));
+  EXPECT_LT(chi2 / n, 1 + 5 * std::sqrt(2.0 / n));
+  EXPECT_LT(worst, 4.5);
+  const double reduction = plain_var / model_var;
+  std::printf("%s: relative sd per sample %.3f plain, %.3f with the model image (variance %.1fx lower)\n",
+              GetParam().c_str(), std::sqrt(plain_var / npix) / mean, std::sqrt(model_var / npix) / mean, reduction);
+  EXPECT_GT(reduction, 8.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Presets, ControlVariate, ::testing::Values("rf-ay", "rf-an"));
+
+TEST(ModelImage, UniformDisplayIdealSheetIsRTmuL) {
+  // An ideal sheet returns every ray to its own point: inside the display's image every pixel is
+  // R x T x mu x L, outside it nothing, whatever the PSF machinery does.
+  scene s = test::uniform_source_scene(40, 48);
+  s.retroreflectors[0].model.type = "ideal";
+  s.retroreflectors[0].model.values = {{"mu", 0.8}};
+  embree_device device;
+  tracer_scene ts;
+  build_tracer_scene(ts, device, s);
+  update_model_image(ts);
+  ASSERT_TRUE(ts.model);
+  const double expected = s.half_mirror.reflectance * s.half_mirror.transmittance * 0.8 * s.source.intensity;
+  const image_rgb& m = ts.model->image;
+  EXPECT_NEAR(m.at(m.width / 2, m.height / 2)[0], expected, 1e-4 * expected);
+  EXPECT_EQ(m.at(0, 0)[0], 0.0f);
+  // And the tracer's samples equal their predictions there: nothing left to estimate.
+  std::uint64_t rays = 0;
+  const auto rotation = pixel_sequence_rotation(ts, m.width / 2, m.height / 2);
+  for (std::uint64_t i = 0; i < 16; ++i) {
+    EXPECT_NEAR(estimate_sample(ts, m.width / 2, m.height / 2, i, rotation, rays).x, 0.0, 1e-4 * expected);
+  }
+}
