@@ -24,22 +24,41 @@ psf_samples sample_psf(const scene& s, const retro_model& model, const psf_param
   return sample_psf(s, model, p, aerial_image_center(s));
 }
 
+ideal_return follow_ideal_return(const part_frame& hm, const part_frame& rr, const part_frame& src,
+                                 const glm::dvec3& origin, const glm::dvec3& dir) {
+  ideal_return r;
+  const auto p1 = hit_part(hm, origin, dir);
+  if (!p1) return r.failed = ideal_return::step::half_mirror, r;
+  const auto p2 = hit_part(rr, *p1, dir);
+  if (!p2 || glm::dot(dir, rr.n) >= 0) return r.failed = ideal_return::step::sheet_front, r;
+  r.sheet_point = *p2;
+  r.towards_display = reflect(-dir, hm.n);
+  const auto q1 = hit_part(hm, *p2, -dir);
+  const auto q2 = q1 ? hit_part(src, *q1, r.towards_display, false) : std::nullopt;
+  if (!q2) return r.failed = ideal_return::step::display_plane, r;
+  r.landing = *q2;
+  return r;
+}
+
 psf_chief_ray chief_ray_through(const scene& s, const glm::dvec3& aerial_point) {
   psf_chief_ray c{half_mirror_frame(s), retroreflector_frame(s), source_frame(s)};
   const pinhole_camera cam = make_camera(s);
   const glm::dvec3 d0 = glm::normalize(aerial_point - cam.position);
-  const auto p1 = hit_part(c.hm, cam.position, d0);
-  if (!p1) throw input_error("psf: the camera ray through the aerial image misses the half mirror");
-  const auto p2 = hit_part(c.rr, *p1, d0);
-  if (!p2 || glm::dot(d0, c.rr.n) >= 0) throw input_error("psf: the camera ray misses the retroreflector's front");
-  // The ideal landing point: exactly back, mirrored down to the source plane.
-  const auto q1 = hit_part(c.hm, *p2, -d0);
-  const auto q2 = q1 ? hit_part(c.src, *q1, reflect(-d0, c.hm.n), false) : std::nullopt;
-  if (!q2) throw input_error("psf: the retroreflected chief ray misses the source plane");
-  c.sheet_point = *p2;
-  c.ideal = *q2;
+  const ideal_return r = follow_ideal_return(c.hm, c.rr, c.src, cam.position, d0);
+  switch (r.failed) {
+    case ideal_return::step::half_mirror:
+      throw input_error("psf: the camera ray through the aerial image misses the half mirror");
+    case ideal_return::step::sheet_front:
+      throw input_error("psf: the camera ray misses the retroreflector's front");
+    case ideal_return::step::display_plane:
+      throw input_error("psf: the retroreflected chief ray misses the source plane");
+    case ideal_return::step::none:
+      break;
+  }
+  c.sheet_point = r.sheet_point;
+  c.ideal = r.landing;
   c.wi = -to_local(c.rr, d0);
-  c.rr_distance_mm = glm::length(*p2 - aerial_point);
+  c.rr_distance_mm = glm::length(r.sheet_point - aerial_point);
   return c;
 }
 

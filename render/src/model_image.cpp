@@ -40,18 +40,12 @@ struct ideal_path {
 
 std::optional<ideal_path> trace_ideal(const ideal_parts& parts, double px, double py) {
   const glm::dvec3 d = camera_direction(parts.cam, px, py);
-  const auto a = hit_part(parts.hm, parts.cam.position, d);
-  if (!a) return std::nullopt;
-  const auto b = hit_part(parts.rr, *a, d);
-  if (!b || glm::dot(d, parts.rr.n) >= 0) return std::nullopt;
-  const auto q1 = hit_part(parts.hm, *b, -d);
-  if (!q1) return std::nullopt;
-  const glm::dvec3 towards_display = reflect(-d, parts.hm.n);
-  if (glm::dot(towards_display, parts.src.n) >= 0) return std::nullopt;  // the display's back
-  const auto q2 = hit_part(parts.src, *q1, towards_display, false);
+  const ideal_return r = follow_ideal_return(parts.hm, parts.rr, parts.src, parts.cam.position, d);
+  if (r.failed != ideal_return::step::none) return std::nullopt;
+  if (glm::dot(r.towards_display, parts.src.n) >= 0) return std::nullopt;  // the display's back
   const auto p = hit_part(parts.aerial, parts.cam.position, d, false);
-  if (!q2 || !p) return std::nullopt;
-  return ideal_path{part_local(parts.src, *q2), *p, towards_display, polar_angle_deg(-to_local(parts.rr, d))};
+  if (!p) return std::nullopt;
+  return ideal_path{part_local(parts.src, r.landing), *p, r.towards_display, polar_angle_deg(-to_local(parts.rr, d))};
 }
 
 // The display's radiance on a grid of at most max_texels on its longer side (area-averaged down

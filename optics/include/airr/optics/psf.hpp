@@ -30,6 +30,18 @@ struct psf_samples {
   double brightness() const;
 };
 
+// A camera ray's ideal return: through the half mirror to the first sheet's front, exactly back,
+// and mirrored by the half mirror onto the display plane. `failed` names the first step that
+// does not happen (the rest is then unset).
+struct ideal_return {
+  enum class step { none, half_mirror, sheet_front, display_plane } failed = step::none;
+  glm::dvec3 sheet_point{0};
+  glm::dvec3 landing{0};          // on the display plane (unbounded)
+  glm::dvec3 towards_display{0};  // the returning ray's direction after the half mirror
+};
+ideal_return follow_ideal_return(const part_frame& hm, const part_frame& rr, const part_frame& src,
+                                 const glm::dvec3& origin, const glm::dvec3& dir);
+
 // The chief ray through one aerial-image point: the parts it meets on its way to the first sheet
 // and back, and its ideal landing point on the display plane.
 struct psf_chief_ray {
