@@ -28,6 +28,8 @@ struct options {
   int threads = 0;
   std::string fit_dir;
   std::string save_as;
+  std::vector<std::string> edits;  // applied as one designer edit after the scripted frames
+  double screenshot_after = -1;    // with edits: seconds after the edit (0: its first image)
 };
 
 struct app_state {
@@ -80,6 +82,12 @@ int main(int argc, char** argv) {
   cli.add_option("--fit", opt.fit_dir,
                  "Open the fit window and fit this data directory (scripted runs apply the result)");
   cli.add_option("--save-as", opt.save_as, "After a scripted run, save the scene to this file");
+  cli.add_option("--edit", opt.edits,
+                 "After the scripted frames, change key=value as one edit in the designer would (repeatable), then "
+                 "take the screenshot --screenshot-after seconds later");
+  cli.add_option("--screenshot-after", opt.screenshot_after,
+                 "With --edit: seconds from the edit to the screenshot (0: the first frame showing the edit)")
+      ->check(CLI::Range(0.0, 3600.0));
   CLI11_PARSE(cli, argc, argv);
   if (!opt.screenshot.empty() && opt.frames == 0) opt.frames = 60;
 
@@ -142,6 +150,7 @@ int main(int argc, char** argv) {
 
   st.session_options.threads = opt.threads;
   st.session_options.background_priority = true;
+  st.session_options.first_look = true;
   st.keep_recovery = opt.frames == 0 && opt.bench_edits == 0;
   if (st.keep_recovery) airr::ui::studio_check_recovery(st);
   airr::ui::studio_start(st, as_saved, path);
@@ -166,6 +175,7 @@ int main(int argc, char** argv) {
   bool screenshot_pending = !opt.screenshot.empty();
   int settle_frames = 0;
   int exit_code = 0;
+  double edit_at = -1;  // when the scripted --edit was made
 
   while (true) {
     glfwPollEvents();
@@ -212,7 +222,29 @@ int main(int argc, char** argv) {
         glfwSwapBuffers(window);
         continue;
       }
-      if (screenshot_pending) {
+      if (!opt.edits.empty() && edit_at < 0) {
+        // The scripted edit, made as a panel would: the next frame applies it.
+        try {
+          std::vector<airr::scene_override> overrides;
+          for (const auto& e : opt.edits) overrides.push_back(airr::parse_override(e));
+          st.doc = airr::with_overrides(st.doc, overrides, "--edit");
+        } catch (const std::exception& e) {
+          std::fprintf(stderr, "error: %s\n", e.what());
+          exit_code = 1;
+          break;
+        }
+        edit_at = now();
+        glfwSwapBuffers(window);
+        continue;
+      }
+      if (screenshot_pending && edit_at >= 0) {
+        // A timed look after the edit: its first image, or what shows so many seconds later.
+        const bool due = opt.screenshot_after <= 0 ? st.first_image_uploaded : now() - edit_at >= opt.screenshot_after;
+        if (!due) {
+          glfwSwapBuffers(window);
+          continue;
+        }
+      } else if (screenshot_pending) {
         // A few frames after the last edit was applied, showing the finished plots and at least
         // a few samples of the final layout.
         st.session->wait_for(st.generation, 4);
@@ -221,6 +253,8 @@ int main(int argc, char** argv) {
           glfwSwapBuffers(window);
           continue;
         }
+      }
+      if (screenshot_pending) {
         try {
           airr::ui::write_framebuffer_png(opt.screenshot, fw, fh);
           // The panels' rectangles in framebuffer pixels, for checks of the screenshot.
@@ -231,7 +265,10 @@ int main(int argc, char** argv) {
           for (const auto& [name, r] : st.regions) regions[name] = {r[0] * sx, r[1] * sy, r[2] * sx, r[3] * sy};
           airr::write_file_atomic(opt.screenshot + ".json",
                                   nlohmann::json{{"width", fw}, {"height", fh}, {"regions", regions}}.dump(2) + "\n");
-          std::fprintf(stderr, "wrote %s (%dx%d)\n", opt.screenshot.c_str(), fw, fh);
+          std::fprintf(stderr, "wrote %s (%dx%d); the render view shows %s\n", opt.screenshot.c_str(), fw, fh,
+                       st.view.uploaded_model_image
+                           ? "the model image's first look"
+                           : ("the tracer at " + std::to_string(st.view.uploaded_spp) + " spp").c_str());
         } catch (const std::exception& e) {
           std::fprintf(stderr, "error: %s\n", e.what());
           exit_code = 1;
@@ -245,6 +282,12 @@ int main(int argc, char** argv) {
     }
     glfwSwapBuffers(window);
     frame_ms.push_back(std::chrono::duration<double, std::milli>(clock::now() - f0).count());
+    if (st.first_image_uploaded) {
+      // The edit's first image is on screen now.
+      st.edit_latencies_ms.push_back(1e3 * (now() - st.edit_time));
+      st.first_image_uploaded = false;
+      st.edit_time = -1;
+    }
 
     // Latency benchmark: a new edit once the previous one's first image is on screen.
     if (opt.bench_edits > 0 && st.edit_time < 0 && frame > 5) {
@@ -256,9 +299,15 @@ int main(int argc, char** argv) {
 
   if (opt.bench_edits > 0) {
     const auto& l = st.edit_latencies_ms;
-    std::printf("edit-to-image latency in the window: median %.1f ms, p95 %.1f ms, max %.1f ms over %zu edits\n",
-                percentile(l, 0.5), percentile(l, 0.95), l.empty() ? 0.0 : *std::max_element(l.begin(), l.end()),
-                l.size());
+    const auto& r = st.first_image_ready_ms;
+    std::printf(
+        "edit to its first image (the model image's first look in %d of %zu edits), ready in the session: "
+        "median %.1f ms, p95 %.1f ms\n",
+        st.first_images_from_model, r.size(), percentile(r, 0.5), percentile(r, 0.95));
+    std::printf(
+        "edit-to-image latency in the window (until the frame showing it is swapped): median %.1f ms, "
+        "p95 %.1f ms, max %.1f ms over %zu edits\n",
+        percentile(l, 0.5), percentile(l, 0.95), l.empty() ? 0.0 : *std::max_element(l.begin(), l.end()), l.size());
     std::printf("frame time while the tracer runs: median %.1f ms, p95 %.1f ms over %zu frames\n",
                 percentile(frame_ms, 0.5), percentile(frame_ms, 0.95), frame_ms.size());
   }

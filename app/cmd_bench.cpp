@@ -12,11 +12,13 @@
 #include <tbb/parallel_for.h>
 
 #include "airr/optics/assets.hpp"
+#include "airr/optics/error.hpp"
 #include "airr/optics/random.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/render/tracer.hpp"
 #include "commands.hpp"
+#include "model_error_bench.hpp"
 #include "noise_bench.hpp"
 
 namespace {
@@ -71,6 +73,8 @@ void add_bench_command(CLI::App& app) {
     int edits = 20;
     bool noise = false;
     noise_bench_options noise_options;
+    bool model_error = false;
+    std::vector<double> model_error_tilts;
   };
   auto opt = std::make_shared<options>();
   auto* cmd = app.add_subcommand(
@@ -82,6 +86,10 @@ void add_bench_command(CLI::App& app) {
   cmd->add_flag("--noise", opt->noise,
                 "Instead: time and samples per pixel to 2% and 1% relative RMS noise at 512 x 512 for RF-Ay and RF-AN, "
                 "from pairs of renders with independent seeds");
+  cmd->add_flag("--model-error", opt->model_error,
+                "Instead: the model image's (and the designer's first look's) relative RMS difference from the tracer "
+                "per preset and sheet tilt 0-45 deg (default 256 x 256, --spp 128)");
+  cmd->add_option("--tilts", opt->model_error_tilts, "With --model-error: sheet tilts (deg)");
   cmd->add_option("--compare", opt->noise_options.compare,
                   "With --noise: also measure another build's airr executable, side by side");
   cmd->add_option("--noise-spp", opt->noise_options.spp,
@@ -94,7 +102,19 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--presets", opt->noise_options.presets, "With --noise: sheet presets")->capture_default_str();
   cmd->add_option("--threads", opt->noise_options.threads, "With --noise: worker threads (0: all cores)")
       ->check(CLI::Range(0, 1024));
-  cmd->callback([opt] {
+  cmd->callback([opt, cmd] {
+    if (opt->model_error) {
+      model_error_options m;
+      m.scene_path = opt->scene_path;
+      if (cmd->count("--size")) m.size = opt->noise_options.size;
+      if (cmd->count("--spp")) m.spp = opt->spp;
+      if (cmd->count("--presets")) m.presets = opt->noise_options.presets;
+      if (cmd->count("--tilts")) m.tilts_deg = opt->model_error_tilts;
+      m.threads = opt->noise_options.threads;
+      if (m.spp < 2) throw airr::input_error("--model-error needs --spp 2 or more (the noise comes from two halves)");
+      run_model_error_bench(m);
+      return;
+    }
     if (opt->noise) {
       opt->noise_options.scene_path = std::filesystem::absolute(opt->scene_path).string();
       run_noise_bench(opt->noise_options);

@@ -1,12 +1,14 @@
 // The model image as the tracer's control variate: the estimator's mean is the plain tracer's
 // (the same expectation, within the standard error), its variance is far lower where the model
 // holds, and the model image is exact where it can be worked out by hand.
+#include <atomic>
 #include <cmath>
 
 #include <gtest/gtest.h>
 
 #include "airr/optics/assets.hpp"
 #include "airr/optics/scene_json.hpp"
+#include "airr/optics/sheet_models.hpp"
 #include "airr/render/tracer.hpp"
 #include "test_helpers.hpp"
 
@@ -136,4 +138,70 @@ TEST(ModelImage, UniformDisplayIdealSheetIsRTmuL) {
   for (std::uint64_t i = 0; i < 16; ++i) {
     EXPECT_NEAR(estimate_sample(ts, m.width / 2, m.height / 2, i, rotation, rays).x, 0.0, 1e-4 * expected);
   }
+}
+
+TEST(ModelImage, InterpolatedPathsMatchTracedOnes) {
+  // The pixel-to-display map is projective: traced on every 8th pixel and interpolated, the image
+  // differs from one traced at every pixel by far less than a texel's contrast.
+  const scene s = chart_scene("rf-ay", 96);
+  embree_device device;
+  tracer_scene ts;
+  build_tracer_scene(ts, device, s);
+  model_image_params every, lattice;
+  every.psf_samples = lattice.psf_samples = 20000;
+  lattice.path_stride = 8;
+  const auto a = compute_model_image(s, ts.retro.front(), ts.texture.get(), every);
+  const auto b = compute_model_image(s, ts.retro.front(), ts.texture.get(), lattice);
+  ASSERT_TRUE(a && b);
+  double worst = 0, peak = 0;
+  for (std::size_t i = 0; i < a->image.rgb.size(); ++i) {
+    worst = std::max(worst, double(std::abs(a->image.rgb[i] - b->image.rgb[i])));
+    peak = std::max(peak, double(a->image.rgb[i]));
+  }
+  EXPECT_GT(peak, 0.1);
+  EXPECT_LT(worst, 1e-3 * peak);
+}
+
+TEST(ModelImage, CancelledComputationGivesNothing) {
+  const scene s = chart_scene("rf-an", 64);
+  embree_device device;
+  tracer_scene ts;
+  build_tracer_scene(ts, device, s);
+  std::atomic<bool> cancel{true};
+  EXPECT_FALSE(compute_model_image(s, ts.retro.front(), ts.texture.get(), {}, &cancel));
+  cancel = false;
+  EXPECT_TRUE(compute_model_image(s, ts.retro.front(), ts.texture.get(), {}, &cancel));
+}
+
+TEST(ModelImage, FirstLookIsTheModelImageCoarser) {
+  // Uniform display, ideal sheet: the first look is exact too (R T mu L inside the display's image).
+  scene u = test::uniform_source_scene(64, 64);
+  u.retroreflectors[0].model.type = "ideal";
+  u.retroreflectors[0].model.values = {{"mu", 0.8}};
+  const double expected = u.half_mirror.reflectance * u.half_mirror.transmittance * 0.8 * u.source.intensity;
+  const image_rgb flat = model_image_first_look(u, make_sheet_models(u).front(), nullptr);
+  ASSERT_EQ(flat.width, 64);
+  ASSERT_EQ(flat.height, 64);
+  EXPECT_NEAR(flat.at(32, 32)[1], expected, 1e-4 * expected);
+  EXPECT_EQ(flat.at(0, 0)[1], 0.0f);
+
+  // The chart through RF-AN: close to the full model image (coarser texels, fewer PSF samples).
+  const scene s = chart_scene("rf-an", 256);
+  embree_device device;
+  tracer_scene ts;
+  build_tracer_scene(ts, device, s);
+  update_model_image(ts);
+  ASSERT_TRUE(ts.model);
+  const image_rgb first = model_image_first_look(s, ts.retro.front(), ts.texture.get());
+  ASSERT_EQ(first.rgb.size(), ts.model->image.rgb.size());
+  double diff2 = 0, sig2 = 0;
+  for (std::size_t i = 0; i < first.rgb.size(); ++i) {
+    const double d = first.rgb[i] - ts.model->image.rgb[i];
+    diff2 += d * d;
+    sig2 += double(ts.model->image.rgb[i]) * ts.model->image.rgb[i];
+  }
+  const double relative = std::sqrt(diff2 / sig2);
+  RecordProperty("first_look_relative_rms", std::to_string(relative));
+  EXPECT_LT(relative, 0.15);
+  EXPECT_GT(relative, 0.0);  // it is a coarser image, not the same one
 }

@@ -115,6 +115,32 @@ TEST(Gui, ScriptedRunShowsTheAerialImageAndPlots) {
   EXPECT_GT(curve_pixels(img, region(regions, "plot_mtf"), {255, 150, 60}), 100);
 }
 
+TEST(Gui, AnEditShowsTheModelImageFirst) {
+  // Right after an edit the render view shows the model image's first look (before any traced
+  // sample), and it already shows the aerial image where the edited layout puts it.
+  test::temp_dir dir;
+  const std::string shot = dir.file("edit.png");
+  const std::string cmd = "XDG_CONFIG_HOME=" + dir.file("config") + " xvfb-run -a -s '-screen 0 1600x1000x24' " +
+                          std::string(AIRR_STUDIO) + " " + default_scene_path() +
+                          " --frames 10 --edit tilt_deg=20 --edit floating_distance_mm=180 --screenshot-after 0"
+                          " --screenshot " +
+                          shot + " > " + dir.file("log.txt") + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  std::ifstream log(dir.file("log.txt"));
+  const std::string log_text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(status, 0) << log_text;
+  EXPECT_NE(log_text.find("the render view shows the model image's first look"), std::string::npos) << log_text;
+
+  const rgb8_image img = read_png(shot);
+  ASSERT_GT(img.width, 0) << "no screenshot: " << log_text;
+  const auto regions = nlohmann::json::parse(std::ifstream(shot + ".json"));
+  const auto render = region(regions, "render_image");
+  const auto aerial = region(regions, "render_aerial_image");
+  const region_stats inside = grey_stats(img, aerial);
+  const region_stats outside = grey_stats(img, render, &aerial);
+  EXPECT_GT(inside.mean, outside.mean + 40.0) << "inside " << inside.mean << " outside " << outside.mean;
+}
+
 TEST(Gui, BadSceneFailsBeforeOpeningAWindow) {
   test::temp_dir dir;
   const std::string bad = dir.file("bad.json");

@@ -1,9 +1,12 @@
 // The progressive session: bit-identical results at any thread count, after cancellation, and
 // snapshots that are always whole waves.
+#include <chrono>
 #include <thread>
 
 #include <gtest/gtest.h>
 
+#include "airr/optics/sheet_models.hpp"
+#include "airr/render/model_image.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -96,4 +99,57 @@ TEST(Session, EvenAndOddHalvesMakeUpTheWholeAndDiffer) {
     differ = differ || even[i] != (*snap.odd_rgb)[i];
   }
   EXPECT_TRUE(differ);
+}
+
+namespace {
+// Polls the session's snapshots until `ready` holds (or 20 s pass).
+template <class Ready>
+render_snapshot poll_until(const render_session& session, Ready ready) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  render_snapshot s = session.snapshot();
+  while (!ready(s) && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    s = session.snapshot();
+  }
+  return s;
+}
+}  // namespace
+
+TEST(Session, ModelImageFirstLookComesFirstThenTheTracer) {
+  scene a = test::uniform_source_scene(20.0, 64);
+  scene b = a;
+  b.sheet().pose.pitch_deg = 12;
+  render_session session(a, {.threads = 2, .preview_stride = 1, .first_look = true});
+  session.wait_for(0, 1);
+  // Paused, the tracer takes the edit but traces nothing: what appears is the first look alone.
+  session.set_paused(true);
+  const std::uint64_t gen = session.edit(b);
+  const render_snapshot first =
+      poll_until(session, [&](const render_snapshot& s) { return s.generation == gen && s.model_image; });
+  ASSERT_TRUE(first.model_image);
+  EXPECT_TRUE(first.preview);
+  EXPECT_EQ(first.spp, 0u);
+  EXPECT_GT(first.edit_seconds, 0.0);
+  const image_rgb expected = model_image_first_look(b, make_sheet_models(b).front(), nullptr);
+  EXPECT_TRUE(*first.rgb == expected.rgb);
+  // Resumed, traced samples replace it.
+  session.set_paused(false);
+  const render_snapshot traced = session.wait_for(gen, 1);
+  EXPECT_FALSE(traced.model_image);
+  EXPECT_GE(traced.spp, 1u);
+
+  // A refused edit shows no first look of the refused layout: the last traced image stays.
+  session.set_paused(true);
+  scene bad = b;
+  bad.source.mesh = "no_such_mesh.glb";
+  const std::uint64_t bad_gen = session.edit(bad);
+  const render_snapshot refused =
+      poll_until(session, [&](const render_snapshot& s) { return s.generation == bad_gen && !s.error.empty(); });
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));  // room for a late first look
+  const render_snapshot after = session.snapshot();
+  EXPECT_FALSE(refused.error.empty());
+  EXPECT_FALSE(after.model_image);
+  EXPECT_FALSE(after.error.empty());
+  ASSERT_TRUE(after.rgb);
+  EXPECT_GE(after.spp, 1u);  // traced samples of the last good layout, not a first look (spp 0)
 }

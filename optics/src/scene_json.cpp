@@ -553,10 +553,7 @@ void apply_overrides(json& j, const std::vector<scene_override>& overrides) {
 
 // ---------------------------------------------------------------- files
 
-scene parse_scene(const std::string& text, const std::string& origin, const std::string& base_dir,
-                  const std::vector<scene_override>& overrides) {
-  scene s = scene_from_json(parse_json(text, origin), origin);
-  const std::string where = overrides.empty() ? origin : origin + " (with --set)";
+scene with_overrides(scene s, const std::vector<scene_override>& overrides, const std::string& origin) {
   // The floating distance is derived from the display's pose; setting it moves the display.
   std::vector<scene_override> fields;
   std::optional<std::string> distance;
@@ -573,7 +570,9 @@ scene parse_scene(const std::string& text, const std::string& origin, const std:
     // Overrides act on the complete form, so they may name fields the file leaves at default.
     json full = scene_to_json(s);
     apply_overrides(full, fields);
-    s = scene_from_json(full, where);
+    const std::string base_dir = s.base_dir;
+    s = scene_from_json(full, origin);
+    s.base_dir = base_dir;
   }
   if (distance) {
     const json v = override_value(*distance);
@@ -584,6 +583,13 @@ scene parse_scene(const std::string& text, const std::string& origin, const std:
       throw input_error("--set " + std::string(e.what()));
     }
   }
+  return s;
+}
+
+scene parse_scene(const std::string& text, const std::string& origin, const std::string& base_dir,
+                  const std::vector<scene_override>& overrides) {
+  const std::string where = overrides.empty() ? origin : origin + " (with --set)";
+  scene s = with_overrides(scene_from_json(parse_json(text, origin), origin), overrides, where);
   s.base_dir = base_dir;
   check_scene(s, where);
   return s;

@@ -22,6 +22,10 @@ sinc_lobe::sinc_lobe() {
     cdf_[j] = sum;
   }
   for (double& v : cdf_) v /= sum;
+  guide_.resize(guide_size + 1);
+  for (int b = 0; b <= guide_size; ++b) {
+    guide_[b] = int(std::upper_bound(cdf_.begin(), cdf_.end(), double(b) / guide_size) - cdf_.begin());
+  }
 }
 
 const sinc_lobe& sinc_lobe::instance() {
@@ -30,8 +34,10 @@ const sinc_lobe& sinc_lobe::instance() {
 }
 
 double sinc_lobe::sample_delta(double k, double u_cell, double u_jitter) const {
-  const auto j =
-      std::min<std::size_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u_cell) - cdf_.begin(), cdf_.size() - 1);
+  // The answer lies between guide_[b] and guide_[b + 1] (inclusive) for u_cell in [b, b + 1) / guide_size.
+  const int b = std::clamp(int(u_cell * guide_size), 0, guide_size - 1);
+  const auto first = cdf_.begin() + guide_[b], last = cdf_.begin() + guide_[b + 1];
+  const auto j = std::min<std::size_t>(std::upper_bound(first, last, u_cell) - cdf_.begin(), cdf_.size() - 1);
   const double delta1 = half_pi * (double(j) + u_jitter) / double(cdf_.size());
   return std::atan(std::tan(delta1) / k);
 }

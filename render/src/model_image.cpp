@@ -35,6 +35,7 @@ struct ideal_path {
   glm::dvec2 display{0};  // display-local mm
   glm::dvec3 aerial{0};   // where the camera ray crosses the aerial-image plane
   glm::dvec3 towards_display{0};
+  glm::dvec3 wi{0, 0, 1};  // incidence on the sheet, sheet-local
   double theta_deg = 0;
 };
 
@@ -45,7 +46,84 @@ std::optional<ideal_path> trace_ideal(const ideal_parts& parts, double px, doubl
   if (glm::dot(r.towards_display, parts.src.n) >= 0) return std::nullopt;  // the display's back
   const auto p = hit_part(parts.aerial, parts.cam.position, d, false);
   if (!p) return std::nullopt;
-  return ideal_path{part_local(parts.src, r.landing), *p, r.towards_display, polar_angle_deg(-to_local(parts.rr, d))};
+  const glm::dvec3 wi = -to_local(parts.rr, d);
+  return ideal_path{part_local(parts.src, r.landing), *p, r.towards_display, wi, polar_angle_deg(wi)};
+}
+
+// What a pixel needs of its ideal path.
+struct pixel_path {
+  bool ok = false;
+  glm::dvec2 display{0};   // display-local mm
+  glm::dvec3 wi{0, 0, 1};  // incidence on the sheet (its polar angle is not smooth at 0: not interpolated)
+  double profile = 1;      // the display's relative luminance towards the half mirror
+};
+
+pixel_path pixel_ideal(const ideal_parts& parts, const emission_profile* emission, double x, double y) {
+  const auto path = trace_ideal(parts, x, y);
+  if (!path) return {};
+  pixel_path out{true, path->display, path->wi, 1.0};
+  if (emission) {
+    out.profile = emission->at(degrees(std::acos(std::min(1.0, -glm::dot(path->towards_display, parts.src.n)))));
+  }
+  return out;
+}
+
+// Every pixel's ideal path (empty when cancelled). With a stride, paths are traced on a lattice of
+// pixels and interpolated inside each cell whose four corners all have one; other cells are traced
+// pixel by pixel.
+std::vector<pixel_path> pixel_paths(const ideal_parts& parts, const emission_profile* emission,
+                                    const model_image_params& p, const std::atomic<bool>* cancel) {
+  const int w = parts.cam.width, h = parts.cam.height, n = p.path_stride;
+  auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
+  std::vector<pixel_path> out(std::size_t(w) * h);
+  if (n <= 1) {
+    detail::parallel_rows(h, p.threads, [&](int y0, int y1) {
+      for (int y = y0; y < y1 && !cancelled(); ++y) {
+        for (int x = 0; x < w; ++x) out[std::size_t(y) * w + x] = pixel_ideal(parts, emission, x + 0.5, y + 0.5);
+      }
+    });
+    return cancelled() ? std::vector<pixel_path>{} : out;
+  }
+  // Lattice node i sits on pixel min(i n, size - 1).
+  const int lw = (w - 1 + n - 1) / n + 1, lh = (h - 1 + n - 1) / n + 1;
+  auto at = [n](int i, int size) { return std::min(i * n, size - 1); };
+  std::vector<pixel_path> lattice(std::size_t(lw) * lh);
+  detail::parallel_rows(lh, p.threads, [&](int j0, int j1) {
+    for (int j = j0; j < j1; ++j) {
+      for (int i = 0; i < lw; ++i) {
+        lattice[std::size_t(j) * lw + i] = pixel_ideal(parts, emission, at(i, w) + 0.5, at(j, h) + 0.5);
+      }
+    }
+  });
+  detail::parallel_rows(h, p.threads, [&](int y0, int y1) {
+    for (int y = y0; y < y1 && !cancelled(); ++y) {
+      const int j = std::min(y / n, std::max(0, lh - 2)), ya = at(j, h), yb = at(j + 1, h);
+      const double fy = yb > ya ? double(y - ya) / (yb - ya) : 0.0;
+      for (int x = 0; x < w; ++x) {
+        const int i = std::min(x / n, std::max(0, lw - 2)), xa = at(i, w), xb = at(i + 1, w);
+        const double fx = xb > xa ? double(x - xa) / (xb - xa) : 0.0;
+        const int i1 = std::min(i + 1, lw - 1), j1 = std::min(j + 1, lh - 1);
+        const pixel_path* c[4] = {&lattice[std::size_t(j) * lw + i], &lattice[std::size_t(j) * lw + i1],
+                                  &lattice[std::size_t(j1) * lw + i], &lattice[std::size_t(j1) * lw + i1]};
+        pixel_path& px = out[std::size_t(y) * w + x];
+        if (!(c[0]->ok && c[1]->ok && c[2]->ok && c[3]->ok)) {
+          px = pixel_ideal(parts, emission, x + 0.5, y + 0.5);
+          continue;
+        }
+        const double cw[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+        px.ok = true;
+        px.display = glm::dvec2(0);
+        px.wi = glm::dvec3(0);
+        px.profile = 0;
+        for (int k = 0; k < 4; ++k) {
+          px.display += cw[k] * c[k]->display;
+          px.wi += cw[k] * c[k]->wi;
+          px.profile += cw[k] * c[k]->profile;
+        }
+      }
+    }
+  });
+  return cancelled() ? std::vector<pixel_path>{} : out;
 }
 
 // The display's radiance on a grid of at most max_texels on its longer side (area-averaged down
@@ -53,8 +131,7 @@ std::optional<ideal_path> trace_ideal(const ideal_parts& parts, double px, doubl
 cv::Mat display_texels(const scene& s, const image_rgb* display, int max_texels) {
   cv::Mat m;
   if (display) {
-    m = cv::Mat(display->height, display->width, CV_32FC3, const_cast<float*>(display->rgb.data())).clone();
-    m *= s.source.intensity;
+    m = cv::Mat(display->height, display->width, CV_32FC3, const_cast<float*>(display->rgb.data()));
   } else {
     const part_frame src = source_frame(s);
     const double longer = std::max(src.width, src.height);
@@ -69,6 +146,12 @@ cv::Mat display_texels(const scene& s, const image_rgb* display, int max_texels)
     cv::resize(m, small, cv::Size(std::max(1, int(std::lround(m.cols * f))), std::max(1, int(std::lround(m.rows * f)))),
                0, 0, cv::INTER_AREA);
     m = small;
+  }
+  if (display) {
+    // Into a new matrix: `m` may still be the caller's texture itself.
+    cv::Mat scaled;
+    m.convertTo(scaled, CV_32F, s.source.intensity);
+    return scaled;
   }
   return m;
 }
@@ -164,7 +247,7 @@ void for_each_corner(const glm::dvec2& t, F&& f) {
 // tracer's pixels use); blocks run in parallel and are summed in order, so the result does not
 // depend on the number of threads.
 std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std::size_t bin, std::uint64_t samples,
-                                   std::uint64_t seed) {
+                                   std::uint64_t seed, int threads, const std::atomic<bool>* cancel) {
   std::array<double, 6> rotation;
   pcg32 rotation_rng = sample_rng(bin, 0, seed ^ 0x6b65726eu);
   for (double& r : rotation) r = rotation_rng.next_double();
@@ -197,25 +280,47 @@ std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std
     }
     return part;
   };
-  detail::parallel_rows(int(blocks), 0, [&](int b0, int b1) {
-    for (int k = b0; k < b1; ++k) parts[std::size_t(k)] = block_kernels(std::size_t(k));
+  detail::parallel_rows(int(blocks), threads, [&](int b0, int b1) {
+    for (int k = b0; k < b1 && !(cancel && cancel->load(std::memory_order_relaxed)); ++k) {
+      parts[std::size_t(k)] = block_kernels(std::size_t(k));
+    }
   });
   std::array<cv::Mat, 2> sum = zero(), out;
   for (const auto& part : parts) {
+    if (part[0].empty()) continue;  // cancelled
     for (std::size_t g = 0; g < 2; ++g) sum[g] += part[g];
   }
   for (std::size_t g = 0; g < 2; ++g) sum[g].convertTo(out[g], CV_32F, 1.0 / double(samples));
   return out;
 }
 
+bool is_grey(const image_rgb& img) {
+  for (std::size_t i = 0; i < img.rgb.size(); i += 3) {
+    if (img.rgb[i] != img.rgb[i + 1] || img.rgb[i] != img.rgb[i + 2]) return false;
+  }
+  return true;
+}
+
 image_rgb convolve(const image_rgb& img, const cv::Mat& kernel) {
+  image_rgb out;
+  out.width = img.width;
+  out.height = img.height;
+  out.rgb.resize(img.rgb.size());
   const cv::Mat src(img.height, img.width, CV_32FC3, const_cast<float*>(img.rgb.data()));
   cv::Mat dst;
+  if (is_grey(img)) {
+    // A grey display (a chart, a test pattern): one channel is all the work.
+    cv::Mat one;
+    cv::extractChannel(src, one, 0);
+    cv::filter2D(one, dst, -1, kernel, cv::Point(-1, -1), 0, cv::BORDER_CONSTANT);
+    for (int y = 0; y < dst.rows; ++y) {
+      const float* row = dst.ptr<float>(y);
+      float* o = out.at(0, y);
+      for (int x = 0; x < dst.cols; ++x) o[3 * x] = o[3 * x + 1] = o[3 * x + 2] = row[x];
+    }
+    return out;
+  }
   cv::filter2D(src, dst, -1, kernel, cv::Point(-1, -1), 0, cv::BORDER_CONSTANT);
-  image_rgb out;
-  out.width = dst.cols;
-  out.height = dst.rows;
-  out.rgb.resize(std::size_t(dst.cols) * dst.rows * 3);
   for (int y = 0; y < dst.rows; ++y) std::copy_n(dst.ptr<float>(y), 3 * dst.cols, out.at(0, y));
   return out;
 }
@@ -246,13 +351,49 @@ grid_mapping make_grid(model_grid& grid, const cv::Mat& texels, int refine, doub
   return map;
 }
 
+// A pixel's value: between the two bins around its angle (bin angles ascend).
+void mix_pixel(model_image& m, std::size_t i) {
+  const int bins = int(m.bins.size());
+  model_pixel& px = m.pixels[i];
+  if (!px.ok) return;
+  int k = 0;
+  while (k + 1 < bins && m.bins[std::size_t(k + 1)].theta_deg < px.theta_deg) ++k;
+  px.bin = k;
+  if (k + 1 < bins) {
+    const double a0 = m.bins[std::size_t(k)].theta_deg, a1 = m.bins[std::size_t(k + 1)].theta_deg;
+    px.mix = a1 > a0 ? std::clamp((px.theta_deg - a0) / (a1 - a0), 0.0, 1.0) : 0.0;
+  }
+  glm::vec3 v(0.0f);
+  for (int g : {model_fine, model_tail}) {
+    v += bilinear(m.bins[std::size_t(k)].convolved[g], px.node[g]) * float(1 - px.mix);
+    if (px.mix > 0) v += bilinear(m.bins[std::size_t(k + 1)].convolved[g], px.node[g]) * float(px.mix);
+  }
+  v *= float(px.profile);
+  std::copy_n(&v.x, 3, m.image.rgb.data() + 3 * i);
+}
+
 }  // namespace
 
+model_image_params model_image_params::first_look() {
+  model_image_params p;
+  p.angle_bins = 2;
+  p.psf_samples = 2048;
+  p.max_texels = 128;
+  p.texel_refine = 1;
+  p.core_radius_mm = 3;
+  p.kernel_radius_mm = 16;
+  p.tail_texels = 32;
+  p.path_stride = 8;
+  p.threads = 1;
+  return p;
+}
+
 std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shared_ptr<const retro_model> model,
-                                                       const image_rgb* display, const model_image_params& p) {
+                                                       const image_rgb* display, const model_image_params& p,
+                                                       const std::atomic<bool>* cancel) {
   if (p.angle_bins < 1 || p.angle_bins > 64 || p.psf_samples < 1000 || p.max_texels < 16 || p.max_texels > 4096 ||
       p.texel_refine < 1 || p.texel_refine > 4 || !(p.core_radius_mm > 0) || p.tail_texels < 4 ||
-      !(p.kernel_radius_mm >= p.core_radius_mm)) {
+      !(p.kernel_radius_mm >= p.core_radius_mm) || p.path_stride < 1 || p.path_stride > 64 || p.threads < 0) {
     throw input_error("model image: parameters out of range");
   }
   if (s.retroreflectors.empty() || !model) return nullptr;
@@ -283,26 +424,21 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
   const grid_mapping maps[2] = {make_grid(m->grids[model_fine], texels, p.texel_refine, p.core_radius_mm, parts.src),
                                 make_grid(m->grids[model_tail], tail_texels, 1, p.kernel_radius_mm, parts.src)};
 
-  m->pixels.resize(std::size_t(w) * h);
-  detail::parallel_rows(h, 0, [&](int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
-      for (int x = 0; x < w; ++x) {
-        const auto path = trace_ideal(parts, x + 0.5, y + 0.5);
-        if (!path) continue;
-        model_pixel& px = m->pixels[std::size_t(y) * w + x];
-        for (int g : {model_fine, model_tail}) px.node[g] = maps[g].node(path->display);
-        // Landing outside the tail's padded grid, it is farther from the display than any kernel
-        // offset. (Outside the fine grid, only the fine part sees nothing, in both uses alike.)
-        const glm::dvec2 t = px.node[model_tail];
-        const image_rgb& padded = m->grids[model_tail].padded;
-        px.ok = t.x >= 0 && t.y >= 0 && t.x < padded.width - 1 && t.y < padded.height - 1;
-        px.theta_deg = path->theta_deg;
-        if (emission) {
-          px.profile = emission->at(degrees(std::acos(std::min(1.0, -glm::dot(path->towards_display, parts.src.n)))));
-        }
-      }
-    }
-  });
+  const std::vector<pixel_path> paths = pixel_paths(parts, emission.get(), p, cancel);
+  if (paths.empty()) return nullptr;
+  m->pixels.resize(paths.size());
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    if (!paths[i].ok) continue;
+    model_pixel& px = m->pixels[i];
+    for (int g : {model_fine, model_tail}) px.node[g] = maps[g].node(paths[i].display);
+    // Landing outside the tail's padded grid, it is farther from the display than any kernel
+    // offset. (Outside the fine grid, only the fine part sees nothing, in both uses alike.)
+    const glm::dvec2 t = px.node[model_tail];
+    const image_rgb& padded = m->grids[model_tail].padded;
+    px.ok = t.x >= 0 && t.y >= 0 && t.x < padded.width - 1 && t.y < padded.height - 1;
+    px.theta_deg = polar_angle_deg(glm::normalize(paths[i].wi));
+    px.profile = paths[i].profile;
+  }
   m->paths_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   double lo = INFINITY, hi = -INFINITY;
   for (const model_pixel& px : m->pixels) {
@@ -335,38 +471,46 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
     }
     m->bins.push_back(std::move(b));
   }
-  detail::parallel_rows(bins, 0, [&](int k0, int k1) {
-    for (int k = k0; k < k1; ++k) {
+  auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
+  detail::parallel_rows(bins, p.threads, [&](int k0, int k1) {
+    for (int k = k0; k < k1 && !cancelled(); ++k) {
       model_bin& b = m->bins[std::size_t(k)];
-      const std::array<cv::Mat, 2> kernels = bin_kernels(*m, b, std::size_t(k), p.psf_samples, s.seed);
+      const std::array<cv::Mat, 2> kernels =
+          bin_kernels(*m, b, std::size_t(k), p.psf_samples, s.seed, p.threads, cancel);
       for (int g : {model_fine, model_tail}) b.convolved[g] = convolve(m->grids[g].padded, kernels[std::size_t(g)]);
     }
   });
+  if (cancelled()) return nullptr;
 
   m->image.width = w;
   m->image.height = h;
   m->image.rgb.assign(std::size_t(w) * h * 3, 0.0f);
-  for (std::size_t i = 0; i < m->pixels.size(); ++i) {
-    model_pixel& px = m->pixels[i];
-    if (!px.ok) continue;
-    // Between the two bins around this pixel's angle (bin angles ascend).
-    int k = 0;
-    while (k + 1 < bins && m->bins[std::size_t(k + 1)].theta_deg < px.theta_deg) ++k;
-    px.bin = k;
-    if (k + 1 < bins) {
-      const double a0 = m->bins[std::size_t(k)].theta_deg, a1 = m->bins[std::size_t(k + 1)].theta_deg;
-      px.mix = a1 > a0 ? std::clamp((px.theta_deg - a0) / (a1 - a0), 0.0, 1.0) : 0.0;
-    }
-    glm::vec3 v(0.0f);
-    for (int g : {model_fine, model_tail}) {
-      v += bilinear(m->bins[std::size_t(k)].convolved[g], px.node[g]) * float(1 - px.mix);
-      if (px.mix > 0) v += bilinear(m->bins[std::size_t(k + 1)].convolved[g], px.node[g]) * float(px.mix);
-    }
-    v *= float(px.profile);
-    std::copy_n(&v.x, 3, m->image.rgb.data() + 3 * i);
-  }
+  detail::parallel_rows(h, p.threads, [&](int y0, int y1) {
+    for (std::size_t i = std::size_t(y0) * w; i < std::size_t(y1) * w; ++i) mix_pixel(*m, i);
+  });
   m->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return m;
+}
+
+image_rgb model_image_first_look(const scene& s, std::shared_ptr<const retro_model> model, const image_rgb* display,
+                                 const std::atomic<bool>* cancel) {
+  const int w = s.observer.width, h = s.observer.height;
+  int f = 4;
+  while (f > 1 && (w % f != 0 || h % f != 0 || std::min(w, h) / f < 128)) f /= 2;
+  scene small = s;
+  small.observer.width = w / f;
+  small.observer.height = h / f;
+  const auto m = compute_model_image(small, std::move(model), display, model_image_params::first_look(), cancel);
+  if (!m) return {};
+  if (f == 1) return m->image;
+  image_rgb out;
+  out.width = w;
+  out.height = h;
+  out.rgb.resize(std::size_t(w) * h * 3);
+  const cv::Mat src(m->image.height, m->image.width, CV_32FC3, const_cast<float*>(m->image.rgb.data()));
+  cv::Mat dst(h, w, CV_32FC3, out.rgb.data());  // resized straight into the result
+  cv::resize(src, dst, dst.size(), 0, 0, cv::INTER_LINEAR);
+  return out;
 }
 
 glm::vec3 model_prediction(const model_image& m, int px, int py, const glm::dvec2& jitter, const retro_samples& u,

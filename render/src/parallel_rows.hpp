@@ -15,9 +15,6 @@
 
 namespace airr::detail {
 
-// Lowers the calling thread's scheduling priority, once per thread (Linux: per-thread nice).
-void lower_thread_priority();
-
 template <class Body>
 void parallel_rows(int rows, int threads, const Body& body) {
 #ifdef AIRR_PLAIN_THREADS

@@ -9,6 +9,8 @@
 #include <unistd.h>
 
 #include "airr/optics/error.hpp"
+#include "airr/optics/scene_json.hpp"
+#include "airr/optics/sheet_models.hpp"
 #include "parallel_rows.hpp"
 
 namespace airr {
@@ -42,6 +44,7 @@ render_session::render_session(const scene& s, session_params p) : params_(p), t
   snapshot_.height = scene_.camera.height;
   snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
   worker_ = std::thread([this] { run(); });
+  if (params_.first_look) first_look_worker_ = std::thread([this] { run_first_look(); });
 }
 
 render_session::~render_session() { stop(); }
@@ -53,16 +56,61 @@ void render_session::stop() {
     cancel_ = true;
   }
   changed_.notify_all();
+  first_look_cancel_ = true;
   if (worker_.joinable()) worker_.join();
+  if (first_look_worker_.joinable()) first_look_worker_.join();
 }
 
 std::uint64_t render_session::edit(const scene& s, retro_model_list models) {
   std::lock_guard lock(mutex_);
+  ++generation_;
+  edit_time_ = std::chrono::steady_clock::now();
+  if (params_.first_look) {
+    first_look_ = first_look_request{s, models.empty() ? nullptr : models.front(), generation_};
+    first_look_cancel_ = true;  // the one in progress, if any, is stale
+  }
   pending_ = s;
   pending_models_ = std::move(models);
   cancel_ = true;
   changed_.notify_all();
-  return ++generation_;
+  return generation_;
+}
+
+double render_session::seconds_since_edit() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - edit_time_).count();
+}
+
+void render_session::run_first_look() {
+  std::string texture_path;
+  std::shared_ptr<const image_rgb> texture;
+  std::unique_lock lock(mutex_);
+  while (true) {
+    changed_.wait(lock, [&] { return stopping_ || first_look_; });
+    if (stopping_) return;
+    const first_look_request request = std::move(*first_look_);
+    first_look_.reset();
+    first_look_cancel_ = false;
+    lock.unlock();
+    image_rgb image;
+    try {
+      const scene& s = request.layout;
+      const std::string path = resolve_scene_path(s, s.source.image);
+      if (path != texture_path || (!path.empty() && !texture)) {
+        texture = path.empty() ? nullptr : std::make_shared<const image_rgb>(load_image(path).pixels);
+        texture_path = path;
+      }
+      std::shared_ptr<const retro_model> model = request.model;
+      if (!model && !s.retroreflectors.empty()) model = make_sheet_models(s).front();
+      if (model) image = model_image_first_look(s, model, texture.get(), &first_look_cancel_);
+    } catch (const std::exception&) {
+      // The tracer's worker reports what is wrong with the edit; its coarse preview serves.
+    }
+    if (!image.rgb.empty()) {
+      const preview_size size{image.width, image.height, make_camera(request.layout).mm_per_pixel};
+      publish_preview(request.generation, std::move(image.rgb), size, true);
+    }
+    lock.lock();
+  }
 }
 
 void render_session::set_paused(bool paused) {
@@ -92,14 +140,12 @@ render_snapshot render_session::wait_for(std::uint64_t gen, std::uint64_t spp) c
   return snapshot_;
 }
 
-namespace detail {
-void lower_thread_priority() {
+void lower_thread_priority(int nice) {
   thread_local bool done = false;
   if (done) return;
   done = true;
-  ::setpriority(PRIO_PROCESS, pid_t(::syscall(SYS_gettid)), 10);
+  ::setpriority(PRIO_PROCESS, pid_t(::syscall(SYS_gettid)), nice);
 }
-}  // namespace detail
 
 bool render_session::render_wave(std::uint64_t first, std::uint64_t count, std::vector<double>& sums,
                                  std::vector<double>& odd_sums, std::uint64_t& rays) {
@@ -107,7 +153,7 @@ bool render_session::render_wave(std::uint64_t first, std::uint64_t count, std::
   std::atomic<std::uint64_t> total_rays{0};
   std::atomic<bool> complete{true};
   detail::parallel_rows(h, params_.threads, [&](int y0, int y1) {
-    if (params_.background_priority) detail::lower_thread_priority();
+    if (params_.background_priority) lower_thread_priority();
     std::uint64_t local = 0;
     if (!trace_rows(scene_, y0, y1, first, count, sums, cancel_, local, &odd_sums)) complete = false;
     total_rays += local;
@@ -121,7 +167,7 @@ bool render_session::render_preview(std::vector<float>& rgb, std::uint64_t& rays
   rgb.assign(std::size_t(w) * h * 3, 0.0f);
   std::atomic<std::uint64_t> total{0};
   detail::parallel_rows((h + n - 1) / n, params_.threads, [&](int r0, int r1) {
-    if (params_.background_priority) detail::lower_thread_priority();
+    if (params_.background_priority) lower_thread_priority();
     std::uint64_t local = 0;
     for (int r = r0; r < r1 && !cancel_.load(std::memory_order_relaxed); ++r) {
       for (int x0 = 0; x0 < w; x0 += n) {
@@ -143,16 +189,26 @@ bool render_session::render_preview(std::vector<float>& rgb, std::uint64_t& rays
   return !cancel_;
 }
 
-void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb) {
+void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb, const preview_size& size,
+                                     bool model_image) {
   auto shared = std::make_shared<const std::vector<float>>(std::move(rgb));
   std::lock_guard lock(mutex_);
   if (gen != generation_) return;
+  if (snapshot_.generation == gen) {
+    // Traced samples replace previews and are never replaced by one; the model image's first look
+    // replaces the coarse traced preview, not the other way round; a refused edit shows neither.
+    if (!snapshot_.preview || !snapshot_.error.empty() || (snapshot_.model_image && !model_image)) return;
+  } else if (model_image) {
+    before_first_look_ = snapshot_;  // shown again if the tracer refuses this edit
+  }
   snapshot_.generation = gen;
+  snapshot_.model_image = model_image;
+  snapshot_.edit_seconds = seconds_since_edit();
   snapshot_.spp = 0;
   snapshot_.preview = true;
-  snapshot_.width = scene_.camera.width;
-  snapshot_.height = scene_.camera.height;
-  snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
+  snapshot_.width = size.width;
+  snapshot_.height = size.height;
+  snapshot_.mm_per_pixel = size.mm_per_pixel;
   snapshot_.rgb = std::move(shared);
   snapshot_.odd_rgb.reset();
   snapshot_.rays = 0;
@@ -186,6 +242,8 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::ve
   snapshot_.rgb = std::move(rgb);
   snapshot_.odd_rgb = std::move(odd);
   snapshot_.preview = false;
+  snapshot_.model_image = false;
+  snapshot_.edit_seconds = seconds_since_edit();
   snapshot_.rays = rays;
   snapshot_.seconds = seconds;
   snapshot_.error.clear();
@@ -196,6 +254,7 @@ void render_session::run() {
   using clock = std::chrono::steady_clock;
   std::vector<double> sums, wave, odd_sums, odd_wave;
   std::uint64_t gen = 0, spp = 0, rays = 0, next_wave = 1;
+  bool model_pending = false;  // the model image of the layout in scene_ is still to be computed
   double seconds = 0;
   sums.assign(std::size_t(scene_.camera.width) * scene_.camera.height * 3, 0.0);
   odd_sums = sums;
@@ -227,6 +286,7 @@ void render_session::run() {
         lock.lock();
         if (!error.empty()) {
           // Keep the last good layout in the tracer and say why the edit was refused.
+          if (snapshot_.generation == gen && snapshot_.model_image) snapshot_ = before_first_look_;
           snapshot_.generation = gen;
           snapshot_.error = error;
           changed_.notify_all();
@@ -234,17 +294,21 @@ void render_session::run() {
           lock.unlock();
           std::vector<float> preview;
           std::uint64_t preview_rays = 0;
-          if (render_preview(preview, preview_rays)) publish_preview(gen, std::move(preview));
+          const preview_size size{scene_.camera.width, scene_.camera.height, scene_.camera.mm_per_pixel};
+          if (render_preview(preview, preview_rays)) publish_preview(gen, std::move(preview), size, false);
           lock.lock();
         }
-        if (error.empty() && !pending_) {
-          lock.unlock();
-          update_model_image(scene_);
-          lock.lock();
-        }
+        model_pending = error.empty();
         continue;
       }
       cancel_ = false;
+      if (model_pending) {
+        lock.unlock();
+        update_model_image(scene_, &cancel_);
+        lock.lock();
+        if (cancel_) continue;  // an edit or a pause came first: computed again when the worker resumes
+        model_pending = false;
+      }
       count = std::min({next_wave, params_.max_wave_spp, target_spp_ - spp});
     }
     const auto t0 = clock::now();

@@ -46,11 +46,11 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   ts.embree->set_transforms(transforms);
 }
 
-void update_model_image(tracer_scene& ts) {
+void update_model_image(tracer_scene& ts, const std::atomic<bool>* cancel) {
   ts.model.reset();
   if (!ts.use_model_image || ts.retro.empty()) return;
   try {
-    ts.model = compute_model_image(ts.layout, ts.retro.front(), ts.texture.get());
+    ts.model = compute_model_image(ts.layout, ts.retro.front(), ts.texture.get(), {}, cancel);
   } catch (const input_error&) {
     // A chief ray grazing a part's edge: the plain estimator serves.
   }

@@ -21,6 +21,21 @@ TEST(SrgbCurve, KnownValues) {
   for (double v : {0.001, 0.01, 0.2, 0.7, 0.99}) EXPECT_NEAR(airr::srgb_encode(airr::srgb_decode(v)), v, 1e-12);
 }
 
+TEST(SrgbCurve, EightBitCodesMatchTheCurveRounded) {
+  // Every value on a fine ramp (and beyond [0, 1]) gets the code the curve itself rounds to.
+  int mismatches = 0;
+  for (int i = -1000; i <= 1100000; ++i) {
+    const float x = float(i) / 1e6f;
+    const long want = std::lround(255.0 * airr::srgb_encode(std::clamp(double(x), 0.0, 1.0)));
+    const int got = airr::srgb_encode_8bit(x);
+    EXPECT_LE(std::abs(got - want), 1) << x;
+    if (got != want) ++mismatches;
+  }
+  EXPECT_LE(mismatches, 10);  // only values within float rounding of a boundary
+  EXPECT_EQ(airr::srgb_encode_8bit(std::nanf("")), 0);
+  EXPECT_EQ(airr::srgb_encode_8bit(1e30f), 255);
+}
+
 TEST(ImageRead, ExrIsLinearWithStringPixelSize) {
   at::scratch_dir dir("read");
   cv::Mat px(8, 10, CV_64FC1);

@@ -160,6 +160,8 @@ void analysis_worker::wait_idle() const {
 }
 
 void analysis_worker::run() {
+  // The plots follow the window and the model image's first look (less so than the tracer does).
+  lower_thread_priority(5);
   std::unique_lock lock(mutex_);
   while (true) {
     changed_.wait(lock, [&] { return stopping_ || pending_scene_ || pending_render_; });

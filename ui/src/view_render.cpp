@@ -16,15 +16,22 @@ namespace airr::ui {
 static void upload_snapshot(studio& st, const render_snapshot& snap, float exposure) {
   std::vector<std::uint8_t> rgba(std::size_t(snap.width) * snap.height * 4);
   for (std::size_t i = 0; i < std::size_t(snap.width) * snap.height; ++i) {
-    for (int c = 0; c < 3; ++c)
-      rgba[4 * i + c] = std::uint8_t(
-          std::lround(255.0f * float(srgb_encode(std::clamp((*snap.rgb)[3 * i + c] * exposure, 0.0f, 1.0f)))));
+    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = srgb_encode_8bit((*snap.rgb)[3 * i + c] * exposure);
     rgba[4 * i + 3] = 255;
   }
   st.view.texture.upload(snap.width, snap.height, rgba);
   st.view.uploaded_generation = snap.generation;
   st.view.uploaded_spp = snap.spp;
+  st.view.uploaded_model_image = snap.model_image;
   st.view.uploaded_exposure = exposure;
+}
+
+// Which image the view shows: the model image's first look, the tracer's coarse preview, or the
+// tracer's estimate (which, where the model holds, is the model image corrected by the samples).
+static const char* shown_label(const render_snapshot& snap) {
+  if (snap.model_image) return "  model image (first look)";
+  if (snap.preview) return "  tracer (preview)";
+  return "  tracer";
 }
 
 void draw_render_view(studio& st, double now) {
@@ -38,8 +45,9 @@ void draw_render_view(studio& st, double now) {
     const bool first_of_edit = snap.generation != st.view.uploaded_generation;
     upload_snapshot(st, snap, exposure);
     if (first_of_edit && st.edit_time >= 0 && snap.generation == st.generation) {
-      st.edit_latencies_ms.push_back(1e3 * (now - st.edit_time));
-      st.edit_time = -1;
+      st.first_image_uploaded = true;
+      st.first_image_ready_ms.push_back(1e3 * snap.edit_seconds);
+      if (snap.model_image) ++st.first_images_from_model;
     }
     // Measure the render's MTF at most twice a second, on new samples only.
     if (!snap.preview && now - st.last_measure_time > 0.5 && snap.spp != st.last_measured_spp) {
@@ -79,7 +87,7 @@ void draw_render_view(studio& st, double now) {
   ImGui::SameLine();
   const double rays_per_s = snap.seconds > 0 ? double(snap.rays) / snap.seconds : 0.0;
   ImGui::Text("%llu spp  %.1f Mrays/s  %.1f s%s%s", static_cast<unsigned long long>(snap.spp), rays_per_s * 1e-6,
-              snap.seconds, snap.preview ? "  (preview)" : "", st.view.paused ? "  (paused)" : "");
+              snap.seconds, shown_label(snap), st.view.paused ? "  (paused)" : "");
   if (!snap.error.empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", snap.error.c_str());
 
   // Image area: fit the image, then zoom about the cursor and pan by dragging.

@@ -15,8 +15,9 @@ inline std::array<double, 6> r6_point(std::uint64_t i, const std::array<double, 
   std::array<double, 6> u{};
   for (int k = 0; k < 6; ++k) {
     // i * alpha mod 1 without losing precision for large i: split i into high and low parts.
-    const double hi = std::fmod(double(i >> 26) * 67108864.0 * alpha[k], 1.0);
-    const double lo = std::fmod(double(i & 67108863u) * alpha[k], 1.0);
+    // (x - floor(x) is fmod(x, 1) exactly for x >= 0, and much cheaper.)
+    const double h = double(i >> 26) * 67108864.0 * alpha[k], l = double(i & 67108863u) * alpha[k];
+    const double hi = h - std::floor(h), lo = l - std::floor(l);
     double v = hi + lo + rotation[k];
     v -= std::floor(v);
     u[k] = v;

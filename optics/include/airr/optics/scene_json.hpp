@@ -39,6 +39,9 @@ nlohmann::json migrate_scene_v1(const nlohmann::json& j, const std::string& orig
 
 // Applies overrides to the JSON form; the key must name an existing field.
 void apply_overrides(nlohmann::json& j, const std::vector<scene_override>& overrides);
+// The scene with overrides applied, the short keys (floating distance, tilt) included; not
+// validated. `origin` names the overrides in error messages.
+scene with_overrides(scene s, const std::vector<scene_override>& overrides, const std::string& origin);
 
 // Checks every value's range; throws input_error "<origin>: <field>: <problem>".
 void validate_scene(const scene& s, const std::string& origin);

@@ -12,6 +12,7 @@
 // Averaged over the samples, the prediction is the model image (up to the PSF's own sampling, drawn
 // from the scene's seed), so the tracer estimates only the difference between each true path and
 // its prediction, which is small wherever the model holds.
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -33,6 +34,14 @@ struct model_image_params {
   double core_radius_mm = 2;           // offsets up to this go to the fine grid ...
   int tail_texels = 128;               // ... the rest to a coarse grid this size (longer side)
   double kernel_radius_mm = 32;        // ... up to this; farther ones are left out (of both uses)
+  // Ideal paths traced on every n-th pixel and interpolated between where all four neighbours
+  // have one (1: every pixel); the path from a pixel to the display is smooth (projective).
+  int path_stride = 1;
+  int threads = 0;  // 0: all cores; 1: the calling thread alone
+
+  // The designer's first look after an edit: a few milliseconds on one thread, coarser (texels of
+  // the display at most 128 on its longer side, two bins, fewer PSF samples).
+  static model_image_params first_look();
 };
 
 // The display's radiance on one grid, with a black margin as wide as the grid's kernel reaches.
@@ -75,11 +84,18 @@ struct model_image {
   double paths_seconds = 0;  // of which: the pixels' ideal paths
 };
 
-// Null when the layout has no ideal path at all (no sheet, or no pixel sees one). `display` is the
-// display's texture (null: uniform); the scene's intensity is applied here. Throws input_error for
-// parameters out of range.
+// Null when the layout has no ideal path at all (no sheet, or no pixel sees one), or when `cancel`
+// is set while it runs. `display` is the display's texture (null: uniform); the scene's intensity
+// is applied here. Throws input_error for parameters out of range.
 std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shared_ptr<const retro_model> model,
-                                                       const image_rgb* display, const model_image_params& p = {});
+                                                       const image_rgb* display, const model_image_params& p = {},
+                                                       const std::atomic<bool>* cancel = nullptr);
+
+// The designer's first look after an edit: the model image at first_look() settings, computed on
+// a camera with up to 4 times fewer pixels a side, but at least 128 (its display grid is coarser
+// than that anyway), and scaled up to the scene's size. Empty when there is no model image or `cancel` was set.
+image_rgb model_image_first_look(const scene& s, std::shared_ptr<const retro_model> model, const image_rgb* display,
+                                 const std::atomic<bool>* cancel = nullptr);
 
 // The model's prediction for one tracer sample of pixel (px, py): its pixel jitter in [0, 1)^2,
 // its first retroreflection's samples, and a uniform number choosing between the pixel's bins.

@@ -2,6 +2,7 @@
 // A progressive render in the background: waves of growing samples per pixel on TBB, cancelled
 // and restarted on every edit, publishing whole-wave snapshots that any thread may read.
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <memory>
@@ -25,6 +26,9 @@ struct session_params {
   int preview_stride = 4;
   // Render threads yield to the rest of the process (the designer's UI): a lower priority.
   bool background_priority = false;
+  // After an edit, the model image's first look (model_image_first_look) is shown before any
+  // traced sample, from a thread of its own at normal priority, where the layout has one.
+  bool first_look = false;
 };
 
 // An immutable picture of the accumulation after a whole wave.
@@ -38,15 +42,21 @@ struct render_snapshot {
   // The mean of the odd-numbered samples alone (null before 2 spp). With even_rgb() it makes two
   // half estimates, for the noise of what is measured on the image.
   std::shared_ptr<const std::vector<float>> odd_rgb;
-  std::uint64_t rays = 0;  // intersection queries so far in this generation
-  double seconds = 0;      // time spent so far in this generation
-  std::string error;       // set when the last edit could not be applied
-  bool preview = false;    // a coarse first look at this generation (spp is 0)
+  std::uint64_t rays = 0;    // intersection queries so far in this generation
+  double seconds = 0;        // time spent so far in this generation
+  std::string error;         // set when the last edit could not be applied
+  bool preview = false;      // a coarse first look at this generation (spp is 0)
+  bool model_image = false;  // the preview is the model image's first look, not traced samples
+  double edit_seconds = 0;   // from the edit to this snapshot's publication
 
   image_rgb image() const;
   // The mean of the even-numbered samples, derived from rgb and odd_rgb (empty without odd_rgb).
   std::vector<float> even_rgb() const;
 };
+
+// Lowers the calling thread's scheduling priority, once per thread (Linux: per-thread nice), for
+// background work that should yield to the designer's window.
+void lower_thread_priority(int nice = 10);
 
 class render_session {
  public:
@@ -76,7 +86,14 @@ class render_session {
   void publish(std::uint64_t gen, std::uint64_t spp, const std::vector<double>& sums,
                const std::vector<double>& odd_sums, std::uint64_t rays, double seconds);
   bool render_preview(std::vector<float>& rgb, std::uint64_t& rays);
-  void publish_preview(std::uint64_t gen, std::vector<float> rgb);
+  struct preview_size {
+    int width, height;
+    double mm_per_pixel;
+  };
+  // From the worker or the first-look thread; neither reads the other's scene.
+  void publish_preview(std::uint64_t gen, std::vector<float> rgb, const preview_size& size, bool model_image);
+  void run_first_look();
+  double seconds_since_edit() const;  // with mutex_ held
 
   session_params params_;
   embree_device device_;
@@ -87,12 +104,22 @@ class render_session {
   std::optional<scene> pending_;  // the latest edit not yet applied
   retro_model_list pending_models_;
   std::uint64_t generation_ = 0;  // of the latest edit
+  std::chrono::steady_clock::time_point edit_time_ = std::chrono::steady_clock::now();
+  struct first_look_request {
+    scene layout;
+    std::shared_ptr<const retro_model> model;
+    std::uint64_t generation;
+  };
+  std::optional<first_look_request> first_look_;  // the latest edit's, not yet taken
+  std::atomic<bool> first_look_cancel_{false};
   bool paused_ = false;
   bool stopping_ = false;
   std::uint64_t target_spp_;
   render_snapshot snapshot_;
+  render_snapshot before_first_look_;  // what the latest first look replaced
   std::atomic<bool> cancel_{false};
   std::thread worker_;
+  std::thread first_look_worker_;
 };
 
 }  // namespace airr

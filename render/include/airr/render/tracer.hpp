@@ -43,9 +43,9 @@ struct tracer_scene {
 void build_tracer_scene(tracer_scene& ts, const embree_device& device, const scene& s, retro_model_list models = {});
 
 // Computes the model image for the built layout (or leaves none when use_model_image is off or
-// no pixel sees the first sheet). Building clears it: it takes longer than the rest (about a
-// second at 512 x 512), so the session shows its preview first.
-void update_model_image(tracer_scene& ts);
+// no pixel sees the first sheet, or `cancel` is set while it runs). Building clears it: it takes
+// longer than the rest (about a second at 512 x 512), so the session shows its previews first.
+void update_model_image(tracer_scene& ts, const std::atomic<bool>* cancel = nullptr);
 
 // The pixel's random rotation of the low-discrepancy sequence its samples share.
 std::array<double, 6> pixel_sequence_rotation(const tracer_scene& ts, int px, int py);

@@ -31,6 +31,7 @@ struct render_view_state {
   float pan_x = 0, pan_y = 0;
   bool paused = false;
   std::uint64_t uploaded_generation = ~0ull, uploaded_spp = 0;
+  bool uploaded_model_image = false;  // the shown image is the model image's first look
   float uploaded_exposure = -1;
   gl_texture texture;
 };
@@ -76,8 +77,13 @@ struct studio {
   bool recovery_offered = false;
   std::string recovery_text;  // a recovery file found at start, offered to the user
 
-  // Latency measurement: when the last edit was applied, and when its first image was shown.
+  // Latency measurement: when the last edit was applied (the start of the frame that made it);
+  // for each edit, when the session published its first image, and whether that image was the
+  // model image's first look. The frame loop adds when it reached the screen (after the swap).
   double edit_time = -1;
+  bool first_image_uploaded = false;  // in this frame, not yet on screen
+  std::vector<double> first_image_ready_ms;
+  int first_images_from_model = 0;
   std::vector<double> edit_latencies_ms;
 };
 

@@ -1,0 +1,18 @@
+#pragma once
+// airr bench --model-error: how far the model image (and its first look in the designer) is from
+// the converged tracer, per sheet preset and sheet tilt, on the default scene.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+struct model_error_options {
+  std::string scene_path;
+  int size = 256;
+  std::uint64_t spp = 128;
+  std::vector<std::string> presets{"rf-ay", "rf-an"};
+  std::vector<double> tilts_deg{0, 5, 10, 15, 20, 25, 30, 35, 40, 45};
+  int threads = 0;
+};
+
+// Prints one line per preset and tilt; throws input_error naming what failed.
+void run_model_error_bench(const model_error_options& o);
