@@ -513,20 +513,23 @@ image_rgb model_image_first_look(const scene& s, std::shared_ptr<const retro_mod
   return out;
 }
 
-glm::vec3 model_prediction(const model_image& m, int px, int py, const glm::dvec2& jitter, const retro_samples& u,
-                           double bin_choice) {
+glm::vec3 model_prediction(const model_image& m, int px, int py, const glm::dvec2& jitter, const retro_samples& u) {
   const model_pixel& p = m.pixels[std::size_t(py) * m.image.width + px];
   if (!p.ok) return glm::vec3(0.0f);
-  const int k = bin_choice < p.mix ? p.bin + 1 : p.bin;
-  double weight = 0;
-  const auto o = sample_offset(m, m.bins[std::size_t(k)], jitter, u, weight);
-  if (!o) return glm::vec3(0.0f);
-  glm::vec3 sum(0.0f);
-  const image_rgb& padded = m.grids[o->grid].padded;
-  const glm::dvec2 base = p.node[o->grid];
-  for_each_corner(o->nodes,
-                  [&](int x, int y, double c) { sum += bilinear(padded, base + glm::dvec2(x, y)) * float(c); });
-  return sum * float(weight * p.profile);
+  auto one = [&](int k) {
+    double weight = 0;
+    const auto o = sample_offset(m, m.bins[std::size_t(k)], jitter, u, weight);
+    if (!o) return glm::vec3(0.0f);
+    glm::vec3 sum(0.0f);
+    const image_rgb& padded = m.grids[o->grid].padded;
+    const glm::dvec2 base = p.node[o->grid];
+    for_each_corner(o->nodes,
+                    [&](int x, int y, double c) { sum += bilinear(padded, base + glm::dvec2(x, y)) * float(c); });
+    return sum * float(weight * p.profile);
+  };
+  glm::vec3 v = one(p.bin) * float(1 - p.mix);
+  if (p.mix > 0) v += one(p.bin + 1) * float(p.mix);
+  return v;
 }
 
 }  // namespace airr

@@ -101,11 +101,10 @@ std::array<double, 6> pixel_sequence_rotation(const tracer_scene& ts, int px, in
 
 // The random numbers of one camera sample, drawn before it is traced: the pixel jitter and the
 // first retroreflection's lobe and shift samples come from the pixel's rotated R6 point; its
-// further numbers, the lens and the model image's bin choice from the sample's generators.
+// further numbers and the lens from the sample's generators.
 struct sample_numbers {
   glm::dvec2 jitter{0.5};
   glm::dvec2 lens{0.5};
-  double bin_choice = 0;
   retro_samples first_retro;
   pcg32 rng{0, 0};  // everything later along the path
 };
@@ -118,7 +117,6 @@ static sample_numbers draw_sample_numbers(const tracer_scene& ts, int px, int py
   n.rng = sample_rng(pixel, sample_index, ts.layout.seed);
   n.jitter = {q[0], q[1]};
   if (ts.camera.aperture_mm > 0) n.lens = {n.rng.next_double(), n.rng.next_double()};
-  n.bin_choice = n.rng.next_double();
   n.first_retro.lobe = {q[2], q[3]};
   n.first_retro.shift = {q[4], q[5]};
   n.first_retro.more = sample_rng(pixel, sample_index, ts.layout.seed ^ 0x6d6f7265u);
@@ -141,7 +139,7 @@ glm::vec3 estimate_sample(const tracer_scene& ts, int px, int py, std::uint64_t 
   const sample_numbers n = draw_sample_numbers(ts, px, py, sample_index, rotation);
   const glm::vec3 radiance = trace_path(ts, px, py, n, rays);
   if (!ts.model) return radiance;
-  return radiance - model_prediction(*ts.model, px, py, n.jitter, n.first_retro, n.bin_choice);
+  return radiance - model_prediction(*ts.model, px, py, n.jitter, n.first_retro);
 }
 
 glm::vec3 model_value(const tracer_scene& ts, int px, int py) {

@@ -97,9 +97,10 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
 image_rgb model_image_first_look(const scene& s, std::shared_ptr<const retro_model> model, const image_rgb* display,
                                  const std::atomic<bool>* cancel = nullptr);
 
-// The model's prediction for one tracer sample of pixel (px, py): its pixel jitter in [0, 1)^2,
-// its first retroreflection's samples, and a uniform number choosing between the pixel's bins.
-glm::vec3 model_prediction(const model_image& m, int px, int py, const glm::dvec2& jitter, const retro_samples& u,
-                           double bin_choice);
+// The model's prediction for one tracer sample of pixel (px, py), from its pixel jitter in
+// [0, 1)^2 and its first retroreflection's samples: the same numbers sent through both of the
+// pixel's bins, mixed with the pixel's weights (closer to the true path, at the pixel's own angle,
+// than either bin alone).
+glm::vec3 model_prediction(const model_image& m, int px, int py, const glm::dvec2& jitter, const retro_samples& u);
 
 }  // namespace airr
