@@ -301,27 +301,66 @@ bool is_grey(const image_rgb& img) {
   return true;
 }
 
-image_rgb convolve(const image_rgb& img, const cv::Mat& kernel) {
-  image_rgb out;
-  out.width = img.width;
-  out.height = img.height;
-  out.rgb.resize(img.rgb.size());
-  const cv::Mat src(img.height, img.width, CV_32FC3, const_cast<float*>(img.rgb.data()));
-  cv::Mat dst;
-  if (is_grey(img)) {
-    // A grey display (a chart, a test pattern): one channel is all the work.
-    cv::Mat one;
-    cv::extractChannel(src, one, 0);
-    cv::filter2D(one, dst, -1, kernel, cv::Point(-1, -1), 0, cv::BORDER_CONSTANT);
-    for (int y = 0; y < dst.rows; ++y) {
-      const float* row = dst.ptr<float>(y);
-      float* o = out.at(0, y);
-      for (int x = 0; x < dst.cols; ++x) o[3 * x] = o[3 * x + 1] = o[3 * x + 2] = row[x];
-    }
-    return out;
+// A padded grid's spectrum, computed once and correlated with every bin's kernel. The grid's
+// margins are black and as wide as the kernels reach, so a DFT the grid's own size suffices:
+// what wraps around lands on black.
+struct grid_spectrum {
+  int width = 0, height = 0;      // the padded grid's
+  std::vector<cv::Mat> channels;  // one spectrum per distinct channel (one for a grey display)
+};
+
+grid_spectrum spectrum_of(const image_rgb& padded) {
+  grid_spectrum out;
+  out.width = padded.width;
+  out.height = padded.height;
+  const cv::Mat src(padded.height, padded.width, CV_32FC3, const_cast<float*>(padded.rgb.data()));
+  const int n = is_grey(padded) ? 1 : 3;
+  const cv::Size size(cv::getOptimalDFTSize(padded.width), cv::getOptimalDFTSize(padded.height));
+  for (int c = 0; c < n; ++c) {
+    cv::Mat channel = cv::Mat::zeros(size, CV_32F);
+    cv::extractChannel(src, channel(cv::Rect(0, 0, padded.width, padded.height)), c);
+    cv::Mat spectrum;
+    cv::dft(channel, spectrum, 0, padded.height);
+    out.channels.push_back(std::move(spectrum));
   }
-  cv::filter2D(src, dst, -1, kernel, cv::Point(-1, -1), 0, cv::BORDER_CONSTANT);
-  for (int y = 0; y < dst.rows; ++y) std::copy_n(dst.ptr<float>(y), 3 * dst.cols, out.at(0, y));
+  return out;
+}
+
+// out(x) = sum over offsets o of kernel(o) grid(x + o), the kernel's centre at offset 0 (the
+// prediction's sum, for every node at once).
+image_rgb correlate(const grid_spectrum& grid, const cv::Mat& kernel) {
+  const cv::Size size = grid.channels.front().size();
+  const int r = kernel.rows / 2;
+  // The kernel with offset o at index o modulo the DFT's size.
+  cv::Mat wrapped = cv::Mat::zeros(size, CV_32F);
+  for (int y = -r; y <= r; ++y) {
+    const float* row = kernel.ptr<float>(y + r);
+    float* dst = wrapped.ptr<float>((y + size.height) % size.height);
+    for (int x = -r; x <= r; ++x) dst[(x + size.width) % size.width] = row[x + r];
+  }
+  cv::Mat kernel_spectrum;
+  cv::dft(wrapped, kernel_spectrum);
+  image_rgb out;
+  out.width = grid.width;
+  out.height = grid.height;
+  out.rgb.resize(std::size_t(out.width) * out.height * 3);
+  const int n = int(grid.channels.size());
+  for (int c = 0; c < n; ++c) {
+    cv::Mat product, values;
+    cv::mulSpectrums(grid.channels[std::size_t(c)], kernel_spectrum, product, 0, true);
+    cv::dft(product, values, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT, grid.height);
+    for (int y = 0; y < out.height; ++y) {
+      const float* row = values.ptr<float>(y);
+      float* o = out.at(0, y);
+      for (int x = 0; x < out.width; ++x) {
+        if (n == 1) {
+          o[3 * x] = o[3 * x + 1] = o[3 * x + 2] = row[x];
+        } else {
+          o[3 * x + c] = row[x];
+        }
+      }
+    }
+  }
   return out;
 }
 
@@ -408,11 +447,11 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
   auto m = std::make_shared<model_image>();
   m->model = std::move(model);
   m->hm_factor = s.half_mirror.reflectance * s.half_mirror.transmittance;
-  // The grids' kernels stay within about 64 (fine) and 96 (tail) nodes of reach, however small
+  // The grids' kernels stay within about 128 (fine) and 320 (tail) nodes of reach, however small
   // the display: no finer grid than that pays.
   const double longer_mm = std::max(parts.src.width, parts.src.height);
-  const int fine_texels = std::clamp(int(longer_mm / (p.core_radius_mm / 64) / p.texel_refine), 8, p.max_texels);
-  const int coarse_texels = std::clamp(int(longer_mm / (p.kernel_radius_mm / 96)), 4, p.tail_texels);
+  const int fine_texels = std::clamp(int(longer_mm / (p.core_radius_mm / 128) / p.texel_refine), 8, p.max_texels);
+  const int coarse_texels = std::clamp(int(longer_mm / (p.kernel_radius_mm / 320)), 4, p.tail_texels);
   const cv::Mat texels = display_texels(s, display, fine_texels);
   cv::Mat tail_texels = texels;
   if (std::max(texels.cols, texels.rows) > coarse_texels) {
@@ -472,12 +511,13 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
     m->bins.push_back(std::move(b));
   }
   auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
+  const grid_spectrum spectra[2] = {spectrum_of(m->grids[model_fine].padded), spectrum_of(m->grids[model_tail].padded)};
   detail::parallel_rows(bins, p.threads, [&](int k0, int k1) {
     for (int k = k0; k < k1 && !cancelled(); ++k) {
       model_bin& b = m->bins[std::size_t(k)];
       const std::array<cv::Mat, 2> kernels =
           bin_kernels(*m, b, std::size_t(k), p.psf_samples, s.seed, p.threads, cancel);
-      for (int g : {model_fine, model_tail}) b.convolved[g] = convolve(m->grids[g].padded, kernels[std::size_t(g)]);
+      for (int g : {model_fine, model_tail}) b.convolved[g] = correlate(spectra[g], kernels[std::size_t(g)]);
     }
   });
   if (cancelled()) return nullptr;

@@ -27,13 +27,13 @@
 namespace airr {
 
 struct model_image_params {
-  int angle_bins = 4;                  // PSFs across the image's range of incidence angles
+  int angle_bins = 8;                  // PSFs across the image's range of incidence angles
   std::uint64_t psf_samples = 200000;  // per bin
   int max_texels = 512;                // the display's texels, on its longer side
   int texel_refine = 2;                // fine grid nodes per texel and direction
-  double core_radius_mm = 2;           // offsets up to this go to the fine grid ...
-  int tail_texels = 128;               // ... the rest to a coarse grid this size (longer side)
-  double kernel_radius_mm = 32;        // ... up to this; farther ones are left out (of both uses)
+  double core_radius_mm = 4;           // offsets up to this go to the fine grid ...
+  int tail_texels = 256;               // ... the rest to a coarse grid this size (longer side)
+  double kernel_radius_mm = 64;        // ... up to this; farther ones are left out (of both uses)
   // Ideal paths traced on every n-th pixel and interpolated between where all four neighbours
   // have one (1: every pixel); the path from a pixel to the display is smooth (projective).
   int path_stride = 1;
