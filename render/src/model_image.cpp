@@ -390,25 +390,17 @@ grid_mapping make_grid(model_grid& grid, const cv::Mat& texels, int refine, doub
   return map;
 }
 
-// A pixel's value: between the two bins around its angle (bin angles ascend).
-void mix_pixel(model_image& m, std::size_t i) {
-  const int bins = int(m.bins.size());
-  model_pixel& px = m.pixels[i];
+// The two bins around a pixel's angle (bin angles ascend) and its weight on the upper one.
+void assign_bin(const std::vector<model_bin>& bins, model_pixel& px) {
   if (!px.ok) return;
+  const int n = int(bins.size());
   int k = 0;
-  while (k + 1 < bins && m.bins[std::size_t(k + 1)].theta_deg < px.theta_deg) ++k;
+  while (k + 1 < n && bins[std::size_t(k + 1)].theta_deg < px.theta_deg) ++k;
   px.bin = k;
-  if (k + 1 < bins) {
-    const double a0 = m.bins[std::size_t(k)].theta_deg, a1 = m.bins[std::size_t(k + 1)].theta_deg;
+  if (k + 1 < n) {
+    const double a0 = bins[std::size_t(k)].theta_deg, a1 = bins[std::size_t(k + 1)].theta_deg;
     px.mix = a1 > a0 ? std::clamp((px.theta_deg - a0) / (a1 - a0), 0.0, 1.0) : 0.0;
   }
-  glm::vec3 v(0.0f);
-  for (int g : {model_fine, model_tail}) {
-    v += bilinear(m.bins[std::size_t(k)].convolved[g], px.node[g]) * float(1 - px.mix);
-    if (px.mix > 0) v += bilinear(m.bins[std::size_t(k + 1)].convolved[g], px.node[g]) * float(px.mix);
-  }
-  v *= float(px.profile);
-  std::copy_n(&v.x, 3, m.image.rgb.data() + 3 * i);
 }
 
 }  // namespace
@@ -512,22 +504,36 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
   }
   auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
   const grid_spectrum spectra[2] = {spectrum_of(m->grids[model_fine].padded), spectrum_of(m->grids[model_tail].padded)};
+  for (model_pixel& px : m->pixels) assign_bin(m->bins, px);
+  // Each bin adds its share to the pixels it is the lower bin of, or the upper: no pixel is
+  // written by two bins at once, and a bin's correlated grids are dropped as soon as it is done.
+  image_rgb shares[2];
+  for (image_rgb& share : shares) {
+    share.width = w;
+    share.height = h;
+    share.rgb.assign(std::size_t(w) * h * 3, 0.0f);
+  }
   detail::parallel_rows(bins, p.threads, [&](int k0, int k1) {
     for (int k = k0; k < k1 && !cancelled(); ++k) {
-      model_bin& b = m->bins[std::size_t(k)];
       const std::array<cv::Mat, 2> kernels =
-          bin_kernels(*m, b, std::size_t(k), p.psf_samples, s.seed, p.threads, cancel);
-      for (int g : {model_fine, model_tail}) b.convolved[g] = correlate(spectra[g], kernels[std::size_t(g)]);
+          bin_kernels(*m, m->bins[std::size_t(k)], std::size_t(k), p.psf_samples, s.seed, p.threads, cancel);
+      const image_rgb correlated[2] = {correlate(spectra[model_fine], kernels[model_fine]),
+                                       correlate(spectra[model_tail], kernels[model_tail])};
+      for (std::size_t i = 0; i < m->pixels.size(); ++i) {
+        const model_pixel& px = m->pixels[i];
+        if (!px.ok || (px.bin != k && px.bin + 1 != k)) continue;
+        const bool upper = px.bin + 1 == k;
+        const float weight = float((upper ? px.mix : 1 - px.mix) * px.profile);
+        glm::vec3 v(0.0f);
+        for (int g : {model_fine, model_tail}) v += bilinear(correlated[g], px.node[g]);
+        float* out = shares[upper ? 1 : 0].rgb.data() + 3 * i;
+        for (int c = 0; c < 3; ++c) out[c] = v[c] * weight;
+      }
     }
   });
   if (cancelled()) return nullptr;
-
-  m->image.width = w;
-  m->image.height = h;
-  m->image.rgb.assign(std::size_t(w) * h * 3, 0.0f);
-  detail::parallel_rows(h, p.threads, [&](int y0, int y1) {
-    for (std::size_t i = std::size_t(y0) * w; i < std::size_t(y1) * w; ++i) mix_pixel(*m, i);
-  });
+  m->image = std::move(shares[0]);
+  for (std::size_t i = 0; i < m->image.rgb.size(); ++i) m->image.rgb[i] += shares[1].rgb[i];
   m->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return m;
 }

@@ -60,7 +60,6 @@ struct model_bin {
   double theta_deg = 0;
   psf_chief_ray chief;
   glm::dmat2 jitter_mm{0.0};  // display-plane offset (u, v) per unit of pixel jitter (columns: x, y)
-  image_rgb convolved[2];     // each grid convolved with its part of this bin's PSF
 };
 
 // A pixel's ideal path: camera -> half mirror -> first sheet -> straight back -> display.
