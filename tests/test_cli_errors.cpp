@@ -135,3 +135,23 @@ TEST(CliRender, DefaultSceneRenders) {
                                " --spp 1 --set observer.width=32 --set observer.height=32");
   EXPECT_EQ(r.exit_code, 0) << r.out;
 }
+
+TEST(CliErrors, ViewzoneWritesItsMapAndNamesBadGrids) {
+  test::temp_dir dir;
+  const std::string path = scene_file(dir, [](nlohmann::json&) {});
+  const auto ok = test::run_cli("viewzone " + path + " --grid 5 --rows 16 -o " + dir.file("zone.csv") + " --png " +
+                                dir.file("zone.png"));
+  ASSERT_EQ(ok.exit_code, 0) << ok.out;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("zone.png")));
+  std::ifstream csv(dir.file("zone.csv"));
+  std::string header, line;
+  std::getline(csv, header);
+  EXPECT_EQ(header, "x_mm,y_mm,eye_x_mm,eye_y_mm,eye_z_mm,visible_fraction");
+  int rows = 0;
+  while (std::getline(csv, line)) ++rows;
+  EXPECT_EQ(rows, 25);
+  expect_one_line_error(test::run_cli("viewzone " + path + " --sphere --y -10 95 -o " + dir.file("z.csv")),
+                        {"viewing zone", "elevations"});
+  expect_one_line_error(test::run_cli("viewzone " + path + " --x 10 -10 -o " + dir.file("z.csv")),
+                        {"viewing zone", "low to high"});
+}

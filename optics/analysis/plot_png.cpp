@@ -83,6 +83,29 @@ void put_vertical_text(cv::Mat& img, const std::string& text, cv::Point centre, 
   rotated(cv::Rect(0, 0, dst.width, dst.height)).copyTo(img(dst));
 }
 
+// Ticks and tick labels along the bottom and left of `area` (and grid lines across it).
+void draw_ticks(cv::Mat& img, const cv::Rect& area, const axis_range& xa, const axis_range& ya, bool grid_lines) {
+  auto px = [&](double x) { return area.x + (x - xa.lo) / (xa.hi - xa.lo) * area.width; };
+  auto py = [&](double y) { return area.y + area.height - (y - ya.lo) / (ya.hi - ya.lo) * area.height; };
+  const double tick_scale = 0.5;
+  for (int i = 0;; ++i) {
+    const double v = std::ceil(xa.lo / xa.step - 1e-9) * xa.step + i * xa.step;
+    if (v > xa.hi + xa.step * 1e-6) break;
+    const int x = static_cast<int>(std::lround(px(v)));
+    if (grid_lines) cv::line(img, {x, area.y}, {x, area.y + area.height}, grid_grey, 1);
+    cv::line(img, {x, area.y + area.height}, {x, area.y + area.height + 6}, black, 1);
+    put_text(img, tick_text(v, xa.step), {x, area.y + area.height + 12}, tick_scale, 1, 0.5, 0.0);
+  }
+  for (int i = 0;; ++i) {
+    const double v = std::ceil(ya.lo / ya.step - 1e-9) * ya.step + i * ya.step;
+    if (v > ya.hi + ya.step * 1e-6) break;
+    const int y = static_cast<int>(std::lround(py(v)));
+    if (grid_lines) cv::line(img, {area.x, y}, {area.x + area.width, y}, grid_grey, 1);
+    cv::line(img, {area.x - 6, y}, {area.x, y}, black, 1);
+    put_text(img, tick_text(v, ya.step), {area.x - 10, y}, tick_scale, 1, 1.0, 0.5);
+  }
+}
+
 }  // namespace
 
 cv::Scalar plot_palette_colour(int index) {
@@ -115,24 +138,7 @@ cv::Mat render_plot(const std::vector<plot_series>& series, const plot_params& p
   auto px = [&](double x) { return area.x + (x - xa.lo) / (xa.hi - xa.lo) * area.width; };
   auto py = [&](double y) { return area.y + area.height - (y - ya.lo) / (ya.hi - ya.lo) * area.height; };
 
-  // Grid, ticks and tick labels.
-  const double tick_scale = 0.5;
-  for (int i = 0;; ++i) {
-    const double v = std::ceil(xa.lo / xa.step - 1e-9) * xa.step + i * xa.step;
-    if (v > xa.hi + xa.step * 1e-6) break;
-    const int x = static_cast<int>(std::lround(px(v)));
-    cv::line(img, {x, area.y}, {x, area.y + area.height}, grid_grey, 1);
-    cv::line(img, {x, area.y + area.height}, {x, area.y + area.height + 6}, black, 1);
-    put_text(img, tick_text(v, xa.step), {x, area.y + area.height + 12}, tick_scale, 1, 0.5, 0.0);
-  }
-  for (int i = 0;; ++i) {
-    const double v = std::ceil(ya.lo / ya.step - 1e-9) * ya.step + i * ya.step;
-    if (v > ya.hi + ya.step * 1e-6) break;
-    const int y = static_cast<int>(std::lround(py(v)));
-    cv::line(img, {area.x, y}, {area.x + area.width, y}, grid_grey, 1);
-    cv::line(img, {area.x - 6, y}, {area.x, y}, black, 1);
-    put_text(img, tick_text(v, ya.step), {area.x - 10, y}, tick_scale, 1, 1.0, 0.5);
-  }
+  draw_ticks(img, area, xa, ya, true);
 
   // Curves, clipped to the plot area by drawing into it.
   cv::Mat inner = img(area);
@@ -197,9 +203,88 @@ cv::Mat render_plot(const std::vector<plot_series>& series, const plot_params& p
   return img;
 }
 
+cv::Mat render_heatmap(const std::vector<double>& values, int nx, int ny, const heatmap_params& params) {
+  if (params.width < 300 || params.height < 200) throw measurement_error("heatmap must be at least 300x200 pixels");
+  if (nx < 1 || ny < 1 || values.size() != std::size_t(nx) * std::size_t(ny)) {
+    throw measurement_error("heatmap values do not fill its " + std::to_string(nx) + " x " + std::to_string(ny) +
+                            " grid");
+  }
+  if (!(params.value_max > params.value_min)) throw measurement_error("heatmap value range is empty");
+  // Each node owns the cell around it; the axes span the cells.
+  const double dx = nx > 1 ? (params.x_max - params.x_min) / (nx - 1) : 1.0;
+  const double dy = ny > 1 ? (params.y_max - params.y_min) / (ny - 1) : 1.0;
+  const double x_lo = params.x_min - dx / 2, x_hi = params.x_max + dx / 2;
+  const double y_lo = params.y_min - dy / 2, y_hi = params.y_max + dy / 2;
+  const axis_range xa = make_axis(x_lo, x_hi, x_lo, x_hi, 8), ya = make_axis(y_lo, y_hi, y_lo, y_hi, 8);
+
+  cv::Mat img(params.height, params.width, CV_8UC3, cv::Scalar::all(255));
+  const int left = 90, right = 140, top = params.title.empty() ? 25 : 55, bottom = 75;
+  const cv::Rect area(left, top, params.width - left - right, params.height - top - bottom);
+  cv::Mat codes(ny, nx, CV_8U), missing(ny, nx, CV_8U, cv::Scalar(0));
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const double v = values[std::size_t(j) * nx + i];
+      const int row = ny - 1 - j;  // y up
+      if (!std::isfinite(v)) missing.at<unsigned char>(row, i) = 255;
+      const double t = std::isfinite(v) ? (v - params.value_min) / (params.value_max - params.value_min) : 0.0;
+      codes.at<unsigned char>(row, i) = static_cast<unsigned char>(std::lround(255 * std::clamp(t, 0.0, 1.0)));
+    }
+  }
+  cv::Mat colours, cells, holes;
+  cv::applyColorMap(codes, colours, cv::COLORMAP_VIRIDIS);
+  colours.setTo(cv::Scalar::all(160), missing);
+  cv::resize(colours, cells, area.size(), 0, 0, cv::INTER_NEAREST);
+  cells.copyTo(img(area));
+  cv::rectangle(img, area, black, 1);
+  draw_ticks(img, area, xa, ya, false);
+
+  if (params.marker) {
+    const double mx = area.x + (params.marker->first - xa.lo) / (xa.hi - xa.lo) * area.width;
+    const double my = area.y + area.height - (params.marker->second - ya.lo) / (ya.hi - ya.lo) * area.height;
+    const cv::Point c(static_cast<int>(std::lround(mx)), static_cast<int>(std::lround(my)));
+    if (area.contains(c)) {
+      cv::circle(img, c, 9, cv::Scalar::all(255), 3, cv::LINE_AA);
+      cv::circle(img, c, 9, black, 1, cv::LINE_AA);
+      put_text(img, params.marker_label, {c.x + 13, c.y}, 0.5, 2, 0.0, 0.5, cv::Scalar::all(255));
+      put_text(img, params.marker_label, {c.x + 13, c.y}, 0.5, 1, 0.0, 0.5);
+    }
+  }
+
+  // Colour bar with its own ticks.
+  const cv::Rect bar(area.x + area.width + 25, area.y, 22, area.height);
+  cv::Mat ramp(256, 1, CV_8U), ramp_colours, ramp_cells;
+  for (int k = 0; k < 256; ++k) ramp.at<unsigned char>(k) = static_cast<unsigned char>(255 - k);
+  cv::applyColorMap(ramp, ramp_colours, cv::COLORMAP_VIRIDIS);
+  cv::resize(ramp_colours, ramp_cells, bar.size(), 0, 0, cv::INTER_LINEAR);
+  ramp_cells.copyTo(img(bar));
+  cv::rectangle(img, bar, black, 1);
+  const axis_range va = make_axis(params.value_min, params.value_max, params.value_min, params.value_max, 5);
+  for (int i = 0;; ++i) {
+    const double v = std::ceil(va.lo / va.step - 1e-9) * va.step + i * va.step;
+    if (v > va.hi + va.step * 1e-6) break;
+    const int y = static_cast<int>(std::lround(bar.y + bar.height - (v - va.lo) / (va.hi - va.lo) * bar.height));
+    cv::line(img, {bar.x + bar.width, y}, {bar.x + bar.width + 5, y}, black, 1);
+    put_text(img, tick_text(v, va.step), {bar.x + bar.width + 8, y}, 0.45, 1, 0.0, 0.5);
+  }
+  put_vertical_text(img, params.value_title, {bar.x + bar.width + 70, bar.y + bar.height / 2}, 0.55);
+
+  put_text(img, params.x_title, {area.x + area.width / 2, params.height - 28}, 0.6, 1, 0.5, 0.5);
+  put_vertical_text(img, params.y_title, {22, area.y + area.height / 2}, 0.6);
+  if (!params.title.empty()) put_text(img, params.title, {area.x + area.width / 2, 22}, 0.7, 1, 0.5, 0.5);
+  return img;
+}
+
+void write_heatmap_png(const std::filesystem::path& path, const std::vector<double>& values, int nx, int ny,
+                       const heatmap_params& params) {
+  write_png(path, render_heatmap(values, nx, ny, params));
+}
+
 void write_plot_png(const std::filesystem::path& path, const std::vector<plot_series>& series,
                     const plot_params& params) {
-  const cv::Mat img = render_plot(series, params);
+  write_png(path, render_plot(series, params));
+}
+
+void write_png(const std::filesystem::path& path, const cv::Mat& img) {
   std::vector<unsigned char> png;
   if (!cv::imencode(".png", img, png)) throw input_error(path.string() + ": PNG encoding failed");
   airr::write_file_atomic(path.string(), std::string_view(reinterpret_cast<const char*>(png.data()), png.size()));

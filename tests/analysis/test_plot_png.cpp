@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "airr/analysis/plot_png.hpp"
 #include "test_files.hpp"
@@ -82,4 +83,37 @@ TEST(PlotPng, RejectsMismatchedSeriesAndBadPaths) {
   bad.y = {0};
   EXPECT_THROW(aa::render_plot({bad}), std::runtime_error);
   EXPECT_THROW(aa::write_plot_png("/nonexistent_dir_for_airr_test/plot.png", two_curves(true)), std::runtime_error);
+}
+
+// A 2 x 2 grid with values 0, 1/3, 2/3, 1: each cell takes the viridis colour of its value, rows
+// run upwards, the marker is drawn at its coordinates, and bad grids are refused.
+TEST(PlotPng, HeatmapCellsTakeTheirValuesColoursWithYUp) {
+  aa::heatmap_params p;
+  p.x_min = 0;
+  p.x_max = 10;
+  p.y_min = 0;
+  p.y_max = 10;
+  p.marker = std::pair{10.0, 10.0};
+  p.marker_label = "observer";
+  const std::vector<double> v = {0.0, 1.0 / 3, 2.0 / 3, 1.0};  // row 0 (y = 0): 0, 1/3
+  const cv::Mat img = aa::render_heatmap(v, 2, 2, p);
+  ASSERT_EQ(img.cols, p.width);
+  ASSERT_EQ(img.rows, p.height);
+  cv::Mat codes(1, 4, CV_8U), colours;
+  for (int k = 0; k < 4; ++k) codes.at<unsigned char>(k) = static_cast<unsigned char>(std::lround(255 * v[k]));
+  cv::applyColorMap(codes, colours, cv::COLORMAP_VIRIDIS);
+  // The plot area: 90 px from the left, 140 from the right, 25 from the top, 75 from the bottom.
+  const cv::Rect area(90, 25, p.width - 230, p.height - 100);
+  const int qx = area.width / 4, qy = area.height / 4;
+  const cv::Point lower_left(area.x + qx, area.y + 3 * qy), lower_right(area.x + 3 * qx, area.y + 3 * qy);
+  const cv::Point upper_left(area.x + qx, area.y + qy);
+  EXPECT_EQ(img.at<cv::Vec3b>(lower_left), colours.at<cv::Vec3b>(0));
+  EXPECT_EQ(img.at<cv::Vec3b>(lower_right), colours.at<cv::Vec3b>(1));
+  EXPECT_EQ(img.at<cv::Vec3b>(upper_left), colours.at<cv::Vec3b>(2));
+  // The marker's white ring sits in the top-right cell, centred on node (10, 10).
+  const cv::Rect around(area.x + 3 * qx - 12, area.y + qy - 12, 24, 24);
+  EXPECT_GT(count_near(img, around, cv::Scalar(255, 255, 255), 10), 20);
+  EXPECT_THROW(aa::render_heatmap({0.0, 1.0}, 2, 2, p), std::runtime_error);
+  p.value_max = p.value_min;
+  EXPECT_THROW(aa::render_heatmap(v, 2, 2, p), std::runtime_error);
 }
