@@ -1,8 +1,10 @@
-// airr render SCENE -o OUT.exr|OUT.png [--spp N] [--seed S] [--set key=value ...]
+// airr render SCENE -o OUT.exr|OUT.png [--spp N] [--seed S] [--components | --component NAME]
+//             [--set key=value ...]
 #include <chrono>
 #include <cmath>
 #include <thread>
 
+#include "airr/optics/error.hpp"
 #include "airr/optics/layout.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "airr/render/render_metadata.hpp"
@@ -18,6 +20,8 @@ void add_render_command(CLI::App& app) {
     std::vector<std::string> sets;
     double exposure = 0;
     int threads = 0;
+    bool components = false;
+    std::string component;
   };
   auto opt = std::make_shared<options>();
   auto* cmd = app.add_subcommand("render", "Render a scene to EXR (linear) or PNG (sRGB)");
@@ -30,12 +34,22 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--exposure", opt->exposure,
                   "PNG scale factor; default maps a white source through a lossless retroreflector to 1");
   cmd->add_option("--threads", opt->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
+  auto* layers = cmd->add_flag("--components", opt->components,
+                               "EXR: also write the image's components as layers aerial, direct, reflection, rest");
+  cmd->add_option("--component", opt->component,
+                  "Write one component instead of the whole image: aerial, direct, reflection or rest")
+      ->check(CLI::IsMember({"aerial", "direct", "reflection", "rest"}))
+      ->excludes(layers);
   cmd->callback([opt] {
     std::vector<airr::scene_override> overrides;
     for (const auto& s : opt->sets) overrides.push_back(airr::parse_override(s));
     airr::scene s = airr::load_scene(opt->scene_path, overrides);
     if (opt->seed) s.seed = *opt->seed;
-    airr::render_session session(s, {.threads = opt->threads, .target_spp = opt->spp});
+    const bool split = opt->components || !opt->component.empty();
+    if (opt->components && !opt->out.ends_with(".exr")) {
+      throw airr::input_error(opt->out + ": --components needs an EXR output (layers); use --component for a PNG");
+    }
+    airr::render_session session(s, {.threads = opt->threads, .target_spp = opt->spp, .components = split});
     progress_bar bar("render");
     airr::render_snapshot snap;
     while ((snap = session.snapshot()).spp < opt->spp) {
@@ -46,7 +60,20 @@ void add_render_command(CLI::App& app) {
     bar.finish(std::to_string(snap.spp) + " spp, " +
                std::to_string(std::uint64_t(snap.rays / std::max(snap.seconds, 1e-9))) + " rays/s");
     const float exposure = opt->exposure > 0 ? float(opt->exposure) : float(airr::default_exposure(s));
-    airr::write_image(opt->out, snap.image(), airr::render_metadata(s, snap, exposure), exposure);
+    std::vector<airr::image_rgb> parts;
+    for (int k = 0; k < airr::component_count && split; ++k) parts.push_back(snap.component_image(k));
+    std::vector<airr::image_layer> layers;
+    for (int k = 0; k < int(parts.size()) && opt->components; ++k)
+      layers.push_back({airr::component_names[k], &parts[k]});
+    airr::image_rgb image = snap.image();
+    if (!opt->component.empty()) {
+      for (int k = 0; k < airr::component_count; ++k) {
+        if (opt->component == airr::component_names[k]) image = parts[std::size_t(k)];
+      }
+    }
+    airr::image_metadata meta = airr::render_metadata(s, snap, exposure);
+    if (!opt->component.empty()) meta["airr:component"] = opt->component;
+    airr::write_image(opt->out, image, meta, exposure, layers);
     std::fprintf(stderr, "wrote %s (%dx%d, %llu spp, %.6g mm/pixel)\n", opt->out.c_str(), snap.width, snap.height,
                  static_cast<unsigned long long>(snap.spp), snap.mm_per_pixel);
     // Rounding noise of the mirror image (1e-14 mm) printed as 0.

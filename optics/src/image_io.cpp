@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -95,20 +96,39 @@ loaded_image load_image(const std::string& path, image_encoding encoding) {
   return out;
 }
 
-void write_image(const std::string& path, const image_rgb& img, const image_metadata& meta, float exposure) {
+void write_image(const std::string& path, const image_rgb& img, const image_metadata& meta, float exposure,
+                 const std::vector<image_layer>& layers) {
   const fs::path p(path);
   std::string ext = p.extension().string();
   for (auto& c : ext) c = char(std::tolower(c));
   const bool exr = ext == ".exr";
   if (!exr && ext != ".png") throw input_error(path + ": output must be .exr or .png");
-  ImageSpec spec(img.width, img.height, 3, exr ? TypeDesc::FLOAT : TypeDesc::UINT8);
+  if (!exr && !layers.empty()) throw input_error(path + ": only EXR files take layers");
+  for (const image_layer& l : layers) {
+    if (!l.image || l.image->width != img.width || l.image->height != img.height || l.name.empty()) {
+      throw input_error(path + ": layer '" + l.name + "' is missing or not the image's size");
+    }
+  }
+  const int channels = 3 * (1 + int(layers.size()));
+  ImageSpec spec(img.width, img.height, channels, exr ? TypeDesc::FLOAT : TypeDesc::UINT8);
+  spec.channelnames = {"R", "G", "B"};
+  for (const image_layer& l : layers) {
+    for (const char* c : {"R", "G", "B"}) spec.channelnames.push_back(l.name + "." + c);
+  }
   for (const auto& [k, v] : meta) spec.attribute(k, v);
   spec.attribute("oiio:ColorSpace", exr ? "linear" : "sRGB");
   if (exr) spec.attribute("compression", "zip");
 
-  std::vector<float> out(img.rgb.size());
-  for (std::size_t i = 0; i < out.size(); ++i)
-    out[i] = exr ? img.rgb[i] : float(srgb_encode(std::clamp(img.rgb[i] * exposure, 0.0f, 1.0f)));
+  std::vector<float> out(std::size_t(img.width) * img.height * channels);
+  for (std::size_t px = 0; px < std::size_t(img.width) * img.height; ++px) {
+    float* o = out.data() + px * channels;
+    for (int c = 0; c < 3; ++c) {
+      const float v = img.rgb[3 * px + c];
+      o[c] = exr ? v : float(srgb_encode(std::clamp(v * exposure, 0.0f, 1.0f)));
+    }
+    for (std::size_t l = 0; l < layers.size(); ++l)
+      std::copy_n(layers[l].image->rgb.data() + 3 * px, 3, o + 3 * (l + 1));
+  }
 
   const fs::path tmp = p.parent_path() / (".tmp." + p.stem().string() + ext);
   auto o = ImageOutput::create(tmp.string());
@@ -126,6 +146,19 @@ void write_image(const std::string& path, const image_rgb& img, const image_meta
     fs::remove(tmp);
     throw input_error(path + ": cannot replace file: " + ec.message());
   }
+}
+
+std::vector<std::string> read_image_layer_names(const std::string& path) {
+  auto in = ImageInput::open(path);
+  if (!in) throw input_error(path + ": cannot read image: " + geterror());
+  std::vector<std::string> names;
+  for (const std::string& c : in->spec().channelnames) {
+    const auto dot = c.rfind('.');
+    if (dot == std::string::npos) continue;
+    const std::string name = c.substr(0, dot);
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  }
+  return names;
 }
 
 image_metadata read_image_metadata(const std::string& path) {

@@ -26,6 +26,18 @@ image_rgb render_snapshot::image() const {
   return img;
 }
 
+image_rgb render_snapshot::component_image(int component) const {
+  image_rgb img;
+  if (!components || component < 0 || component >= component_count) return img;
+  img.width = width;
+  img.height = height;
+  img.rgb.resize(std::size_t(width) * height * 3);
+  for (std::size_t i = 0; i < std::size_t(width) * height; ++i) {
+    std::copy_n(components->data() + 3 * (component_count * i + std::size_t(component)), 3, img.rgb.data() + 3 * i);
+  }
+  return img;
+}
+
 std::vector<float> render_snapshot::even_rgb() const {
   if (!rgb || !odd_rgb || spp < 2) return {};
   // Samples 0 .. spp-1: spp / 2 odd-numbered ones, the rest even-numbered.
@@ -148,14 +160,15 @@ void lower_thread_priority(int nice) {
 }
 
 bool render_session::render_wave(std::uint64_t first, std::uint64_t count, std::vector<double>& sums,
-                                 std::vector<double>& odd_sums, std::uint64_t& rays) {
+                                 std::vector<double>& odd_sums, std::vector<double>* component_sums,
+                                 std::uint64_t& rays) {
   const int h = scene_.camera.height;
   std::atomic<std::uint64_t> total_rays{0};
   std::atomic<bool> complete{true};
   detail::parallel_rows(h, params_.threads, [&](int y0, int y1) {
     if (params_.background_priority) lower_thread_priority();
     std::uint64_t local = 0;
-    if (!trace_rows(scene_, y0, y1, first, count, sums, cancel_, local, &odd_sums)) complete = false;
+    if (!trace_rows(scene_, y0, y1, first, count, sums, cancel_, local, &odd_sums, component_sums)) complete = false;
     total_rays += local;
   });
   rays += total_rays;
@@ -211,6 +224,7 @@ void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb, 
   snapshot_.mm_per_pixel = size.mm_per_pixel;
   snapshot_.rgb = std::move(shared);
   snapshot_.odd_rgb.reset();
+  snapshot_.components.reset();
   snapshot_.rays = 0;
   snapshot_.seconds = 0;
   snapshot_.error.clear();
@@ -218,7 +232,8 @@ void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb, 
 }
 
 void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::vector<double>& sums,
-                             const std::vector<double>& odd_sums, std::uint64_t rays, double seconds) {
+                             const std::vector<double>& odd_sums, const std::vector<double>& component_sums,
+                             std::uint64_t rays, double seconds) {
   // Each pixel's estimate is the model image's value plus the mean of its samples.
   const std::vector<float>* model = scene_.model ? &scene_.model->image.rgb : nullptr;
   auto rgb = std::make_shared<std::vector<float>>(sums.size());
@@ -232,6 +247,20 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::ve
       (*odd)[i] = float(odd_sums[i] * inv_odd + (model ? (*model)[i] : 0.0f));
     }
   }
+  std::shared_ptr<std::vector<float>> components;
+  if (!component_sums.empty()) {
+    // The model image belongs to the aerial image.
+    components = std::make_shared<std::vector<float>>(component_sums.size());
+    for (std::size_t p = 0; p < sums.size() / 3; ++p) {
+      for (int k = 0; k < component_count; ++k) {
+        for (int c = 0; c < 3; ++c) {
+          const std::size_t i = 3 * (component_count * p + std::size_t(k)) + std::size_t(c);
+          const float m = model && k == component_aerial ? (*model)[3 * p + std::size_t(c)] : 0.0f;
+          (*components)[i] = float(component_sums[i] * inv + m);
+        }
+      }
+    }
+  }
   std::lock_guard lock(mutex_);
   if (gen != generation_) return;  // an edit arrived meanwhile: this result is stale
   snapshot_.generation = gen;
@@ -241,6 +270,7 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::ve
   snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
   snapshot_.rgb = std::move(rgb);
   snapshot_.odd_rgb = std::move(odd);
+  snapshot_.components = std::move(components);
   snapshot_.preview = false;
   snapshot_.model_image = false;
   snapshot_.edit_seconds = seconds_since_edit();
@@ -252,12 +282,16 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::ve
 
 void render_session::run() {
   using clock = std::chrono::steady_clock;
-  std::vector<double> sums, wave, odd_sums, odd_wave;
+  std::vector<double> sums, wave, odd_sums, odd_wave, component_sums, component_wave;
   std::uint64_t gen = 0, spp = 0, rays = 0, next_wave = 1;
   bool model_pending = false;  // the model image of the layout in scene_ is still to be computed
   double seconds = 0;
-  sums.assign(std::size_t(scene_.camera.width) * scene_.camera.height * 3, 0.0);
-  odd_sums = sums;
+  auto reset_sums = [&] {
+    sums.assign(std::size_t(scene_.camera.width) * scene_.camera.height * 3, 0.0);
+    odd_sums = sums;
+    component_sums.assign(params_.components ? component_count * sums.size() : 0, 0.0);
+  };
+  reset_sums();
 
   while (true) {
     std::uint64_t count = 0;
@@ -278,8 +312,7 @@ void render_session::run() {
         } catch (const std::exception& e) {
           error = e.what();
         }
-        sums.assign(std::size_t(scene_.camera.width) * scene_.camera.height * 3, 0.0);
-        odd_sums = sums;
+        reset_sums();
         spp = rays = 0;
         seconds = 0;
         next_wave = 1;
@@ -314,16 +347,19 @@ void render_session::run() {
     const auto t0 = clock::now();
     wave = sums;  // a cancelled wave leaves the accumulation untouched
     odd_wave = odd_sums;
+    component_wave = component_sums;
     std::uint64_t wave_rays = 0;
-    const bool done = render_wave(spp, count, wave, odd_wave, wave_rays);
+    const bool done =
+        render_wave(spp, count, wave, odd_wave, params_.components ? &component_wave : nullptr, wave_rays);
     if (!done) continue;
     sums.swap(wave);
     odd_sums.swap(odd_wave);
+    component_sums.swap(component_wave);
     spp += count;
     rays += wave_rays;
     seconds += std::chrono::duration<double>(clock::now() - t0).count();
     next_wave = std::min(2 * next_wave, params_.max_wave_spp);  // capped: doubling forever would overflow
-    publish(gen, spp, sums, odd_sums, rays, seconds);
+    publish(gen, spp, sums, odd_sums, component_sums, rays, seconds);
   }
 }
 

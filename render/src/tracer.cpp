@@ -89,7 +89,15 @@ struct path_state {
   glm::dvec3 dir;
   glm::vec3 throughput;
   int depth;
+  int retroreflections = 0;
+  int mirror_reflections = 0;
 };
+
+image_component component_of(const path_state& p) {
+  if (p.retroreflections > 0) return component_aerial;
+  if (p.mirror_reflections == 0) return component_direct;
+  return p.mirror_reflections == 1 ? component_reflection : component_rest;
+}
 }  // namespace
 
 std::array<double, 6> pixel_sequence_rotation(const tracer_scene& ts, int px, int py) {
@@ -123,7 +131,9 @@ static sample_numbers draw_sample_numbers(const tracer_scene& ts, int px, int py
   return n;
 }
 
-static glm::vec3 trace_path(const tracer_scene& ts, int px, int py, sample_numbers n, std::uint64_t& rays);
+static component_radiance trace_path(const tracer_scene& ts, int px, int py, sample_numbers n, std::uint64_t& rays);
+
+static glm::vec3 total(const component_radiance& c) { return c[0] + c[1] + c[2] + c[3]; }
 
 glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index, std::uint64_t& rays) {
   return trace_sample(ts, px, py, sample_index, pixel_sequence_rotation(ts, px, py), rays);
@@ -131,15 +141,20 @@ glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sam
 
 glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
                        const std::array<double, 6>& rotation, std::uint64_t& rays) {
-  return trace_path(ts, px, py, draw_sample_numbers(ts, px, py, sample_index, rotation), rays);
+  return total(trace_path(ts, px, py, draw_sample_numbers(ts, px, py, sample_index, rotation), rays));
+}
+
+component_radiance estimate_components(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
+                                       const std::array<double, 6>& rotation, std::uint64_t& rays) {
+  const sample_numbers n = draw_sample_numbers(ts, px, py, sample_index, rotation);
+  component_radiance c = trace_path(ts, px, py, n, rays);
+  if (ts.model) c[component_aerial] -= model_prediction(*ts.model, px, py, n.jitter, n.first_retro);
+  return c;
 }
 
 glm::vec3 estimate_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
                           const std::array<double, 6>& rotation, std::uint64_t& rays) {
-  const sample_numbers n = draw_sample_numbers(ts, px, py, sample_index, rotation);
-  const glm::vec3 radiance = trace_path(ts, px, py, n, rays);
-  if (!ts.model) return radiance;
-  return radiance - model_prediction(*ts.model, px, py, n.jitter, n.first_retro);
+  return total(estimate_components(ts, px, py, sample_index, rotation, rays));
 }
 
 glm::vec3 model_value(const tracer_scene& ts, int px, int py) {
@@ -148,7 +163,7 @@ glm::vec3 model_value(const tracer_scene& ts, int px, int py) {
   return {p[0], p[1], p[2]};
 }
 
-static glm::vec3 trace_path(const tracer_scene& ts, int px, int py, sample_numbers n, std::uint64_t& rays) {
+static component_radiance trace_path(const tracer_scene& ts, int px, int py, sample_numbers n, std::uint64_t& rays) {
   const pinhole_camera& cam = ts.camera;
   pcg32& rng = n.rng;
   const camera_ray first = make_camera_ray(cam, px + n.jitter.x, py + n.jitter.y, n.lens);
@@ -159,7 +174,7 @@ static glm::vec3 trace_path(const tracer_scene& ts, int px, int py, sample_numbe
   path_state stack[max_half_mirror_splits + 1];
   int pending = 0, splits_left = max_half_mirror_splits;
   stack[pending++] = {first.origin, first.dir, glm::vec3(1.0f), 0};
-  glm::vec3 radiance(0.0f);
+  component_radiance radiance{};
 
   while (pending > 0) {
     path_state p = stack[--pending];
@@ -190,7 +205,7 @@ static glm::vec3 trace_path(const tracer_scene& ts, int px, int py, sample_numbe
       if (part == part_source) {
         if (cos_n < 0) {
           const float profile = ts.emission ? float(ts.emission->at(degrees(std::acos(std::min(1.0, -cos_n))))) : 1.0f;
-          radiance += p.throughput * profile * source_radiance(ts, part_local(f, hit));
+          radiance[component_of(p)] += p.throughput * profile * source_radiance(ts, part_local(f, hit));
         }
         break;  // the display absorbs what it does not emit; its back emits nothing
       }
@@ -200,10 +215,18 @@ static glm::vec3 trace_path(const tracer_scene& ts, int px, int py, sample_numbe
         p.origin = hit;
         if (splits_left > 0) {
           --splits_left;
-          stack[pending++] = {hit, reflected, p.throughput * float(hm.reflectance), p.depth + 1};
+          path_state r = p;
+          r.dir = reflected;
+          r.throughput *= float(hm.reflectance);
+          ++r.depth;
+          ++r.mirror_reflections;
+          stack[pending++] = r;
           p.throughput *= float(hm.transmittance);
         } else {
-          if (rng.next_double() * hm_total < hm.reflectance) p.dir = reflected;
+          if (rng.next_double() * hm_total < hm.reflectance) {
+            p.dir = reflected;
+            ++p.mirror_reflections;
+          }
           p.throughput *= float(hm_total);
         }
         continue;
@@ -224,6 +247,7 @@ static glm::vec3 trace_path(const tracer_scene& ts, int px, int py, sample_numbe
       p.dir = glm::normalize(to_world(f, rs.wo));
       p.origin = hit + rs.shift_mm.x * f.u + rs.shift_mm.y * f.v;
       p.throughput *= float(rs.weight);
+      ++p.retroreflections;
     }
   }
   return radiance;
@@ -231,7 +255,7 @@ static glm::vec3 trace_path(const tracer_scene& ts, int px, int py, sample_numbe
 
 bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
                 std::vector<double>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays,
-                std::vector<double>* odd_sums) {
+                std::vector<double>* odd_sums, std::vector<double>* component_sums) {
   const int w = ts.camera.width;
   for (int y = y0; y < y1; ++y) {
     if (cancel.load(std::memory_order_relaxed)) return false;
@@ -240,7 +264,16 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
       double* odd = odd_sums ? odd_sums->data() + 3 * (std::size_t(y) * w + x) : nullptr;
       const std::array<double, 6> rotation = pixel_sequence_rotation(ts, x, y);
       for (std::uint64_t i = first; i < first + count; ++i) {
-        const glm::vec3 L = estimate_sample(ts, x, y, i, rotation, rays);
+        const component_radiance c = estimate_components(ts, x, y, i, rotation, rays);
+        const glm::vec3 L = total(c);
+        if (component_sums) {
+          double* comp = component_sums->data() + 3 * component_count * (std::size_t(y) * w + x);
+          for (int k = 0; k < component_count; ++k) {
+            comp[3 * k] += c[std::size_t(k)].x;
+            comp[3 * k + 1] += c[std::size_t(k)].y;
+            comp[3 * k + 2] += c[std::size_t(k)].z;
+          }
+        }
         acc[0] += L.x;
         acc[1] += L.y;
         acc[2] += L.z;

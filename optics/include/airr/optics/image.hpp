@@ -47,7 +47,17 @@ using image_metadata = std::map<std::string, std::string>;
 
 // Writes EXR (float, linear) or PNG (8-bit sRGB after scaling by `exposure`), chosen by the
 // extension, atomically (temporary file then rename). Throws input_error.
-void write_image(const std::string& path, const image_rgb& img, const image_metadata& meta, float exposure = 1.0f);
+// Named layers of the same size go into an EXR after RGB as channels "<name>.R", "<name>.G",
+// "<name>.B" (a PNG takes none: input_error).
+struct image_layer {
+  std::string name;
+  const image_rgb* image = nullptr;
+};
+void write_image(const std::string& path, const image_rgb& img, const image_metadata& meta, float exposure = 1.0f,
+                 const std::vector<image_layer>& layers = {});
+
+// The layer names of an image file's channels "<name>.<channel>" (in order, each once).
+std::vector<std::string> read_image_layer_names(const std::string& path);
 
 // Reads back the string metadata of an image file (only keys starting with "airr:").
 image_metadata read_image_metadata(const std::string& path);

@@ -29,6 +29,9 @@ struct session_params {
   // After an edit, the model image's first look (model_image_first_look) is shown before any
   // traced sample, from a thread of its own at normal priority, where the layout has one.
   bool first_look = false;
+  // Also accumulate the image's components (tracer.hpp, component_names), for snapshots'
+  // component_image.
+  bool components = false;
 };
 
 // An immutable picture of the accumulation after a whole wave.
@@ -48,8 +51,13 @@ struct render_snapshot {
   bool preview = false;      // a coarse first look at this generation (spp is 0)
   bool model_image = false;  // the preview is the model image's first look, not traced samples
   double edit_seconds = 0;   // from the edit to this snapshot's publication
+  // With session_params::components, component_count RGB triples per pixel adding up to rgb
+  // (null otherwise, and in previews).
+  std::shared_ptr<const std::vector<float>> components;
 
   image_rgb image() const;
+  // One component (tracer.hpp's image_component) as an image; empty without components.
+  image_rgb component_image(int component) const;
   // The mean of the even-numbered samples, derived from rgb and odd_rgb (empty without odd_rgb).
   std::vector<float> even_rgb() const;
 };
@@ -82,9 +90,10 @@ class render_session {
  private:
   void run();
   bool render_wave(std::uint64_t first, std::uint64_t count, std::vector<double>& sums, std::vector<double>& odd_sums,
-                   std::uint64_t& rays);
+                   std::vector<double>* component_sums, std::uint64_t& rays);
   void publish(std::uint64_t gen, std::uint64_t spp, const std::vector<double>& sums,
-               const std::vector<double>& odd_sums, std::uint64_t rays, double seconds);
+               const std::vector<double>& odd_sums, const std::vector<double>& component_sums, std::uint64_t rays,
+               double seconds);
   bool render_preview(std::vector<float>& rgb, std::uint64_t& rays);
   struct preview_size {
     int width, height;

@@ -47,6 +47,14 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
 // longer than the rest (about a second at 512 x 512), so the session shows its previews first.
 void update_model_image(tracer_scene& ts, const std::atomic<bool>* cancel = nullptr);
 
+// The components of an image (spec section 8), by what a path met before the display: the aerial
+// image (at least one retroreflection), the display seen directly (no half-mirror reflection),
+// its plain reflection in the half mirror (one), and the rest (more). They add up to the image.
+enum image_component { component_aerial, component_direct, component_reflection, component_rest };
+inline constexpr int component_count = 4;
+inline constexpr const char* component_names[component_count] = {"aerial", "direct", "reflection", "rest"};
+using component_radiance = std::array<glm::vec3, component_count>;
+
 // The pixel's random rotation of the low-discrepancy sequence its samples share.
 std::array<double, 6> pixel_sequence_rotation(const tracer_scene& ts, int px, int py);
 
@@ -59,15 +67,20 @@ glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sam
 // same random numbers. The pixel's estimate is the model image's value plus the mean of these.
 glm::vec3 estimate_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
                           const std::array<double, 6>& rotation, std::uint64_t& rays);
+// The same sample split into components; the model image's prediction is the aerial image's.
+component_radiance estimate_components(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
+                                       const std::array<double, 6>& rotation, std::uint64_t& rays);
+
 // The part of the pixel's estimate that needs no samples: the model image's value (0 without one).
 glm::vec3 model_value(const tracer_scene& ts, int px, int py);
 
 // Accumulates estimate_sample for samples [first, first + count) of every pixel in rows [y0, y1) into `sums`
 // (double RGB per pixel, added in sample order so that splitting into waves changes nothing),
 // and the odd-numbered samples also into `odd_sums` when given (two independent half estimates,
-// whose difference measures the noise). Stops early (returns false) when `cancel` becomes true.
+// whose difference measures the noise), and by component into `component_sums` when given
+// (component_count RGB triples per pixel). Stops early (returns false) when `cancel` becomes true.
 bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
                 std::vector<double>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays,
-                std::vector<double>* odd_sums = nullptr);
+                std::vector<double>* odd_sums = nullptr, std::vector<double>* component_sums = nullptr);
 
 }  // namespace airr

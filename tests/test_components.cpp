@@ -1,0 +1,87 @@
+// The image's components (spec section 8): the aerial image, the display seen directly, its
+// plain reflection in the half mirror and the rest add up to the whole image, and the display seen
+// directly is what remains when the sheet is taken away.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "airr/optics/scene_json.hpp"
+#include "airr/render/render_session.hpp"
+#include "airr/render/tracer.hpp"
+#include "test_helpers.hpp"
+
+using namespace airr;
+
+namespace {
+
+// The default layout seen from 30 degrees above with a wide field: the top of the aerial image
+// and, below it, the display itself.
+scene looking_down(const std::string& model) {
+  std::vector<scene_override> o = {{"observer.elevation_deg", "30"},
+                                   {"observer.fov_deg", "60"},
+                                   {"observer.width", "64"},
+                                   {"observer.height", "64"}};
+  if (!model.empty()) {
+    o.push_back({"retroreflectors.0.model.type", "\"sinc_shift\""});
+    o.push_back({"retroreflectors.0.model.preset", "\"" + model + "\""});
+  }
+  return load_scene(std::string(AIRR_ASSET_DIR) + "/scenes/default.json", o);
+}
+
+render_snapshot render_components(const scene& s, std::uint64_t spp) {
+  render_session session(s, {.threads = 2, .target_spp = spp, .components = true});
+  session.wait_for(0, spp);
+  return session.snapshot();
+}
+
+double peak(const std::vector<float>& v) { return *std::max_element(v.begin(), v.end()); }
+
+}  // namespace
+
+TEST(Components, AddUpToTheWholeImage) {
+  for (const std::string model : {"", "rf-an"}) {
+    const render_snapshot snap = render_components(looking_down(model), 8);
+    ASSERT_TRUE(snap.components) << model;
+    const double scale = peak(*snap.rgb);
+    ASSERT_GT(scale, 0);
+    std::vector<double> energy(component_count, 0.0);
+    double worst = 0;
+    for (std::size_t i = 0; i < snap.rgb->size(); ++i) {
+      const std::size_t px = i / 3, c = i % 3;
+      double sum = 0;
+      for (int k = 0; k < component_count; ++k) {
+        const float v = (*snap.components)[3 * (component_count * px + std::size_t(k)) + c];
+        sum += v;
+        energy[std::size_t(k)] += v;
+      }
+      worst = std::max(worst, std::abs(sum - (*snap.rgb)[i]));
+    }
+    EXPECT_LT(worst, 1e-5 * scale) << model;
+    // Both the aerial image and the display itself are in view.
+    EXPECT_GT(energy[component_aerial], 0.05 * (energy[0] + energy[1])) << model;
+    EXPECT_GT(energy[component_direct], 0.05 * (energy[0] + energy[1])) << model;
+    std::printf(
+        "%s: components add up to the image within %.2g of its peak; energy aerial %.4g direct %.4g "
+        "reflection %.4g rest %.4g\n",
+        model.empty() ? "ideal" : model.c_str(), worst / scale, energy[0], energy[1], energy[2], energy[3]);
+  }
+}
+
+TEST(Components, DisplaySeenDirectlyIsTheRenderWithoutTheSheet) {
+  const scene s = looking_down("rf-an");
+  const render_snapshot full = render_components(s, 8);
+  scene bare = s;
+  bare.retroreflectors.clear();
+  const render_snapshot without = render_components(bare, 8);
+  const image_rgb direct = full.component_image(component_direct);
+  ASSERT_EQ(direct.rgb.size(), without.rgb->size());
+  const double scale = peak(*without.rgb);
+  ASSERT_GT(scale, 0) << "the display should be in view";
+  double worst = 0;
+  for (std::size_t i = 0; i < direct.rgb.size(); ++i)
+    worst = std::max(worst, double(std::abs(direct.rgb[i] - (*without.rgb)[i])));
+  EXPECT_LT(worst, 1e-5 * scale);
+  // Without the sheet the image has no aerial part at all.
+  EXPECT_EQ(peak(without.component_image(component_aerial).rgb), 0.0f);
+}
