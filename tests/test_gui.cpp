@@ -113,6 +113,12 @@ TEST(Gui, ScriptedRunShowsTheAerialImageAndPlots) {
   }
   // The MTF plot also shows the curve measured on the render (the test chart has a slanted edge).
   EXPECT_GT(curve_pixels(img, region(regions, "plot_mtf"), {255, 150, 60}), 100);
+  // The viewing zone: cells where all of the aerial image is seen (viridis' top), cells where none
+  // of it is (its bottom), and the observer's white marker.
+  const auto zone = region(regions, "plot_zone");
+  EXPECT_GT(curve_pixels(img, zone, {253, 231, 37}), 200);
+  EXPECT_GT(curve_pixels(img, zone, {68, 1, 84}), 200);
+  EXPECT_GT(curve_pixels(img, zone, {255, 255, 255}), 5);
 }
 
 TEST(Gui, AnEditShowsTheModelImageFirst) {

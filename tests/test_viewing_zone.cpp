@@ -146,3 +146,18 @@ TEST(ViewingZone, BadGridsAreNamed) {
   g.y_max = 95;
   EXPECT_THROW(geometric_viewing_zone(s, g), input_error);
 }
+
+TEST(ViewingZone, PlacingTheObserverPutsItAtThePointsCoordinates) {
+  for (const auto kind : {eye_grid::shape::sphere, eye_grid::shape::plane}) {
+    scene s;
+    eye_grid g;
+    g.kind = kind;
+    g.distance_mm = 420;
+    place_observer(s, g, 25, -12);
+    const glm::dvec2 at = eye_grid_coordinates(s, g, observer_position(s));
+    EXPECT_NEAR(at.x, 25, 1e-9);
+    EXPECT_NEAR(at.y, -12, 1e-9);
+    EXPECT_NEAR(glm::length(observer_target(s) - aerial_image_center(s)), 0, 1e-9);
+    check_layout(s, "placed");
+  }
+}

@@ -120,6 +120,20 @@ glm::dvec2 eye_grid_coordinates(const scene& s, const eye_grid& g, const glm::dv
   return {degrees(std::atan2(r.x, r.z)), degrees(std::asin(std::clamp(r.y / len, -1.0, 1.0)))};
 }
 
+void place_observer(scene& s, const eye_grid& g, double x, double y) {
+  if (g.kind == eye_grid::shape::sphere) {
+    s.observer.placement = observer_placement::orbit;
+    s.observer.azimuth_deg = x;
+    s.observer.elevation_deg = y;
+    s.observer.distance_mm = g.distance_mm;
+    return;
+  }
+  const glm::dvec3 eye = eye_position(s, g, x, y), target = aerial_image_center(s);
+  s.observer.placement = observer_placement::look_at;
+  s.observer.position_mm = {eye.x, eye.y, eye.z};
+  s.observer.look_at_mm = {target.x, target.y, target.z};
+}
+
 void check_eye_grid(const eye_grid& g) {
   auto fail = [](const std::string& what) { throw input_error("viewing zone: " + what); };
   if (g.nx < 1 || g.nx > 1001 || g.ny < 1 || g.ny > 1001) fail("grid size must be 1 to 1001 per side");

@@ -69,6 +69,16 @@ predicted_plots compute_predicted(const scene& s, std::uint64_t generation, cons
       }
     }
     out.sweep_ms = ms_since(t1);
+
+    const auto t2 = clock_type::now();
+    eye_grid g;
+    g.kind = eye_grid::shape::sphere;
+    g.distance_mm = std::max(1.0, glm::length(observer_position(s) - aerial_image_center(s)));
+    g.nx = g.ny = p.zone_grid;
+    g.x_min = g.y_min = -p.zone_reach_deg;
+    g.x_max = g.y_max = p.zone_reach_deg;
+    out.zone = geometric_viewing_zone(s, g, p.zone_rows);
+    out.zone_ms = ms_since(t2);
   } catch (const std::exception& e) {
     out.error = e.what();
   }

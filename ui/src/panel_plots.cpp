@@ -1,10 +1,13 @@
 // The plots: MTF predicted from the model PSF (every edit) and measured on the render (when the
 // source shows a slanted edge), the PSF's cross-section, and mean MTF against floating distance.
-// "Pin" keeps the current predicted curve for before/after comparisons.
+// "Pin" keeps the current predicted curve for before/after comparisons. The viewing zone shows
+// where on the observer's orbit the aerial image can be seen; a click moves the observer there.
 #include <cstdio>
 
 #include <imgui.h>
 
+#include "airr/optics/layout.hpp"
+#include "airr/optics/viewing_zone.hpp"
 #include "airr/ui/plot_widget.hpp"
 #include "airr/ui/studio.hpp"
 
@@ -32,7 +35,7 @@ void draw_plots_panel(studio& st) {
   ImGui::SameLine();
   if (ImGui::Button("Clear pins")) st.pinned_mtf.clear();
 
-  const float h = std::max(120.0f, (ImGui::GetContentRegionAvail().y - 2 * ImGui::GetFrameHeightWithSpacing()) / 3.0f /
+  const float h = std::max(120.0f, (ImGui::GetContentRegionAvail().y - 3 * ImGui::GetFrameHeightWithSpacing()) / 4.0f /
                                        (ImGui::GetFontSize() / 13.0f));
   std::vector<plot_curve> mtf;
   if (pred) mtf.push_back({"predicted (model PSF)", pred->lp_per_mm, pred->mtf});
@@ -109,6 +112,34 @@ void draw_plots_panel(studio& st) {
                                 .auto_x = false,
                                 .auto_y = false,
                                 .height = h}));
+
+  if (pred && pred->zone.visible.size() == std::size_t(pred->zone.grid.nx) * std::size_t(pred->zone.grid.ny) &&
+      !pred->zone.visible.empty()) {
+    const eye_grid& g = pred->zone.grid;
+    const plot_heatmap map{pred->zone.visible, g.nx, g.ny, g.x_min, g.x_max, g.y_min, g.y_max, 0.0, 1.0};
+    const glm::dvec2 at = eye_grid_coordinates(st.doc, g, observer_position(st.doc));
+    const std::vector<plot_curve> observer = {{"observer", {at.x}, {at.y}, IM_COL32(255, 255, 255, 255)}};
+    const plot_hover zone = draw_plot("zone", observer,
+                                      {.title = "Visible fraction (click: move the observer)",
+                                       .x_title = "observer azimuth (deg)",
+                                       .y_title = "elevation (deg)",
+                                       .x_min = g.x_min - 0.5 * (g.x_max - g.x_min) / std::max(1, g.nx - 1),
+                                       .x_max = g.x_max + 0.5 * (g.x_max - g.x_min) / std::max(1, g.nx - 1),
+                                       .y_min = g.y_min - 0.5 * (g.y_max - g.y_min) / std::max(1, g.ny - 1),
+                                       .y_max = g.y_max + 0.5 * (g.y_max - g.y_min) / std::max(1, g.ny - 1),
+                                       .auto_x = false,
+                                       .auto_y = false,
+                                       .height = h,
+                                       .heatmap = &map});
+    keep("plot_zone", zone);
+    ImGui::TextDisabled("viewing zone %.0f ms (%d x %d eyes, geometric)", pred->zone_ms, g.nx, g.ny);
+    if (zone.clicked) {
+      place_observer(st.doc, g, zone.x, zone.y);
+      char msg[96];
+      std::snprintf(msg, sizeof msg, "observer moved to azimuth %.1f, elevation %.1f deg", zone.x, zone.y);
+      st.status = msg;
+    }
+  }
   ImGui::End();
 }
 

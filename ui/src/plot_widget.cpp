@@ -28,6 +28,15 @@ unsigned plot_palette(int index) {
   return colours[index % 6];
 }
 
+unsigned viridis(double t) {
+  static const float stops[5][3] = {{68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}};
+  const double u = std::clamp(std::isfinite(t) ? t : 0.0, 0.0, 1.0) * 4;
+  const int k = std::min(3, int(u));
+  const float f = float(u - k);
+  auto mix = [&](int c) { return int(std::lround(stops[k][c] + (stops[k + 1][c] - stops[k][c]) * f)); };
+  return IM_COL32(mix(0), mix(1), mix(2), 255);
+}
+
 static std::string tick_label(double v, double step) {
   char buf[32];
   const int decimals = step >= 1 ? 0 : std::min(6, int(std::ceil(-std::log10(step) - 1e-9)));
@@ -76,6 +85,23 @@ plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, cons
   dl->AddRectFilled(a, b, ImGui::GetColorU32(ImGuiCol_FrameBg));
   auto sx = [&](double x) { return float(a.x + (x - p.x_min) / (p.x_max - p.x_min) * (b.x - a.x)); };
   auto sy = [&](double y) { return float(b.y - (y - p.y_min) / (p.y_max - p.y_min) * (b.y - a.y)); };
+  if (const plot_heatmap* hm = p.heatmap;
+      hm && hm->nx > 0 && hm->ny > 0 && hm->values.size() == std::size_t(hm->nx) * std::size_t(hm->ny)) {
+    // Each node owns the cell around it.
+    const double dx = hm->nx > 1 ? (hm->x_last - hm->x_first) / (hm->nx - 1) : 1.0;
+    const double dy = hm->ny > 1 ? (hm->y_last - hm->y_first) / (hm->ny - 1) : 1.0;
+    const double range = hm->value_max > hm->value_min ? hm->value_max - hm->value_min : 1.0;
+    dl->PushClipRect(a, b, true);
+    for (int j = 0; j < hm->ny; ++j) {
+      for (int i = 0; i < hm->nx; ++i) {
+        const double x = hm->x_first + i * dx, y = hm->y_first + j * dy;
+        const double v = hm->values[std::size_t(j) * hm->nx + i];
+        dl->AddRectFilled(ImVec2(sx(x - dx / 2), sy(y + dy / 2)), ImVec2(sx(x + dx / 2), sy(y - dy / 2)),
+                          viridis((v - hm->value_min) / range));
+      }
+    }
+    dl->PopClipRect();
+  }
 
   if (!p.title.empty()) {
     const float w = ImGui::CalcTextSize(p.title.c_str()).x;
@@ -165,6 +191,7 @@ plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, cons
     const ImVec2 m = ImGui::GetIO().MousePos;
     if (m.x >= a.x && m.x <= b.x && m.y >= a.y && m.y <= b.y) {
       hover.active = true;
+      hover.clicked = ImGui::IsMouseClicked(0);
       hover.x = p.x_min + (m.x - a.x) / (b.x - a.x) * (p.x_max - p.x_min);
       hover.y = p.y_min + (b.y - m.y) / (b.y - a.y) * (p.y_max - p.y_min);
       dl->AddLine(ImVec2(m.x, a.y), ImVec2(m.x, b.y), grid_col);

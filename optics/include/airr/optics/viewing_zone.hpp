@@ -46,6 +46,10 @@ struct eye_grid {
 glm::dvec3 eye_position(const scene& s, const eye_grid& g, double x, double y);
 glm::dvec2 eye_grid_coordinates(const scene& s, const eye_grid& g, const glm::dvec3& eye);
 
+// Moves the observer to grid coordinates (x, y), looking at the aerial image's centre: on the
+// sphere, the orbit's azimuth, elevation and distance; on the plane, a look-at position.
+void place_observer(scene& s, const eye_grid& g, double x, double y);
+
 // Throws input_error naming the field for a grid out of range (sizes 1 to 1001, finite bounds,
 // distance > 0, elevations within +-89 degrees).
 void check_eye_grid(const eye_grid& g);

@@ -12,6 +12,7 @@
 
 #include "airr/optics/retro_model.hpp"
 #include "airr/optics/scene.hpp"
+#include "airr/optics/viewing_zone.hpp"
 #include "airr/render/render_session.hpp"
 
 namespace airr::ui {
@@ -24,6 +25,10 @@ struct predicted_plots {
   std::vector<double> sweep_d_mm, sweep_mean_mtf;  // mean MTF over (0, 1] lp/mm against D
   double psf_ms = 0;                               // time for the PSF and its MTF (a plot-quality estimate)
   double sweep_ms = 0;
+  // Where the aerial image can be seen: the geometric visible fraction on the observer's orbit
+  // sphere (azimuth and elevation), at the observer's distance.
+  viewing_zone_map zone;
+  double zone_ms = 0;
   std::string error;
 };
 
@@ -48,6 +53,9 @@ inline constexpr double measured_mtf_max_sigma = 0.03;
 struct predicted_params {
   std::uint64_t psf_samples = 8000;
   std::uint64_t sweep_psf_samples = 4000;  // per floating distance of the mean-MTF curve
+  int zone_grid = 25;                      // eyes per side of the viewing-zone map ...
+  int zone_rows = 32;                      // ... and rows across the aerial image per eye
+  double zone_reach_deg = 60;              // azimuths and elevations within +-this
 };
 
 class analysis_worker {

@@ -15,6 +15,15 @@ struct plot_curve {
   std::vector<double> band{};  // optional half-width at each x: a translucent band y +- band
 };
 
+// Values on a grid drawn as coloured cells under the curves (viridis from value_min to
+// value_max): row j at y = y_first + j (y_last - y_first) / (ny - 1), x likewise.
+struct plot_heatmap {
+  std::vector<double> values;  // ny rows of nx
+  int nx = 0, ny = 0;
+  double x_first = 0, x_last = 1, y_first = 0, y_last = 1;
+  double value_min = 0, value_max = 1;
+};
+
 struct plot_params {
   std::string title;
   std::string x_title;
@@ -22,11 +31,13 @@ struct plot_params {
   double x_min = 0, x_max = 1, y_min = 0, y_max = 1;
   bool auto_x = true, auto_y = false;
   float height = 200;  // pixels before content scale; width fills the window
+  const plot_heatmap* heatmap = nullptr;
 };
 
 // What the cursor points at, when it is over the plot area.
 struct plot_hover {
   bool active = false;
+  bool clicked = false;  // the left button went down over the plot area this frame
   double x = 0, y = 0;
   float area[4] = {0, 0, 0, 0};  // the plot area on screen: x0, y0, x1, y1
 };
@@ -37,5 +48,7 @@ plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, cons
 std::vector<double> nice_ticks(double lo, double hi, int target);
 
 unsigned plot_palette(int index);
+// The viridis colour map at t in [0, 1] (clamped), as ImU32.
+unsigned viridis(double t);
 
 }  // namespace airr::ui
