@@ -1,11 +1,14 @@
 // airr viewzone SCENE -o zone.csv [--png zone.png] [--sphere] [--distance MM] [--grid N]
-//               [--x MIN MAX] [--y MIN MAX] [--rows N] [--set key=value ...]
+//               [--x MIN MAX] [--y MIN MAX] [--rows N] [--full [--spp N]] [--set key=value ...]
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "airr/analysis/plot_png.hpp"
+#include "airr/measure/viewing_zone_full.hpp"
 #include "airr/optics/error.hpp"
 #include "airr/optics/files.hpp"
 #include "airr/optics/layout.hpp"
@@ -16,18 +19,38 @@
 
 namespace {
 
-std::string zone_csv(const airr::scene& s, const airr::viewing_zone_map& m) {
-  const bool sphere = m.grid.kind == airr::eye_grid::shape::sphere;
+// One quantity per eye, ny rows of nx.
+struct zone_column {
+  const char* name;    // CSV column
+  const char* title;   // heatmap title and colour bar
+  const char* suffix;  // heatmap file: the --png stem plus this
+  const std::vector<double>* values;
+  double lo, hi;
+};
+
+std::string zone_csv(const airr::scene& s, const airr::eye_grid& g, const std::vector<zone_column>& columns) {
+  const bool sphere = g.kind == airr::eye_grid::shape::sphere;
   std::string out = sphere ? "azimuth_deg,elevation_deg" : "x_mm,y_mm";
-  out += ",eye_x_mm,eye_y_mm,eye_z_mm,visible_fraction\n";
-  char row[256];
-  for (int j = 0; j < m.grid.ny; ++j) {
-    for (int i = 0; i < m.grid.nx; ++i) {
-      const double x = m.grid.x_at(i), y = m.grid.y_at(j);
-      const glm::dvec3 e = airr::eye_position(s, m.grid, x, y);
-      std::snprintf(row, sizeof row, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", x, y, e.x, e.y, e.z,
-                    m.visible[std::size_t(j) * m.grid.nx + i]);
-      out += row;
+  out += ",eye_x_mm,eye_y_mm,eye_z_mm";
+  for (const zone_column& c : columns) out += std::string(",") + c.name;
+  out += "\n";
+  char cell[160];
+  for (int j = 0; j < g.ny; ++j) {
+    for (int i = 0; i < g.nx; ++i) {
+      const double x = g.x_at(i), y = g.y_at(j);
+      const glm::dvec3 e = airr::eye_position(s, g, x, y);
+      std::snprintf(cell, sizeof cell, "%.10g,%.10g,%.10g,%.10g,%.10g", x, y, e.x, e.y, e.z);
+      out += cell;
+      for (const zone_column& c : columns) {
+        const double v = (*c.values)[std::size_t(j) * g.nx + i];
+        if (std::isfinite(v)) {
+          std::snprintf(cell, sizeof cell, ",%.10g", v);
+          out += cell;
+        } else {
+          out += ",";  // nothing seen from here
+        }
+      }
+      out += "\n";
     }
   }
   return out;
@@ -43,6 +66,8 @@ void add_viewzone_command(CLI::App& app) {
     int grid = 21, rows = 128;
     std::vector<double> x_range, y_range;
     std::vector<std::string> sets;
+    bool full = false;
+    std::uint64_t spp = 16;
   };
   auto opt = std::make_shared<options>();
   auto* cmd = app.add_subcommand(
@@ -63,6 +88,11 @@ void add_viewzone_command(CLI::App& app) {
       ->expected(2);
   cmd->add_option("--rows", opt->rows, "Rows across the aerial image per eye (default 128)")
       ->check(CLI::Range(1, 100000));
+  cmd->add_flag("--full", opt->full,
+                "Also the full model per eye: mean brightness (relative to the best eye), mean MTF over (0, 1] lp/mm "
+                "of the model PSF, stray-light ratio (from a small render split into components); PNGs for each");
+  cmd->add_option("--spp", opt->spp, "Samples per pixel of each eye's render with --full (default 16)")
+      ->check(CLI::Range(1, 65536));
   cmd->add_option("--set", opt->sets, "Override a scene value, e.g. retroreflectors.0.pose.pitch_deg=10");
   cmd->callback([opt] {
     std::vector<airr::scene_override> overrides;
@@ -80,38 +110,70 @@ void add_viewzone_command(CLI::App& app) {
     airr::check_eye_grid(g);
     if (s.retroreflectors.empty()) throw airr::input_error(opt->scene_path + ": no retroreflector, no aerial image");
 
-    progress_bar bar("viewzone");
-    const airr::viewing_zone_map map = airr::geometric_viewing_zone(s, g, opt->rows, [&](int done, int total) {
-      if (done < total) bar.update(double(done) / total);
-    });
+    progress_bar bar(opt->full ? "viewzone (full)" : "viewzone");
+    auto report = [&](int done, int total) {
+      if (done < total)
+        bar.update(double(done) / total, std::to_string(done) + " of " + std::to_string(total) + " eyes");
+    };
+    airr::full_zone_map map;
+    if (opt->full) {
+      map = airr::full_viewing_zone(s, g, {.rows_per_eye = opt->rows, .render_spp = opt->spp}, report);
+    } else {
+      const airr::viewing_zone_map geometric = airr::geometric_viewing_zone(s, g, opt->rows, report);
+      map.grid = geometric.grid;
+      map.visible = geometric.visible;
+      map.seconds = geometric.seconds;
+    }
     bar.finish();
-    airr::write_file_atomic(opt->csv, zone_csv(s, map));
+    std::vector<zone_column> columns = {
+        {"visible_fraction", "visible fraction of the aerial image", "", &map.visible, 0, 1}};
+    if (opt->full) {
+      double mtf_hi = 0;
+      for (double v : map.mean_mtf) mtf_hi = std::isfinite(v) ? std::max(mtf_hi, v) : mtf_hi;
+      columns.push_back(
+          {"brightness", "mean brightness, relative to the best eye", "_brightness", &map.brightness, 0, 1});
+      columns.push_back(
+          {"mean_mtf", "mean MTF over (0, 1] lp/mm (model PSF)", "_mtf", &map.mean_mtf, 0, mtf_hi > 0 ? mtf_hi : 1});
+      double stray_hi = 0;
+      for (double v : map.stray_ratio) stray_hi = std::isfinite(v) ? std::max(stray_hi, v) : stray_hi;
+      columns.push_back({"stray_ratio", "stray light / aerial image, inside its outline", "_stray", &map.stray_ratio, 0,
+                         stray_hi > 0 ? stray_hi : 1});
+    }
+    airr::write_file_atomic(opt->csv, zone_csv(s, g, columns));
     double best = 0, sum = 0;
     for (double v : map.visible) best = std::max(best, v), sum += v;
-    std::printf("%d x %d eyes on a %s at %.6g mm: visible fraction up to %.4f, mean %.4f; %.3f s (%.2f ms per eye)\n",
+    std::printf("%d x %d eyes on a %s at %.6g mm: visible fraction up to %.4f, mean %.4f; %.3f s (%.2f ms per eye)%s\n",
                 g.nx, g.ny, opt->sphere ? "sphere" : "plane", g.distance_mm, best, sum / double(map.visible.size()),
-                map.seconds, 1e3 * map.seconds / double(map.visible.size()));
+                map.seconds, 1e3 * map.seconds / double(map.visible.size()), opt->full ? ", full model" : "");
     std::printf("wrote %s\n", opt->csv.c_str());
     if (!opt->png.empty()) {
-      airr::analysis::heatmap_params p;
-      p.title = "visible fraction of the aerial image";
-      p.x_title = opt->sphere ? "observer azimuth (deg)" : "eye x (mm, right)";
-      p.y_title = opt->sphere ? "observer elevation (deg)" : "eye y (mm, up)";
-      if (!opt->sphere) {
-        char t[128];
-        std::snprintf(t, sizeof t, "visible fraction of the aerial image, eyes %.6g mm in front of it", g.distance_mm);
-        p.title = t;
-      }
-      p.value_title = "visible fraction";
-      p.x_min = g.x_min;
-      p.x_max = g.x_max;
-      p.y_min = g.y_min;
-      p.y_max = g.y_max;
+      const std::filesystem::path png(opt->png);
       const glm::dvec2 at = airr::eye_grid_coordinates(s, g, airr::observer_position(s));
-      p.marker = std::pair{at.x, at.y};
-      p.marker_label = "observer";
-      airr::analysis::write_heatmap_png(opt->png, map.visible, g.nx, g.ny, p);
-      std::printf("wrote %s\n", opt->png.c_str());
+      for (const zone_column& c : columns) {
+        airr::analysis::heatmap_params p;
+        char title[160];
+        if (opt->sphere) {
+          std::snprintf(title, sizeof title, "%s", c.title);
+        } else {
+          std::snprintf(title, sizeof title, "%s, eyes %.6g mm in front", c.title, g.distance_mm);
+        }
+        p.title = title;
+        p.x_title = opt->sphere ? "observer azimuth (deg)" : "eye x (mm, right)";
+        p.y_title = opt->sphere ? "observer elevation (deg)" : "eye y (mm, up)";
+        p.value_title = c.name;
+        p.x_min = g.x_min;
+        p.x_max = g.x_max;
+        p.y_min = g.y_min;
+        p.y_max = g.y_max;
+        p.value_min = c.lo;
+        p.value_max = c.hi;
+        p.marker = std::pair{at.x, at.y};
+        p.marker_label = "observer";
+        const std::string path =
+            (png.parent_path() / (png.stem().string() + c.suffix + png.extension().string())).string();
+        airr::analysis::write_heatmap_png(path, *c.values, g.nx, g.ny, p);
+        std::printf("wrote %s\n", path.c_str());
+      }
     }
   });
 }

@@ -6,7 +6,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "airr/measure/mtf_routes.hpp"
+#include "airr/measure/viewing_zone_full.hpp"
 #include "airr/optics/scene_json.hpp"
+#include "airr/optics/viewing_zone.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/render/tracer.hpp"
 #include "test_helpers.hpp"
@@ -84,4 +87,35 @@ TEST(Components, DisplaySeenDirectlyIsTheRenderWithoutTheSheet) {
   EXPECT_LT(worst, 1e-5 * scale);
   // Without the sheet the image has no aerial part at all.
   EXPECT_EQ(peak(without.component_image(component_aerial).rgb), 0.0f);
+}
+
+// The viewing zone's full pass on the canonical layout with RF-AN, eyes on a plane 300 mm in
+// front: brightness is relative to the best eye (1 there, unset exactly where nothing is seen),
+// the eye at the observer's own place has the mean MTF `airr psf --no-pixel` reports, and no
+// stray path reaches the aerial image's outline in this layout.
+TEST(Components, FullViewingZoneAgreesWithThePsfRouteAndHasNoStrayLight) {
+  scene s = looking_down("rf-an");
+  s.observer.elevation_deg = 0;
+  eye_grid g;
+  g.nx = g.ny = 5;
+  g.x_min = g.y_min = -200;
+  g.x_max = g.y_max = 200;
+  const full_zone_map m = full_viewing_zone(s, g, {.rows_per_eye = 32, .render_size = 24, .render_spp = 4});
+  ASSERT_EQ(m.visible.size(), 25u);
+  double best = 0;
+  for (std::size_t e = 0; e < 25; ++e) {
+    EXPECT_EQ(std::isfinite(m.brightness[e]), m.visible[e] > 0) << e;
+    if (std::isfinite(m.brightness[e])) best = std::max(best, m.brightness[e]);
+    if (std::isfinite(m.stray_ratio[e])) {
+      EXPECT_EQ(m.stray_ratio[e], 0.0) << e;
+    }
+  }
+  EXPECT_DOUBLE_EQ(best, 1.0);
+  // The centre eye (x = y = 0) is the observer's own orbit position at distance 300.
+  scene centre = s;
+  place_observer(centre, g, 0, 0);
+  const double want = psf_route_mtf(scene_psf(centre, 4000), 0.0).mean_mtf;
+  EXPECT_NEAR(m.mean_mtf[12], want, 1e-12);
+  EXPECT_NEAR(m.visible[12], 1.0, 1e-6);
+  EXPECT_EQ(m.visible[0], 0.0);  // (-200, -200): beyond the sheet
 }

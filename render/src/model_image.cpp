@@ -13,7 +13,7 @@
 #include "airr/optics/layout.hpp"
 #include "airr/optics/low_discrepancy.hpp"
 #include "airr/optics/random.hpp"
-#include "parallel_rows.hpp"
+#include "airr/render/parallel_rows.hpp"
 
 namespace airr {
 

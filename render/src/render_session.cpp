@@ -11,7 +11,7 @@
 #include "airr/optics/error.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "airr/optics/sheet_models.hpp"
-#include "parallel_rows.hpp"
+#include "airr/render/parallel_rows.hpp"
 
 namespace airr {
 

@@ -1,0 +1,36 @@
+#pragma once
+// The viewing zone's full pass (spec section 8): for every eye of a grid, besides the geometric
+// visible fraction, what the eye sees of the aerial image through the full model: its mean
+// brightness (relative to the best eye), the mean MTF over (0, 1] lp/mm of the model PSF at that
+// geometry, and the stray-light ratio from a small render split into components.
+#include <atomic>
+#include <functional>
+#include <vector>
+
+#include "airr/optics/scene.hpp"
+#include "airr/optics/viewing_zone.hpp"
+
+namespace airr {
+
+struct full_zone_params {
+  int rows_per_eye = 64;             // the geometric pass's rows
+  int render_size = 48;              // pixels per side of each eye's render of the aerial image
+  std::uint64_t render_spp = 16;     // its samples per pixel
+  std::uint64_t psf_samples = 4000;  // for the mean MTF
+};
+
+struct full_zone_map {
+  eye_grid grid;
+  // ny rows of nx each; NaN where nothing of the aerial image is seen (and, for the MTF, where the
+  // eye's chief ray through the aerial image's centre misses a part).
+  std::vector<double> visible, brightness, mean_mtf, stray_ratio;
+  double seconds = 0;
+};
+
+// Rows of eyes run one after the other (each eye's render uses all cores); `progress(done, total)`
+// after every eye. Empty maps when `cancel` was set.
+full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zone_params& p = {},
+                                const std::function<void(int, int)>& progress = {},
+                                const std::atomic<bool>* cancel = nullptr);
+
+}  // namespace airr

@@ -1,0 +1,137 @@
+#include "airr/measure/viewing_zone_full.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "airr/measure/mtf_routes.hpp"
+#include "airr/optics/error.hpp"
+#include "airr/optics/layout.hpp"
+#include "airr/optics/sheet_models.hpp"
+#include "airr/render/parallel_rows.hpp"
+#include "airr/render/tracer.hpp"
+
+namespace airr {
+
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+// Whether pixel centre (x, y) lies inside the convex quadrilateral q (either winding).
+bool inside_quad(const std::array<glm::dvec2, 4>& q, double x, double y) {
+  int sign = 0;
+  for (int i = 0; i < 4; ++i) {
+    const glm::dvec2 a = q[std::size_t(i)], b = q[std::size_t((i + 1) % 4)];
+    const double c = (b.x - a.x) * (y - a.y) - (b.y - a.y) * (x - a.x);
+    const int s = c > 0 ? 1 : c < 0 ? -1 : 0;
+    if (s != 0 && sign != 0 && s != sign) return false;
+    if (s != 0) sign = s;
+  }
+  return true;
+}
+
+struct eye_render {
+  double aerial = 0, stray = 0;  // mean radiance (luminance) of each inside the aerial outline
+};
+
+// A small render of the aerial image from the eye, split into components: the aerial image and
+// everything else, averaged over the aerial image's outline as the eye sees it.
+eye_render render_from(tracer_scene& ts, const embree_device& device, const scene& eye_scene, const full_zone_params& p,
+                       const std::atomic<bool>* cancel) {
+  build_tracer_scene(ts, device, eye_scene, ts.retro);
+  const pinhole_camera& cam = ts.camera;
+  const part_frame a = aerial_image_frame(eye_scene);
+  std::array<glm::dvec2, 4> outline;
+  int k = 0;
+  for (const auto& [x, y] : {std::pair{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}}) {
+    outline[std::size_t(k++)] = camera_project(cam, part_point(a, x * a.width, y * a.height));
+  }
+  const int w = cam.width, h = cam.height;
+  std::vector<double> sums(std::size_t(w) * h * 3, 0.0), components(component_count * sums.size(), 0.0);
+  const std::atomic<bool> never{false};
+  detail::parallel_rows(h, 0, [&](int y0, int y1) {
+    std::uint64_t rays = 0;
+    trace_rows(ts, y0, y1, 0, p.render_spp, sums, cancel ? *cancel : never, rays, nullptr, &components);
+  });
+  eye_render out;
+  int inside = 0;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (!inside_quad(outline, x + 0.5, y + 0.5)) continue;
+      ++inside;
+      const double* c = components.data() + 3 * component_count * (std::size_t(y) * w + x);
+      auto luminance = [&](int comp) {
+        const double* v = c + 3 * comp;
+        return 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2];
+      };
+      out.aerial += luminance(component_aerial);
+      for (int comp : {component_direct, component_reflection, component_rest}) out.stray += luminance(comp);
+    }
+  }
+  const double n = double(inside) * double(p.render_spp);
+  if (n > 0) {
+    out.aerial /= n;
+    out.stray /= n;
+  }
+  return out;
+}
+
+}  // namespace
+
+full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zone_params& p,
+                                const std::function<void(int, int)>& progress, const std::atomic<bool>* cancel) {
+  check_eye_grid(g);
+  if (p.render_size < 8 || p.render_size > 1024 || p.render_spp < 1 || p.render_spp > 65536 || p.psf_samples < 100 ||
+      p.rows_per_eye < 1) {
+    throw input_error("viewing zone: full-pass parameters out of range");
+  }
+  if (s.retroreflectors.empty()) throw input_error("viewing zone: no retroreflector, no aerial image");
+  const auto t0 = std::chrono::steady_clock::now();
+  full_zone_map out;
+  out.grid = g;
+  const std::size_t n = std::size_t(g.nx) * g.ny;
+  out.visible.assign(n, 0.0);
+  out.brightness.assign(n, nan);
+  out.mean_mtf.assign(n, nan);
+  out.stray_ratio.assign(n, nan);
+  const viewing_parts parts(s);
+  const std::shared_ptr<const retro_model> model = make_sheet_model(s);
+  embree_device device;
+  tracer_scene ts;
+  ts.use_model_image = false;  // a few spp per eye: the model image would cost more than it saves
+  ts.retro = make_sheet_models(s);
+  const part_frame aerial = aerial_image_frame(s);
+  double best = 0;
+  for (std::size_t e = 0; e < n; ++e) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) return {};
+    const int i = int(e % std::size_t(g.nx)), j = int(e / std::size_t(g.nx));
+    scene eye = s;
+    place_observer(eye, g, g.x_at(i), g.y_at(j));
+    eye.observer.width = eye.observer.height = p.render_size;
+    eye.observer.lens = observer_lens::pinhole;
+    // A field that holds the aerial image with a quarter to spare.
+    const double reach = 0.5 * std::hypot(aerial.width, aerial.height) * 1.25;
+    eye.observer.fov_deg =
+        degrees(2 * std::atan(reach / std::max(1.0, glm::length(observer_position(eye) - aerial.center))));
+    out.visible[e] = visible_fraction(parts, observer_position(eye), p.rows_per_eye);
+    if (out.visible[e] > 0) {
+      const eye_render r = render_from(ts, device, eye, p, cancel);
+      out.brightness[e] = r.aerial;
+      out.stray_ratio[e] = r.aerial > 0 ? r.stray / r.aerial : nan;
+      best = std::max(best, r.aerial);
+      try {
+        out.mean_mtf[e] = psf_route_mtf(scene_psf(eye, *model, p.psf_samples), 0.0).mean_mtf;
+      } catch (const input_error&) {
+        // The chief ray through the aerial image's centre misses a part from here.
+      }
+    }
+    if (progress) progress(int(e) + 1, int(n));
+  }
+  for (double& b : out.brightness) {
+    if (std::isfinite(b)) b = best > 0 ? b / best : nan;
+  }
+  out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace airr
