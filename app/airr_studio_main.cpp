@@ -30,6 +30,7 @@ struct options {
   std::string save_as;
   std::vector<std::string> edits;  // applied as one designer edit after the scripted frames
   double screenshot_after = -1;    // with edits: seconds after the edit (0: its first image)
+  std::string component;           // the render view shows this component (empty: the whole image)
 };
 
 struct app_state {
@@ -88,6 +89,8 @@ int main(int argc, char** argv) {
   cli.add_option("--screenshot-after", opt.screenshot_after,
                  "With --edit: seconds from the edit to the screenshot (0: the first frame showing the edit)")
       ->check(CLI::Range(0.0, 3600.0));
+  cli.add_option("--component", opt.component, "The render view shows one component of the image")
+      ->check(CLI::IsMember({"aerial", "direct", "reflection", "rest"}));
   CLI11_PARSE(cli, argc, argv);
   if (!opt.screenshot.empty() && opt.frames == 0) opt.frames = 60;
 
@@ -151,6 +154,10 @@ int main(int argc, char** argv) {
   st.session_options.threads = opt.threads;
   st.session_options.background_priority = true;
   st.session_options.first_look = true;
+  st.session_options.components = true;  // the render view can show each
+  for (int k = 0; k < airr::component_count; ++k) {
+    if (opt.component == airr::component_names[k]) st.view.component = k;
+  }
   st.keep_recovery = opt.frames == 0 && opt.bench_edits == 0;
   if (st.keep_recovery) airr::ui::studio_check_recovery(st);
   airr::ui::studio_start(st, as_saved, path);
@@ -265,10 +272,12 @@ int main(int argc, char** argv) {
           for (const auto& [name, r] : st.regions) regions[name] = {r[0] * sx, r[1] * sy, r[2] * sx, r[3] * sy};
           airr::write_file_atomic(opt.screenshot + ".json",
                                   nlohmann::json{{"width", fw}, {"height", fh}, {"regions", regions}}.dump(2) + "\n");
-          std::fprintf(stderr, "wrote %s (%dx%d); the render view shows %s\n", opt.screenshot.c_str(), fw, fh,
+          const int shown = st.view.uploaded_component;
+          std::fprintf(stderr, "wrote %s (%dx%d); the render view shows %s%s%s\n", opt.screenshot.c_str(), fw, fh,
                        st.view.uploaded_model_image
                            ? "the model image's first look"
-                           : ("the tracer at " + std::to_string(st.view.uploaded_spp) + " spp").c_str());
+                           : ("the tracer at " + std::to_string(st.view.uploaded_spp) + " spp").c_str(),
+                       shown >= 0 ? ", component " : "", shown >= 0 ? airr::component_names[shown] : "");
         } catch (const std::exception& e) {
           std::fprintf(stderr, "error: %s\n", e.what());
           exit_code = 1;

@@ -121,6 +121,31 @@ TEST(Gui, ScriptedRunShowsTheAerialImageAndPlots) {
   EXPECT_GT(curve_pixels(img, zone, {255, 255, 255}), 5);
 }
 
+// The render view shows one component of the image: the aerial image alone is bright where the
+// aerial image forms; the display seen directly is not in view from in front, so it is dark there.
+TEST(Gui, TheRenderViewShowsOneComponent) {
+  double mean[2] = {0, 0};
+  const char* components[2] = {"aerial", "direct"};
+  for (int k = 0; k < 2; ++k) {
+    test::temp_dir dir;
+    const std::string shot = dir.file("component.png");
+    const std::string cmd = "XDG_CONFIG_HOME=" + dir.file("config") + " xvfb-run -a -s '-screen 0 1600x1000x24' " +
+                            std::string(AIRR_STUDIO) + " " + default_scene_path() + " --component " + components[k] +
+                            " --frames 30 --screenshot " + shot + " > " + dir.file("log.txt") + " 2>&1";
+    const int status = std::system(cmd.c_str());
+    std::ifstream log(dir.file("log.txt"));
+    const std::string log_text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+    ASSERT_EQ(status, 0) << log_text;
+    EXPECT_NE(log_text.find(std::string("component ") + components[k]), std::string::npos) << log_text;
+    const rgb8_image img = read_png(shot);
+    ASSERT_GT(img.width, 0) << "no screenshot: " << log_text;
+    const auto regions = nlohmann::json::parse(std::ifstream(shot + ".json"));
+    mean[k] = grey_stats(img, region(regions, "render_aerial_image")).mean;
+  }
+  EXPECT_GT(mean[0], 60.0);
+  EXPECT_LT(mean[1], 25.0);
+}
+
 TEST(Gui, AnEditShowsTheModelImageFirst) {
   // Right after an edit the render view shows the model image's first look (before any traced
   // sample), and it already shows the aerial image where the edited layout puts it.

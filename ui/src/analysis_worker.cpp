@@ -70,6 +70,12 @@ predicted_plots compute_predicted(const scene& s, std::uint64_t generation, cons
     }
     out.sweep_ms = ms_since(t1);
 
+  } catch (const std::exception& e) {
+    out.error = e.what();
+  }
+  // The viewing zone even when the aerial image's centre is not seen from the observer: it shows
+  // where it is.
+  try {
     const auto t2 = clock_type::now();
     eye_grid g;
     g.kind = eye_grid::shape::sphere;
@@ -79,8 +85,8 @@ predicted_plots compute_predicted(const scene& s, std::uint64_t generation, cons
     g.x_max = g.y_max = p.zone_reach_deg;
     out.zone = geometric_viewing_zone(s, g, p.zone_rows);
     out.zone_ms = ms_since(t2);
-  } catch (const std::exception& e) {
-    out.error = e.what();
+  } catch (const std::exception&) {
+    out.zone = {};
   }
   return out;
 }

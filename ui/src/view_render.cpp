@@ -9,16 +9,26 @@
 #include "airr/optics/image.hpp"
 #include "airr/optics/layout.hpp"
 #include "airr/render/render_metadata.hpp"
+#include "airr/render/tracer.hpp"
 #include "airr/ui/studio.hpp"
 
 namespace airr::ui {
 
+// The component the view shows of this snapshot (-1: the whole image; previews have none).
+static int shown_component(const studio& st, const render_snapshot& snap) {
+  return snap.components ? st.view.component : -1;
+}
+
 static void upload_snapshot(studio& st, const render_snapshot& snap, float exposure) {
   std::vector<std::uint8_t> rgba(std::size_t(snap.width) * snap.height * 4);
+  const int component = shown_component(st, snap);
   for (std::size_t i = 0; i < std::size_t(snap.width) * snap.height; ++i) {
-    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = srgb_encode_8bit((*snap.rgb)[3 * i + c] * exposure);
+    const float* v = component < 0 ? snap.rgb->data() + 3 * i
+                                   : snap.components->data() + 3 * (component_count * i + std::size_t(component));
+    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = srgb_encode_8bit(v[c] * exposure);
     rgba[4 * i + 3] = 255;
   }
+  st.view.uploaded_component = component;
   st.view.texture.upload(snap.width, snap.height, rgba);
   st.view.uploaded_generation = snap.generation;
   st.view.uploaded_spp = snap.spp;
@@ -41,7 +51,7 @@ void draw_render_view(studio& st, double now) {
 
   if (snap.rgb && (snap.spp > 0 || snap.preview) &&
       (snap.generation != st.view.uploaded_generation || snap.spp != st.view.uploaded_spp ||
-       exposure != st.view.uploaded_exposure)) {
+       exposure != st.view.uploaded_exposure || shown_component(st, snap) != st.view.uploaded_component)) {
     const bool first_of_edit = snap.generation != st.view.uploaded_generation;
     upload_snapshot(st, snap, exposure);
     if (first_of_edit && st.edit_time >= 0 && snap.generation == st.generation) {
@@ -85,9 +95,21 @@ void draw_render_view(studio& st, double now) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("0 EV shows a white source seen through a lossless retroreflector as white");
   ImGui::SameLine();
+  ImGui::SetNextItemWidth(9 * ImGui::GetFontSize());
+  static const char* const shows[] = {"whole image", "aerial image", "display, direct", "its reflection", "the rest"};
+  int show = st.view.component + 1;
+  if (ImGui::Combo("##component", &show, shows, IM_ARRAYSIZE(shows))) st.view.component = show - 1;
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(
+        "The image's components: paths through a retroreflection (the aerial image), the display "
+        "seen directly, its plain reflection in the half mirror, and the rest");
+  }
+  ImGui::SameLine();
   const double rays_per_s = snap.seconds > 0 ? double(snap.rays) / snap.seconds : 0.0;
-  ImGui::Text("%llu spp  %.1f Mrays/s  %.1f s%s%s", static_cast<unsigned long long>(snap.spp), rays_per_s * 1e-6,
-              snap.seconds, shown_label(snap), st.view.paused ? "  (paused)" : "");
+  const int shown = shown_component(st, snap);
+  ImGui::Text("%llu spp  %.1f Mrays/s  %.1f s%s%s%s%s", static_cast<unsigned long long>(snap.spp), rays_per_s * 1e-6,
+              snap.seconds, shown_label(snap), shown >= 0 ? ": " : "", shown >= 0 ? component_names[shown] : "",
+              st.view.paused ? "  (paused)" : "");
   if (!snap.error.empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", snap.error.c_str());
 
   // Image area: fit the image, then zoom about the cursor and pan by dragging.

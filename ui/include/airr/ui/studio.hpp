@@ -32,6 +32,8 @@ struct render_view_state {
   bool paused = false;
   std::uint64_t uploaded_generation = ~0ull, uploaded_spp = 0;
   bool uploaded_model_image = false;  // the shown image is the model image's first look
+  int component = -1;                 // the image component shown (tracer.hpp); -1: the whole image
+  int uploaded_component = -1;
   float uploaded_exposure = -1;
   gl_texture texture;
 };
