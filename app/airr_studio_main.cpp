@@ -31,6 +31,7 @@ struct options {
   std::vector<std::string> edits;  // applied as one designer edit after the scripted frames
   double screenshot_after = -1;    // with edits: seconds after the edit (0: its first image)
   std::string component;           // the render view shows this component (empty: the whole image)
+  std::string zone;                // the viewing zone's quantity; a full one is computed before the screenshot
 };
 
 struct app_state {
@@ -89,6 +90,9 @@ int main(int argc, char** argv) {
   cli.add_option("--screenshot-after", opt.screenshot_after,
                  "With --edit: seconds from the edit to the screenshot (0: the first frame showing the edit)")
       ->check(CLI::Range(0.0, 3600.0));
+  cli.add_option("--zone", opt.zone,
+                 "The viewing zone shows this quantity; a scripted run computes the full pass before its screenshot")
+      ->check(CLI::IsMember({"visible", "brightness", "mtf", "stray"}));
   cli.add_option("--component", opt.component, "The render view shows one component of the image")
       ->check(CLI::IsMember({"aerial", "direct", "reflection", "rest"}));
   CLI11_PARSE(cli, argc, argv);
@@ -158,6 +162,10 @@ int main(int argc, char** argv) {
   for (int k = 0; k < airr::component_count; ++k) {
     if (opt.component == airr::component_names[k]) st.view.component = k;
   }
+  const char* const zone_quantities[] = {"visible", "brightness", "mtf", "stray"};
+  for (int k = 0; k < 4; ++k) {
+    if (opt.zone == zone_quantities[k]) st.zone_quantity = k;
+  }
   st.keep_recovery = opt.frames == 0 && opt.bench_edits == 0;
   if (st.keep_recovery) airr::ui::studio_check_recovery(st);
   airr::ui::studio_start(st, as_saved, path);
@@ -214,6 +222,13 @@ int main(int argc, char** argv) {
     ++frame;
 
     if (opt.frames > 0 && frame >= opt.frames) {
+      // A scripted full viewing zone runs to its end before the screenshot.
+      const bool zone_current = st.zone_job_ && st.zone_job_->generation() == st.generation;
+      if (st.zone_quantity > 0 && opt.edits.empty() && (!zone_current || st.zone_job_->running())) {
+        if (!zone_current) airr::ui::start_full_zone(st);
+        glfwSwapBuffers(window);
+        continue;
+      }
       if (st.fit_job_ && st.fit_job_->running()) {
         glfwSwapBuffers(window);  // a scripted fit runs to its end before the run finishes
         continue;

@@ -146,6 +146,26 @@ TEST(Gui, TheRenderViewShowsOneComponent) {
   EXPECT_LT(mean[1], 25.0);
 }
 
+// The viewing zone's full pass from the designer (scripted: it runs to its end before the
+// screenshot): the brightness map is 1 (viridis' top) at the best eyes and grey where nothing is seen.
+TEST(Gui, TheFullViewingZoneShowsBrightness) {
+  test::temp_dir dir;
+  const std::string shot = dir.file("zone.png");
+  const std::string cmd = "XDG_CONFIG_HOME=" + dir.file("config") + " xvfb-run -a -s '-screen 0 1600x1000x24' " +
+                          std::string(AIRR_STUDIO) + " " + default_scene_path() + " --zone brightness --frames 10" +
+                          " --screenshot " + shot + " > " + dir.file("log.txt") + " 2>&1";
+  const int status = std::system(cmd.c_str());
+  std::ifstream log(dir.file("log.txt"));
+  const std::string log_text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  ASSERT_EQ(status, 0) << log_text;
+  const rgb8_image img = read_png(shot);
+  ASSERT_GT(img.width, 0) << "no screenshot: " << log_text;
+  const auto regions = nlohmann::json::parse(std::ifstream(shot + ".json"));
+  const auto zone = region(regions, "plot_zone");
+  EXPECT_GT(curve_pixels(img, zone, {253, 231, 37}), 20);
+  EXPECT_GT(curve_pixels(img, zone, {110, 110, 110}), 200);
+}
+
 TEST(Gui, AnEditShowsTheModelImageFirst) {
   // Right after an edit the render view shows the model image's first look (before any traced
   // sample), and it already shows the aerial image where the edited layout puts it.

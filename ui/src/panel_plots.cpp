@@ -2,7 +2,10 @@
 // source shows a slanted edge), the PSF's cross-section, and mean MTF against floating distance.
 // "Pin" keeps the current predicted curve for before/after comparisons. The viewing zone shows
 // where on the observer's orbit the aerial image can be seen; a click moves the observer there.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include <imgui.h>
 
@@ -12,6 +15,91 @@
 #include "airr/ui/studio.hpp"
 
 namespace airr::ui {
+
+bool start_full_zone(studio& st) {
+  const auto pred = st.analysis.predicted();
+  if (!pred || pred->zone.visible.empty() || pred->generation != st.generation) return false;
+  eye_grid g = pred->zone.grid;
+  g.nx = g.ny = 15;
+  st.zone_job_ = std::make_unique<zone_job>(
+      st.applied, g, full_zone_params{.rows_per_eye = 32, .render_size = 32, .render_spp = 8}, st.generation);
+  return true;
+}
+
+// The viewing zone: the geometric visible fraction from the predicted plots, or a quantity of
+// the full pass (started on demand, for the current layout only).
+template <typename Keep>
+static void draw_viewing_zone(studio& st, const predicted_plots* pred, float h, const Keep& keep) {
+  static const char* const quantities[] = {"visible fraction", "brightness (full)", "mean MTF (full)",
+                                           "stray light (full)"};
+  ImGui::SetNextItemWidth(10 * ImGui::GetFontSize());
+  ImGui::Combo("viewing zone", &st.zone_quantity, quantities, IM_ARRAYSIZE(quantities));
+  const eye_grid* grid = nullptr;
+  const std::vector<double>* values = nullptr;
+  double hi = 1;
+  std::optional<full_zone_map> full;
+  if (st.zone_quantity == 0) {
+    if (pred && !pred->zone.visible.empty()) {
+      grid = &pred->zone.grid;
+      values = &pred->zone.visible;
+    }
+  } else {
+    zone_job* job = st.zone_job_.get();
+    const bool current = job && job->generation() == st.generation;
+    if (current && job->running()) {
+      ImGui::ProgressBar(float(job->progress()), ImVec2(-6 * ImGui::GetFontSize(), 0));
+      ImGui::SameLine();
+      if (ImGui::Button("Cancel")) st.zone_job_.reset();
+    } else if (pred && !pred->zone.visible.empty() && (!current || !job->result())) {
+      if (current && !job->error().empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", job->error().c_str());
+      if (ImGui::Button("Compute the full pass (15 x 15 eyes)")) start_full_zone(st);
+    }
+    if (current && !job->running()) full = job->result();
+    if (full) {
+      grid = &full->grid;
+      values = st.zone_quantity == 1 ? &full->brightness : st.zone_quantity == 2 ? &full->mean_mtf : &full->stray_ratio;
+      if (st.zone_quantity != 1) {
+        hi = 0;
+        for (double v : *values) hi = std::isfinite(v) ? std::max(hi, v) : hi;
+        if (!(hi > 0)) hi = 1;
+      }
+    }
+  }
+  if (!grid || !values) return;
+  const eye_grid& g = *grid;
+  const plot_heatmap map{*values, g.nx, g.ny, g.x_min, g.x_max, g.y_min, g.y_max, 0.0, hi};
+  const glm::dvec2 at = eye_grid_coordinates(st.doc, g, observer_position(st.doc));
+  const std::vector<plot_curve> observer = {{"observer", {at.x}, {at.y}, IM_COL32(255, 255, 255, 255)}};
+  char title[96];
+  std::snprintf(title, sizeof title, "%s, 0 to %.3g", quantities[st.zone_quantity], hi);
+  const double hx = 0.5 * (g.x_max - g.x_min) / std::max(1, g.nx - 1),
+               hy = 0.5 * (g.y_max - g.y_min) / std::max(1, g.ny - 1);
+  const plot_hover zone = draw_plot("zone", observer,
+                                    {.title = title,
+                                     .x_title = "observer azimuth (deg)",
+                                     .y_title = "elevation (deg)",
+                                     .x_min = g.x_min - hx,
+                                     .x_max = g.x_max + hx,
+                                     .y_min = g.y_min - hy,
+                                     .y_max = g.y_max + hy,
+                                     .auto_x = false,
+                                     .auto_y = false,
+                                     .height = h,
+                                     .heatmap = &map});
+  keep("plot_zone", zone);
+  if (st.zone_quantity == 0 && pred) {
+    ImGui::TextDisabled("%.0f ms (%d x %d eyes, geometric); click: move the observer", pred->zone_ms, g.nx, g.ny);
+  } else if (full) {
+    ImGui::TextDisabled("full pass %.1f s (%d x %d eyes); grey: nothing seen; click: move the observer", full->seconds,
+                        g.nx, g.ny);
+  }
+  if (zone.clicked) {
+    place_observer(st.doc, g, zone.x, zone.y);
+    char msg[96];
+    std::snprintf(msg, sizeof msg, "observer moved to azimuth %.1f, elevation %.1f deg", zone.x, zone.y);
+    st.status = msg;
+  }
+}
 
 void draw_plots_panel(studio& st) {
   ImGui::Begin("Plots");
@@ -113,33 +201,7 @@ void draw_plots_panel(studio& st) {
                                 .auto_y = false,
                                 .height = h}));
 
-  if (pred && pred->zone.visible.size() == std::size_t(pred->zone.grid.nx) * std::size_t(pred->zone.grid.ny) &&
-      !pred->zone.visible.empty()) {
-    const eye_grid& g = pred->zone.grid;
-    const plot_heatmap map{pred->zone.visible, g.nx, g.ny, g.x_min, g.x_max, g.y_min, g.y_max, 0.0, 1.0};
-    const glm::dvec2 at = eye_grid_coordinates(st.doc, g, observer_position(st.doc));
-    const std::vector<plot_curve> observer = {{"observer", {at.x}, {at.y}, IM_COL32(255, 255, 255, 255)}};
-    const plot_hover zone = draw_plot("zone", observer,
-                                      {.title = "Visible fraction (click: move the observer)",
-                                       .x_title = "observer azimuth (deg)",
-                                       .y_title = "elevation (deg)",
-                                       .x_min = g.x_min - 0.5 * (g.x_max - g.x_min) / std::max(1, g.nx - 1),
-                                       .x_max = g.x_max + 0.5 * (g.x_max - g.x_min) / std::max(1, g.nx - 1),
-                                       .y_min = g.y_min - 0.5 * (g.y_max - g.y_min) / std::max(1, g.ny - 1),
-                                       .y_max = g.y_max + 0.5 * (g.y_max - g.y_min) / std::max(1, g.ny - 1),
-                                       .auto_x = false,
-                                       .auto_y = false,
-                                       .height = h,
-                                       .heatmap = &map});
-    keep("plot_zone", zone);
-    ImGui::TextDisabled("viewing zone %.0f ms (%d x %d eyes, geometric)", pred->zone_ms, g.nx, g.ny);
-    if (zone.clicked) {
-      place_observer(st.doc, g, zone.x, zone.y);
-      char msg[96];
-      std::snprintf(msg, sizeof msg, "observer moved to azimuth %.1f, elevation %.1f deg", zone.x, zone.y);
-      st.status = msg;
-    }
-  }
+  draw_viewing_zone(st, pred.get(), h, keep);
   ImGui::End();
 }
 

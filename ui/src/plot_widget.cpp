@@ -97,7 +97,7 @@ plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, cons
         const double x = hm->x_first + i * dx, y = hm->y_first + j * dy;
         const double v = hm->values[std::size_t(j) * hm->nx + i];
         dl->AddRectFilled(ImVec2(sx(x - dx / 2), sy(y + dy / 2)), ImVec2(sx(x + dx / 2), sy(y - dy / 2)),
-                          viridis((v - hm->value_min) / range));
+                          std::isfinite(v) ? viridis((v - hm->value_min) / range) : IM_COL32(110, 110, 110, 255));
       }
     }
     dl->PopClipRect();

@@ -16,7 +16,7 @@ struct plot_curve {
 };
 
 // Values on a grid drawn as coloured cells under the curves (viridis from value_min to
-// value_max): row j at y = y_first + j (y_last - y_first) / (ny - 1), x likewise.
+// value_max; non-finite values grey): row j at y = y_first + j (y_last - y_first) / (ny - 1), x likewise.
 struct plot_heatmap {
   std::vector<double> values;  // ny rows of nx
   int nx = 0, ny = 0;

@@ -18,6 +18,7 @@
 #include "airr/ui/fit_job.hpp"
 #include "airr/ui/gl_texture.hpp"
 #include "airr/ui/settings.hpp"
+#include "airr/ui/zone_job.hpp"
 
 namespace airr::ui {
 
@@ -73,6 +74,11 @@ struct studio {
   std::unique_ptr<fit_job> fit_job_;
   bool fit_applied = false;  // scripted runs apply a finished fit once
 
+  // The viewing zone's map: 0 the visible fraction (geometric, every edit); 1 brightness, 2 mean
+  // MTF, 3 stray light from the full pass, run on demand for one layout generation.
+  int zone_quantity = 0;
+  std::unique_ptr<zone_job> zone_job_;
+
   // Crash recovery: unsaved edits are copied to config_dir()/recovery.json every few seconds.
   bool keep_recovery = true;  // off in scripted runs
   double last_recovery_write = -1;
@@ -118,6 +124,9 @@ void draw_layout_panel(studio& st);
 void draw_layout_view(studio& st);
 void draw_render_view(studio& st, double now_seconds);
 void draw_plots_panel(studio& st);
+// Starts the viewing zone's full pass for the applied layout, on the predicted map's sphere
+// (false while the predicted plots are not yet those of the current layout).
+bool start_full_zone(studio& st);
 void draw_fit_window(studio& st);
 void save_fitted_preset(studio& st, const std::string& path);
 // Saves the preset (to config_dir()/presets unless saved already) and points the model at it.
