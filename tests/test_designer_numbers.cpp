@@ -10,6 +10,7 @@
 #include "airr/optics/layout.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "airr/ui/analysis_worker.hpp"
+#include "airr/ui/studio.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -69,4 +70,24 @@ TEST(DesignerNumbers, PredictedPlotsEqualAirrPsf) {
   ASSERT_EQ(run.exit_code, 0) << run.out;
   EXPECT_NEAR(printed_number(run.out, "mean MTF over (0, 1] lp/mm: "), pred.mean_mtf, 5e-6) << run.out;
   EXPECT_NEAR(printed_number(run.out, "50%-energy radius: "), pred.r50_mm, 5e-5) << run.out;
+}
+
+// The designer's export: an EXR carries the image's components as layers; a PNG is what the
+// render view shows, here one component, named in its metadata.
+TEST(DesignerNumbers, ExportWritesComponentLayersAndTheShownComponent) {
+  test::temp_dir dir;
+  ui::studio st;
+  st.session_options.components = true;
+  st.session_options.threads = 2;
+  ui::studio_start(st, test::uniform_source_scene(20, 32), "");
+  st.session->wait_for(st.generation, 2);
+  ASSERT_TRUE(ui::studio_export_render(st, dir.file("render.exr"))) << st.status;
+  EXPECT_EQ(read_image_layer_names(dir.file("render.exr")),
+            (std::vector<std::string>{"aerial", "direct", "reflection", "rest"}));
+  st.view.component = component_direct;
+  ASSERT_TRUE(ui::studio_export_render(st, dir.file("render.png"))) << st.status;
+  EXPECT_EQ(read_image_metadata(dir.file("render.png")).at("airr:component"), "direct");
+  st.view.component = -1;
+  ASSERT_TRUE(ui::studio_export_render(st, dir.file("whole.png"))) << st.status;
+  EXPECT_EQ(read_image_metadata(dir.file("whole.png")).count("airr:component"), 0u);
 }

@@ -1,5 +1,6 @@
 #include "airr/ui/studio.hpp"
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 
@@ -111,7 +112,19 @@ bool studio_export_render(studio& st, const std::string& path) {
     const render_snapshot snap = st.session->snapshot();
     if (!snap.rgb || snap.spp == 0) throw input_error("nothing rendered yet");
     const float exposure = float(default_exposure(st.doc) * std::exp2(st.settings.exposure_ev));
-    write_image(path, snap.image(), render_metadata(st.doc, snap, exposure), exposure);
+    image_metadata meta = render_metadata(st.doc, snap, exposure);
+    std::string ext = fs::path(path).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    const bool exr = ext == ".exr";
+    std::vector<image_rgb> parts;
+    for (int k = 0; k < component_count && snap.components; ++k) parts.push_back(snap.component_image(k));
+    // EXR: the whole image with its components as layers; PNG: what the view shows.
+    std::vector<image_layer> layers;
+    for (std::size_t k = 0; k < parts.size() && exr; ++k) layers.push_back({component_names[k], &parts[k]});
+    const int shown = st.view.component;
+    const bool one = !exr && shown >= 0 && std::size_t(shown) < parts.size();
+    if (one) meta["airr:component"] = component_names[shown];
+    write_image(path, one ? parts[std::size_t(shown)] : snap.image(), meta, exposure, layers);
     st.status = "exported " + path + " (" + std::to_string(snap.spp) + " spp)";
     return true;
   } catch (const std::exception& e) {
