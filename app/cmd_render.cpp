@@ -60,8 +60,7 @@ void add_render_command(CLI::App& app) {
     bar.finish(std::to_string(snap.spp) + " spp, " +
                std::to_string(std::uint64_t(snap.rays / std::max(snap.seconds, 1e-9))) + " rays/s");
     const float exposure = opt->exposure > 0 ? float(opt->exposure) : float(airr::default_exposure(s));
-    std::vector<airr::image_rgb> parts;
-    for (int k = 0; k < airr::component_count && split; ++k) parts.push_back(snap.component_image(k));
+    const std::vector<airr::image_rgb> parts = snap.component_images();
     std::vector<airr::image_layer> layers;
     for (int k = 0; k < int(parts.size()) && opt->components; ++k)
       layers.push_back({airr::component_names[k], &parts[k]});

@@ -78,18 +78,30 @@ std::array<int, 4> region(const nlohmann::json& j, const char* name) {
           int(r[3].get<double>()) - 1};
 }
 
+// Runs the designer under Xvfb with `args` (its own config directory); exit status and log.
+struct studio_run {
+  int status = -1;
+  std::string log;
+};
+studio_run run_studio(const test::temp_dir& dir, const std::string& args) {
+  const std::string cmd = "XDG_CONFIG_HOME=" + dir.file("config") + " xvfb-run -a -s '-screen 0 1600x1000x24' " +
+                          std::string(AIRR_STUDIO) + " " + args + " > " + dir.file("log.txt") + " 2>&1";
+  studio_run r;
+  r.status = std::system(cmd.c_str());
+  std::ifstream log(dir.file("log.txt"));
+  r.log.assign((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  return r;
+}
+
 }  // namespace
 
 TEST(Gui, ScriptedRunShowsTheAerialImageAndPlots) {
   test::temp_dir dir;
   const std::string shot = dir.file("studio.png");
-  const std::string cmd = "XDG_CONFIG_HOME=" + dir.file("config") + " xvfb-run -a -s '-screen 0 1600x1000x24' " +
-                          std::string(AIRR_STUDIO) + " " + default_scene_path() +
-                          " --set tilt_deg=15 --set floating_distance_mm=200 --frames 20 --screenshot " + shot + " > " +
-                          dir.file("log.txt") + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  std::ifstream log(dir.file("log.txt"));
-  const std::string log_text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  const studio_run run = run_studio(
+      dir, default_scene_path() + " --set tilt_deg=15 --set floating_distance_mm=200 --frames 20 --screenshot " + shot);
+  const int status = run.status;
+  const std::string& log_text = run.log;
   ASSERT_EQ(status, 0) << log_text;
 
   const rgb8_image img = read_png(shot);
@@ -129,12 +141,10 @@ TEST(Gui, TheRenderViewShowsOneComponent) {
   for (int k = 0; k < 2; ++k) {
     test::temp_dir dir;
     const std::string shot = dir.file("component.png");
-    const std::string cmd = "XDG_CONFIG_HOME=" + dir.file("config") + " xvfb-run -a -s '-screen 0 1600x1000x24' " +
-                            std::string(AIRR_STUDIO) + " " + default_scene_path() + " --component " + components[k] +
-                            " --frames 30 --screenshot " + shot + " > " + dir.file("log.txt") + " 2>&1";
-    const int status = std::system(cmd.c_str());
-    std::ifstream log(dir.file("log.txt"));
-    const std::string log_text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+    const studio_run run =
+        run_studio(dir, default_scene_path() + " --component " + components[k] + " --frames 30 --screenshot " + shot);
+    const int status = run.status;
+    const std::string& log_text = run.log;
     ASSERT_EQ(status, 0) << log_text;
     EXPECT_NE(log_text.find(std::string("component ") + components[k]), std::string::npos) << log_text;
     const rgb8_image img = read_png(shot);
@@ -151,12 +161,10 @@ TEST(Gui, TheRenderViewShowsOneComponent) {
 TEST(Gui, TheFullViewingZoneShowsBrightness) {
   test::temp_dir dir;
   const std::string shot = dir.file("zone.png");
-  const std::string cmd = "XDG_CONFIG_HOME=" + dir.file("config") + " xvfb-run -a -s '-screen 0 1600x1000x24' " +
-                          std::string(AIRR_STUDIO) + " " + default_scene_path() + " --zone brightness --frames 10" +
-                          " --screenshot " + shot + " > " + dir.file("log.txt") + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  std::ifstream log(dir.file("log.txt"));
-  const std::string log_text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  const studio_run run =
+      run_studio(dir, default_scene_path() + " --zone brightness --frames 10" + " --screenshot " + shot);
+  const int status = run.status;
+  const std::string& log_text = run.log;
   ASSERT_EQ(status, 0) << log_text;
   const rgb8_image img = read_png(shot);
   ASSERT_GT(img.width, 0) << "no screenshot: " << log_text;
@@ -171,14 +179,13 @@ TEST(Gui, AnEditShowsTheModelImageFirst) {
   // sample), and it already shows the aerial image where the edited layout puts it.
   test::temp_dir dir;
   const std::string shot = dir.file("edit.png");
-  const std::string cmd = "XDG_CONFIG_HOME=" + dir.file("config") + " xvfb-run -a -s '-screen 0 1600x1000x24' " +
-                          std::string(AIRR_STUDIO) + " " + default_scene_path() +
+  const studio_run run =
+      run_studio(dir, default_scene_path() +
                           " --frames 10 --edit tilt_deg=20 --edit floating_distance_mm=180 --screenshot-after 0"
                           " --screenshot " +
-                          shot + " > " + dir.file("log.txt") + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  std::ifstream log(dir.file("log.txt"));
-  const std::string log_text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+                          shot);
+  const int status = run.status;
+  const std::string& log_text = run.log;
   ASSERT_EQ(status, 0) << log_text;
   EXPECT_NE(log_text.find("the render view shows the model image's first look"), std::string::npos) << log_text;
 
@@ -235,12 +242,10 @@ TEST(Gui, FitFromTheDesignerAppliesThePreset) {
   // the result and saves the scene: the scene's model now points at a preset close to Table 2.
   test::temp_dir dir;
   const std::string scene_out = dir.file("fitted.json");
-  const std::string cmd = "XDG_CONFIG_HOME=" + dir.file("config") + " xvfb-run -a -s '-screen 0 1600x1000x24' " +
-                          std::string(AIRR_STUDIO) + " " + default_scene_path() + " --fit " + asset_dir() +
-                          "/fit_example --frames 5 --save-as " + scene_out + " > " + dir.file("log.txt") + " 2>&1";
-  const int status = std::system(cmd.c_str());
-  std::ifstream log(dir.file("log.txt"));
-  const std::string log_text((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  const studio_run run = run_studio(
+      dir, default_scene_path() + " --fit " + asset_dir() + "/fit_example --frames 5 --save-as " + scene_out);
+  const int status = run.status;
+  const std::string& log_text = run.log;
   ASSERT_EQ(status, 0) << log_text;
   const auto scene_json = nlohmann::json::parse(std::ifstream(scene_out));
   const auto& model = scene_json.at("retroreflectors").at(0).at("model");

@@ -38,6 +38,12 @@ image_rgb render_snapshot::component_image(int component) const {
   return img;
 }
 
+std::vector<image_rgb> render_snapshot::component_images() const {
+  std::vector<image_rgb> out;
+  for (int k = 0; k < component_count && components; ++k) out.push_back(component_image(k));
+  return out;
+}
+
 std::vector<float> render_snapshot::even_rgb() const {
   if (!rgb || !odd_rgb || spp < 2) return {};
   // Samples 0 .. spp-1: spp / 2 odd-numbered ones, the rest even-numbered.

@@ -116,8 +116,7 @@ bool studio_export_render(studio& st, const std::string& path) {
     std::string ext = fs::path(path).extension().string();
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     const bool exr = ext == ".exr";
-    std::vector<image_rgb> parts;
-    for (int k = 0; k < component_count && snap.components; ++k) parts.push_back(snap.component_image(k));
+    const std::vector<image_rgb> parts = snap.component_images();
     // EXR: the whole image with its components as layers; PNG: what the view shows.
     std::vector<image_layer> layers;
     for (std::size_t k = 0; k < parts.size() && exr; ++k) layers.push_back({component_names[k], &parts[k]});

@@ -58,6 +58,8 @@ struct render_snapshot {
   image_rgb image() const;
   // One component (tracer.hpp's image_component) as an image; empty without components.
   image_rgb component_image(int component) const;
+  // All of them, in image_component order (empty without components).
+  std::vector<image_rgb> component_images() const;
   // The mean of the even-numbered samples, derived from rgb and odd_rgb (empty without odd_rgb).
   std::vector<float> even_rgb() const;
 };
