@@ -7,6 +7,22 @@
 namespace airr {
 
 std::optional<double> retro_model::pdf(const glm::dvec3&, const glm::dvec3&) const { return std::nullopt; }
+
+namespace {
+class forwarded_incidence final : public retro_at_incidence {
+ public:
+  forwarded_incidence(const retro_model& model, const glm::dvec3& wi) : model_(model), wi_(wi) {}
+  retro_sample sample(retro_samples u) const override { return model_.sample(wi_, u); }
+
+ private:
+  const retro_model& model_;
+  glm::dvec3 wi_;
+};
+}  // namespace
+
+std::unique_ptr<const retro_at_incidence> retro_model::at_incidence(const glm::dvec3& wi) const {
+  return std::make_unique<forwarded_incidence>(*this, wi);
+}
 std::optional<double> retro_model::eval(const glm::dvec3&, const glm::dvec3&) const { return std::nullopt; }
 
 const retro_model_kind& ideal_retro_kind() {

@@ -93,28 +93,55 @@ double sinc_shift_retro::mu_at(double theta_deg) const {
   return interpolate_by_angle(p_.theta_deg, p_.mu, p_.lookup_angle_deg.value_or(theta_deg));
 }
 
-retro_sample sinc_shift_retro::sample(const glm::dvec3& wi, retro_samples u) const {
-  if (wi.z <= 0) return {};
+sinc_shift_retro::incidence sinc_shift_retro::prepare(const glm::dvec3& wi) const {
+  incidence in;
+  if (wi.z <= 0) return in;
   const double theta_deg = polar_angle_deg(wi);
-  const double k = a_at(theta_deg) * p_.reference_distance_mm;
-  const double delta = sinc_lobe::instance().sample_delta(k, u.lobe.x, u.more.next_double());
+  in.lit = true;
+  in.frame = make_basis(wi);
+  in.k = a_at(theta_deg) * p_.reference_distance_mm;
+  in.mu = mu_at(theta_deg);
+  if (p_.c_mm > 0 && shifts_) in.rows = shift_rows_at(*shifts_, p_.lookup_angle_deg.value_or(theta_deg));
+  return in;
+}
+
+retro_sample sinc_shift_retro::sample(const incidence& in, retro_samples u) const {
+  if (!in.lit) return {};
+  const double tan_delta = sinc_lobe::instance().sample_tan_delta(in.k, u.lobe.x, u.more.next_double());
+  const double cos_delta = 1.0 / std::sqrt(1.0 + tan_delta * tan_delta), sin_delta = tan_delta * cos_delta;
   const double phi = 2.0 * pi * u.lobe.y;
 
   // Rotate the retro direction (wo = wi) by delta at azimuth phi.
-  const basis b = make_basis(wi);
   retro_sample s;
-  s.wo = b.to_world({std::sin(delta) * std::cos(phi), std::sin(delta) * std::sin(phi), std::cos(delta)});
+  s.wo = in.frame.to_world({sin_delta * std::cos(phi), sin_delta * std::sin(phi), cos_delta});
   if (s.wo.z <= 0) return {};  // sent below the sheet: absorbed
 
   if (p_.c_mm > 0 && shifts_) {
     const double pick = u.more.next_double();
-    const double shift_theta = p_.lookup_angle_deg.value_or(theta_deg);
-    const double shift = sample_shift(*shifts_, shift_theta, pick, u.shift.x, u.more.next_double()) * p_.c_mm;
+    const double shift = sample_shift(*shifts_, in.rows, pick, u.shift.x, u.more.next_double()) * p_.c_mm;
     const double psi = 2.0 * pi * u.shift.y;
     s.shift_mm = {shift * std::cos(psi), shift * std::sin(psi)};
   }
-  s.weight = mu_at(theta_deg);
+  s.weight = in.mu;
   return s;
+}
+
+retro_sample sinc_shift_retro::sample(const glm::dvec3& wi, retro_samples u) const { return sample(prepare(wi), u); }
+
+namespace {
+class sinc_shift_incidence final : public retro_at_incidence {
+ public:
+  sinc_shift_incidence(const sinc_shift_retro& model, const glm::dvec3& wi) : model_(model), in_(model.prepare(wi)) {}
+  retro_sample sample(retro_samples u) const override { return model_.sample(in_, u); }
+
+ private:
+  const sinc_shift_retro& model_;
+  sinc_shift_retro::incidence in_;
+};
+}  // namespace
+
+std::unique_ptr<const retro_at_incidence> sinc_shift_retro::at_incidence(const glm::dvec3& wi) const {
+  return std::make_unique<sinc_shift_incidence>(*this, wi);
 }
 
 std::optional<double> sinc_shift_retro::pdf(const glm::dvec3& wi, const glm::dvec3& wo) const {

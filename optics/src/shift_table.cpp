@@ -168,7 +168,7 @@ void save_shift_table(const shift_table& table, const std::string& path) {
 
 std::string default_shift_table_path() { return asset_dir() + "/shift_tables/corner_cube.json"; }
 
-double sample_shift(const shift_table& table, double theta_deg, double u_pick, double u_bin, double u_jitter) {
+shift_rows shift_rows_at(const shift_table& table, double theta_deg) {
   const auto& theta = table.theta_deg;
   if (theta.empty() || table.probability.size() != theta.size()) {
     throw std::logic_error("sample_shift: the shift table is empty or inconsistent");
@@ -176,16 +176,22 @@ double sample_shift(const shift_table& table, double theta_deg, double u_pick, d
   if (table.cdf.size() != table.probability.size()) {
     throw std::logic_error("sample_shift: the shift table has no CDF (call finalize_shift_table)");
   }
-  // Row k and its upper neighbour; angles outside the table (and NaN) clamp to the end rows.
-  std::size_t row = 0;
+  shift_rows rows;
   if (theta_deg >= theta.back()) {
-    row = theta.size() - 1;
+    rows.lower = rows.upper = theta.size() - 1;
   } else if (theta_deg > theta.front()) {
     const std::size_t k = std::size_t(std::upper_bound(theta.begin(), theta.end(), theta_deg) - theta.begin()) - 1;
-    const double t = (theta_deg - theta[k]) / (theta[k + 1] - theta[k]);
-    row = u_pick < t ? k + 1 : k;
+    rows = {k, k + 1, (theta_deg - theta[k]) / (theta[k + 1] - theta[k])};
   }
+  return rows;
+}
 
+double sample_shift(const shift_table& table, double theta_deg, double u_pick, double u_bin, double u_jitter) {
+  return sample_shift(table, shift_rows_at(table, theta_deg), u_pick, u_bin, u_jitter);
+}
+
+double sample_shift(const shift_table& table, const shift_rows& rows, double u_pick, double u_bin, double u_jitter) {
+  const std::size_t row = u_pick < rows.t ? rows.upper : rows.lower;
   const int bin = bin_from_cdf(table.cdf[row], std::max(u_bin, 0.0));
   const double width = table.s_max / double(table.probability[row].size());
   return (double(bin) + std::clamp(u_jitter, 0.0, 1.0)) * width;

@@ -33,13 +33,13 @@ const sinc_lobe& sinc_lobe::instance() {
   return lobe;
 }
 
-double sinc_lobe::sample_delta(double k, double u_cell, double u_jitter) const {
+double sinc_lobe::sample_tan_delta(double k, double u_cell, double u_jitter) const {
   // The answer lies between guide_[b] and guide_[b + 1] (inclusive) for u_cell in [b, b + 1) / guide_size.
   const int b = std::clamp(int(u_cell * guide_size), 0, guide_size - 1);
   const auto first = cdf_.begin() + guide_[b], last = cdf_.begin() + guide_[b + 1];
   const auto j = std::min<std::size_t>(std::upper_bound(first, last, u_cell) - cdf_.begin(), cdf_.size() - 1);
   const double delta1 = half_pi * (double(j) + u_jitter) / double(cdf_.size());
-  return std::atan(std::tan(delta1) / k);
+  return std::tan(delta1) / k;
 }
 
 double sinc_lobe::pdf(double delta, double k) {

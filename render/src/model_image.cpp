@@ -1,6 +1,7 @@
 #include "airr/render/model_image.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -216,7 +217,7 @@ struct grid_offset {
 };
 std::optional<grid_offset> sample_offset(const model_image& m, const model_bin& b, const glm::dvec2& jitter,
                                          const retro_samples& u, double& weight) {
-  const retro_sample rs = m.model->sample(b.chief.wi, u);
+  const retro_sample rs = b.sampler->sample(u);
   if (!(rs.weight > 0)) return std::nullopt;
   const auto delta = psf_landing_offset(b.chief, rs);
   if (!delta) return std::nullopt;
@@ -241,6 +242,33 @@ void for_each_corner(const glm::dvec2& t, F&& f) {
   f(x0 + 1, y0, fx * (1 - fy));
   f(x0, y0 + 1, (1 - fx) * fy);
   f(x0 + 1, y0 + 1, fx * fy);
+}
+
+// The grid's bilinear surface at `base` plus the offset `t`, spread over the four nodes around it
+// as for_each_corner does: four bilinear reads, which together are one 3 x 3 stencil of texels.
+glm::vec3 spread_bilinear(const image_rgb& grid, const glm::dvec2& base, const glm::dvec2& t) {
+  const glm::dvec2 b = glm::floor(base), n = glm::floor(t);
+  const int x0 = int(b.x + n.x), y0 = int(b.y + n.y);
+  if (x0 < 0 || y0 < 0 || x0 + 2 >= grid.width || y0 + 2 >= grid.height) {
+    glm::vec3 sum(0.0f);
+    for_each_corner(t, [&](int x, int y, double c) { sum += bilinear(grid, base + glm::dvec2(x, y)) * float(c); });
+    return sum;
+  }
+  auto weights = [](double f_base, double f_node) {
+    return std::array<float, 3>{float((1 - f_node) * (1 - f_base)),
+                                float((1 - f_node) * f_base + f_node * (1 - f_base)), float(f_node * f_base)};
+  };
+  const auto wx = weights(base.x - b.x, t.x - n.x), wy = weights(base.y - b.y, t.y - n.y);
+  glm::vec3 sum(0.0f);
+  for (int j = 0; j < 3; ++j) {
+    glm::vec3 row(0.0f);
+    for (int i = 0; i < 3; ++i) {
+      const float* v = grid.at(x0 + i, y0 + j);
+      row += glm::vec3(v[0], v[1], v[2]) * wx[std::size_t(i)];
+    }
+    sum += row * wy[std::size_t(j)];
+  }
+  return sum;
 }
 
 // The bin's kernels from its samples (a rotated R6 sequence for jitter, lobe and shift, as the
@@ -497,6 +525,7 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
     model_bin b;
     b.theta_deg = centre->theta_deg;
     b.chief = chief_ray_through(s, centre->aerial);
+    b.sampler = m->model->at_incidence(b.chief.wi);
     if (right && left && down && up) {
       b.jitter_mm = glm::dmat2(right->display - left->display, down->display - up->display);
     }
@@ -566,12 +595,7 @@ glm::vec3 model_prediction(const model_image& m, int px, int py, const glm::dvec
     double weight = 0;
     const auto o = sample_offset(m, m.bins[std::size_t(k)], jitter, u, weight);
     if (!o) return glm::vec3(0.0f);
-    glm::vec3 sum(0.0f);
-    const image_rgb& padded = m.grids[o->grid].padded;
-    const glm::dvec2 base = p.node[o->grid];
-    for_each_corner(o->nodes,
-                    [&](int x, int y, double c) { sum += bilinear(padded, base + glm::dvec2(x, y)) * float(c); });
-    return sum * float(weight * p.profile);
+    return spread_bilinear(m.grids[o->grid].padded, p.node[o->grid], o->nodes) * float(weight * p.profile);
   };
   glm::vec3 v = one(p.bin) * float(1 - p.mix);
   if (p.mix > 0) v += one(p.bin + 1) * float(p.mix);

@@ -31,10 +31,21 @@ struct retro_sample {
   double weight = 0;          // throughput; 0 means absorbed
 };
 
+// A model at one fixed incidence, for many samples there: sample(u) is the model's sample(wi, u)
+// for that wi, with what depends on wi alone worked out once.
+class retro_at_incidence {
+ public:
+  virtual ~retro_at_incidence() = default;
+  virtual retro_sample sample(retro_samples u) const = 0;
+};
+
 class retro_model {
  public:
   virtual ~retro_model() = default;
   virtual retro_sample sample(const glm::dvec3& wi, retro_samples u) const = 0;
+  // The model prepared for incidence wi; the default calls sample(wi, u) each time. The model
+  // outlives what this returns.
+  virtual std::unique_ptr<const retro_at_incidence> at_incidence(const glm::dvec3& wi) const;
   // Density per steradian of sample's outgoing direction wo (absorbed samples included, so it
   // integrates to at most 1 over wo.z > 0); empty for a model without one (a delta, or no
   // closed form).

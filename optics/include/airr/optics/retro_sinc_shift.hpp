@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 
+#include "airr/optics/geometry.hpp"
 #include "airr/optics/preset.hpp"
 #include "airr/optics/retro_model.hpp"
 #include "airr/optics/shift_table.hpp"
@@ -39,6 +40,7 @@ class sinc_shift_retro final : public retro_model {
   // lobe: the deviation's table cell and its azimuth; shift: the shift's bin and direction;
   // more: the jitter inside the lobe cell, the choice between angle tables, the jitter in the bin.
   retro_sample sample(const glm::dvec3& wi, retro_samples u) const override;
+  std::unique_ptr<const retro_at_incidence> at_incidence(const glm::dvec3& wi) const override;
   // The lobe's density about the retro direction; the shift does not change directions.
   std::optional<double> pdf(const glm::dvec3& wi, const glm::dvec3& wo) const override;
   std::optional<double> eval(const glm::dvec3& wi, const glm::dvec3& wo) const override;
@@ -47,6 +49,16 @@ class sinc_shift_retro final : public retro_model {
   double a_at(double theta_deg) const;
   double mu_at(double theta_deg) const;
   const sinc_shift_params& params() const { return p_; }
+
+  // What a sample needs of its incidence: sample(wi, u) is sample(prepare(wi), u).
+  struct incidence {
+    bool lit = false;  // wi above the sheet
+    basis frame;       // around wi
+    double k = 0, mu = 0;
+    shift_rows rows;
+  };
+  incidence prepare(const glm::dvec3& wi) const;
+  retro_sample sample(const incidence& in, retro_samples u) const;
 
  private:
   sinc_shift_params p_;

@@ -35,9 +35,20 @@ void save_shift_table(const shift_table& table, const std::string& path);
 // The table shipped in assets/shift_tables/corner_cube.json.
 std::string default_shift_table_path();
 
+// The two tables around an incidence angle: the upper one is chosen when u_pick < t. Angles
+// outside the table (and NaN) clamp to an end row (lower = upper). Throws std::logic_error for an
+// empty table or one without its CDF.
+struct shift_rows {
+  std::size_t lower = 0, upper = 0;
+  double t = 0;
+};
+shift_rows shift_rows_at(const shift_table& table, double theta_deg);
+
 // Draws a shift (edge lengths) for incidence angle theta_deg: one of the two neighbouring
 // tables is chosen with the linear interpolation weight (u_pick), a bin from its distribution
 // (u_bin) and a uniform position inside the bin (u_jitter). Angles outside the table clamp.
 double sample_shift(const shift_table& table, double theta_deg, double u_pick, double u_bin, double u_jitter);
+// The same from the rows of shift_rows_at, for many draws at one angle.
+double sample_shift(const shift_table& table, const shift_rows& rows, double u_pick, double u_bin, double u_jitter);
 
 }  // namespace airr

@@ -13,10 +13,11 @@ class sinc_lobe {
   // The 30000-point table over [0, 90 deg) for k = 1, normalised to sum 1.
   static const sinc_lobe& instance();
 
-  // Deviation angle (radians) for spread k = a R, from two uniform numbers. The table is
+  // tan of the deviation angle for spread k = a R, from two uniform numbers. The table is
   // sampled as a discrete distribution with uniform jitter inside the cell, giving delta_1
   // for k = 1; tan(delta) = tan(delta_1) / k maps k tan(delta) onto the same sinc^2 law.
-  double sample_delta(double k, double u_cell, double u_jitter) const;
+  // (The tangent, not the angle: the direction needs only its sine and cosine.)
+  double sample_tan_delta(double k, double u_cell, double u_jitter) const;
 
   // The continuous density of delta (per radian) for spread k, normalised on [0, pi/2).
   static double pdf(double delta, double k);

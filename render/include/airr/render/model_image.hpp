@@ -59,6 +59,7 @@ inline constexpr int model_fine = 0, model_tail = 1;
 struct model_bin {
   double theta_deg = 0;
   psf_chief_ray chief;
+  std::shared_ptr<const retro_at_incidence> sampler;  // the model at the chief ray's incidence
   glm::dmat2 jitter_mm{0.0};  // display-plane offset (u, v) per unit of pixel jitter (columns: x, y)
 };
 
