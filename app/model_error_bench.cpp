@@ -48,7 +48,8 @@ void run_model_error_bench(const model_error_options& o) {
       if (!texture_path.empty()) texture = airr::load_image(texture_path).pixels;
       const airr::image_rgb* display = texture_path.empty() ? nullptr : &texture;
       const auto t0 = std::chrono::steady_clock::now();
-      const auto full = airr::compute_model_image(s, model, display);
+      const auto full = airr::compute_model_image(
+          s, model, display, airr::model_image_params::for_image(s.observer.width, s.observer.height));
       const double model_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       const airr::image_rgb first = airr::model_image_first_look(s, model, display);
 

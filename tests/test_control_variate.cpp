@@ -205,3 +205,41 @@ TEST(ModelImage, FirstLookIsTheModelImageCoarser) {
   EXPECT_LT(relative, 0.15);
   EXPECT_GT(relative, 0.0);  // it is a coarser image, not the same one
 }
+
+// trace_rows sends the camera rays of a row's pixels as coherent streams; every sample must be
+// the one a single ray gives (estimate_components), across a row that is not a whole number of
+// streams, with the model image subtracted and the components split.
+TEST(ControlVariate, StreamedCameraRaysGiveTheSamplesOfSingleRays) {
+  embree_device device;
+  tracer_scene ts;
+  build_tracer_scene(ts, device, chart_scene("rf-an", 100));
+  update_model_image(ts);
+  ASSERT_TRUE(ts.model);
+  const int w = ts.camera.width, y0 = 40, y1 = 44;
+  const std::uint64_t first = 5, count = 3;
+  std::vector<double> sums(std::size_t(w) * ts.camera.height * 3, 0.0), components(component_count * sums.size(), 0.0);
+  const std::atomic<bool> never{false};
+  std::uint64_t rays = 0;
+  ASSERT_TRUE(trace_rows(ts, y0, y1, first, count, sums, never, rays, nullptr, &components));
+  double worst = 0, largest = 0;
+  for (int y = y0; y < y1; ++y) {
+    for (int x = 0; x < w; ++x) {
+      const auto rotation = pixel_sequence_rotation(ts, x, y);
+      component_radiance single{};
+      for (std::uint64_t i = first; i < first + count; ++i) {
+        const component_radiance c = estimate_components(ts, x, y, i, rotation, rays);
+        for (int k = 0; k < component_count; ++k) single[std::size_t(k)] += c[std::size_t(k)];
+      }
+      const std::size_t p = std::size_t(y) * w + x;
+      for (int k = 0; k < component_count; ++k) {
+        const double streamed = components[3 * (component_count * p + std::size_t(k)) + 1];
+        worst = std::max(worst, std::abs(streamed - single[std::size_t(k)].y));
+        largest = std::max(largest, std::abs(streamed));
+      }
+      const double total = single[0].y + single[1].y + single[2].y + single[3].y;
+      worst = std::max(worst, std::abs(sums[3 * p + 1] - total));
+    }
+  }
+  EXPECT_GT(largest, 0.0);
+  EXPECT_LE(worst, 1e-5 * largest);
+}

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -21,6 +22,35 @@ embree_device::embree_device() {
 }
 
 embree_device::~embree_device() { rtcReleaseDevice(device_); }
+
+RTCRayHit make_ray_hit(const glm::dvec3& origin, const glm::dvec3& dir, float tnear) {
+  RTCRayHit rh{};
+  rh.ray.org_x = float(origin.x);
+  rh.ray.org_y = float(origin.y);
+  rh.ray.org_z = float(origin.z);
+  rh.ray.dir_x = float(dir.x);
+  rh.ray.dir_y = float(dir.y);
+  rh.ray.dir_z = float(dir.z);
+  rh.ray.tnear = tnear;
+  rh.ray.tfar = std::numeric_limits<float>::infinity();
+  rh.ray.mask = 0xffffffffu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  return rh;
+}
+
+void intersect(RTCScene scene, RTCRayHit& ray) {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  rtcIntersect1(scene, &ctx, &ray);
+}
+
+void intersect_coherent(RTCScene scene, RTCRayHit* rays, unsigned count) {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+  rtcIntersect1M(scene, &ctx, rays, count, sizeof(RTCRayHit));
+}
 
 embree_mesh_scene::embree_mesh_scene(const embree_device& device, const triangle_mesh& mesh) {
   scene_ = rtcNewScene(device.get());

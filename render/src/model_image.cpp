@@ -287,7 +287,7 @@ std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std
     }
     return k;
   };
-  constexpr std::uint64_t block = 16384;
+  constexpr std::uint64_t block = 65536;  // few partial kernels: each is as large as the kernel
   const std::size_t blocks = std::size_t((samples + block - 1) / block);
   std::vector<std::array<cv::Mat, 2>> parts(blocks);
   auto block_kernels = [&](std::size_t k) {
@@ -355,39 +355,44 @@ grid_spectrum spectrum_of(const image_rgb& padded) {
 }
 
 // out(x) = sum over offsets o of kernel(o) grid(x + o), the kernel's centre at offset 0 (the
-// prediction's sum, for every node at once).
-image_rgb correlate(const grid_spectrum& grid, const cv::Mat& kernel) {
+// prediction's sum, for every node at once); one matrix per distinct channel, as the spectrum.
+struct correlated_grid {
+  std::vector<cv::Mat> channels;
+  glm::vec3 at(const glm::dvec2& t) const {
+    const cv::Mat& first = channels.front();
+    const int x0 = int(std::floor(t.x)), y0 = int(std::floor(t.y));
+    if (x0 < 0 || y0 < 0 || x0 + 1 >= first.cols || y0 + 1 >= first.rows) return glm::vec3(0.0f);
+    const float fx = float(t.x - x0), fy = float(t.y - y0);
+    glm::vec3 v(0.0f);
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+      const float* r0 = channels[c].ptr<float>(y0);
+      const float* r1 = channels[c].ptr<float>(y0 + 1);
+      v[int(c)] = (r0[x0] * (1 - fx) + r0[x0 + 1] * fx) * (1 - fy) + (r1[x0] * (1 - fx) + r1[x0 + 1] * fx) * fy;
+    }
+    return channels.size() == 1 ? glm::vec3(v[0]) : v;
+  }
+};
+
+correlated_grid correlate(const grid_spectrum& grid, const cv::Mat& kernel) {
   const cv::Size size = grid.channels.front().size();
   const int r = kernel.rows / 2;
-  // The kernel with offset o at index o modulo the DFT's size.
-  cv::Mat wrapped = cv::Mat::zeros(size, CV_32F);
-  for (int y = -r; y <= r; ++y) {
-    const float* row = kernel.ptr<float>(y + r);
-    float* dst = wrapped.ptr<float>((y + size.height) % size.height);
-    for (int x = -r; x <= r; ++x) dst[(x + size.width) % size.width] = row[x + r];
-  }
   cv::Mat kernel_spectrum;
-  cv::dft(wrapped, kernel_spectrum);
-  image_rgb out;
-  out.width = grid.width;
-  out.height = grid.height;
-  out.rgb.resize(std::size_t(out.width) * out.height * 3);
-  const int n = int(grid.channels.size());
-  for (int c = 0; c < n; ++c) {
-    cv::Mat product, values;
-    cv::mulSpectrums(grid.channels[std::size_t(c)], kernel_spectrum, product, 0, true);
-    cv::dft(product, values, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT, grid.height);
-    for (int y = 0; y < out.height; ++y) {
-      const float* row = values.ptr<float>(y);
-      float* o = out.at(0, y);
-      for (int x = 0; x < out.width; ++x) {
-        if (n == 1) {
-          o[3 * x] = o[3 * x + 1] = o[3 * x + 2] = row[x];
-        } else {
-          o[3 * x + c] = row[x];
-        }
-      }
+  {
+    // The kernel with offset o at index o modulo the DFT's size.
+    cv::Mat wrapped = cv::Mat::zeros(size, CV_32F);
+    for (int y = -r; y <= r; ++y) {
+      const float* row = kernel.ptr<float>(y + r);
+      float* dst = wrapped.ptr<float>((y + size.height) % size.height);
+      for (int x = -r; x <= r; ++x) dst[(x + size.width) % size.width] = row[x + r];
     }
+    cv::dft(wrapped, kernel_spectrum);
+  }
+  correlated_grid out;
+  for (const cv::Mat& channel : grid.channels) {
+    cv::Mat product, values;
+    cv::mulSpectrums(channel, kernel_spectrum, product, 0, true);
+    cv::dft(product, values, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT, grid.height);
+    out.channels.push_back(values(cv::Rect(0, 0, grid.width, grid.height)));
   }
   return out;
 }
@@ -433,6 +438,15 @@ void assign_bin(const std::vector<model_bin>& bins, model_pixel& px) {
 
 }  // namespace
 
+model_image_params model_image_params::for_image(int width, int height) {
+  model_image_params p;
+  if (std::int64_t(width) * height < 256 * 256) {
+    p.texel_refine = 2;
+    p.core_radius_mm = 4;
+  }
+  return p;
+}
+
 model_image_params model_image_params::first_look() {
   model_image_params p;
   p.angle_bins = 2;
@@ -467,10 +481,10 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
   auto m = std::make_shared<model_image>();
   m->model = std::move(model);
   m->hm_factor = s.half_mirror.reflectance * s.half_mirror.transmittance;
-  // The grids' kernels stay within about 128 (fine) and 320 (tail) nodes of reach, however small
+  // The grids' kernels stay within about 384 (fine) and 320 (tail) nodes of reach, however small
   // the display: no finer grid than that pays.
   const double longer_mm = std::max(parts.src.width, parts.src.height);
-  const int fine_texels = std::clamp(int(longer_mm / (p.core_radius_mm / 128) / p.texel_refine), 8, p.max_texels);
+  const int fine_texels = std::clamp(int(longer_mm / (p.core_radius_mm / 384) / p.texel_refine), 8, p.max_texels);
   const int coarse_texels = std::clamp(int(longer_mm / (p.kernel_radius_mm / 320)), 4, p.tail_texels);
   const cv::Mat texels = display_texels(s, display, fine_texels);
   cv::Mat tail_texels = texels;
@@ -546,15 +560,15 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
     for (int k = k0; k < k1 && !cancelled(); ++k) {
       const std::array<cv::Mat, 2> kernels =
           bin_kernels(*m, m->bins[std::size_t(k)], std::size_t(k), p.psf_samples, s.seed, p.threads, cancel);
-      const image_rgb correlated[2] = {correlate(spectra[model_fine], kernels[model_fine]),
-                                       correlate(spectra[model_tail], kernels[model_tail])};
+      const correlated_grid correlated[2] = {correlate(spectra[model_fine], kernels[model_fine]),
+                                             correlate(spectra[model_tail], kernels[model_tail])};
       for (std::size_t i = 0; i < m->pixels.size(); ++i) {
         const model_pixel& px = m->pixels[i];
         if (!px.ok || (px.bin != k && px.bin + 1 != k)) continue;
         const bool upper = px.bin + 1 == k;
         const float weight = float((upper ? px.mix : 1 - px.mix) * px.profile);
         glm::vec3 v(0.0f);
-        for (int g : {model_fine, model_tail}) v += bilinear(correlated[g], px.node[g]);
+        for (int g : {model_fine, model_tail}) v += correlated[g].at(px.node[g]);
         float* out = shares[upper ? 1 : 0].rgb.data() + 3 * i;
         for (int c = 0; c < 3; ++c) out[c] = v[c] * weight;
       }

@@ -1,5 +1,6 @@
 #include "airr/render/tracer.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -12,6 +13,8 @@ namespace airr {
 
 // Surfaces are infinitely thin; new rays start this far along to skip the surface they leave.
 static constexpr float ray_epsilon_mm = 1e-3f;
+// Camera rays of this many neighbouring pixels are intersected together.
+static constexpr int camera_stream = 64;
 
 void build_tracer_scene(tracer_scene& ts, const embree_device& device, const scene& s, retro_model_list models) {
   // Everything that can fail is built first, so a bad edit leaves the previous state intact.
@@ -50,7 +53,8 @@ void update_model_image(tracer_scene& ts, const std::atomic<bool>* cancel) {
   ts.model.reset();
   if (!ts.use_model_image || ts.retro.empty()) return;
   try {
-    ts.model = compute_model_image(ts.layout, ts.retro.front(), ts.texture.get(), {}, cancel);
+    ts.model = compute_model_image(ts.layout, ts.retro.front(), ts.texture.get(),
+                                   model_image_params::for_image(ts.camera.width, ts.camera.height), cancel);
   } catch (const input_error&) {
     // A chief ray grazing a part's edge: the plain estimator serves.
   }
@@ -131,7 +135,9 @@ static sample_numbers draw_sample_numbers(const tracer_scene& ts, int px, int py
   return n;
 }
 
-static component_radiance trace_path(const tracer_scene& ts, int px, int py, sample_numbers n, std::uint64_t& rays);
+// `first_hit`: the camera ray's hit when it was traced already (in a stream), else null.
+static component_radiance trace_path(const tracer_scene& ts, int px, int py, sample_numbers n,
+                                     const RTCRayHit* first_hit, std::uint64_t& rays);
 
 static glm::vec3 total(const component_radiance& c) { return c[0] + c[1] + c[2] + c[3]; }
 
@@ -141,15 +147,19 @@ glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sam
 
 glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
                        const std::array<double, 6>& rotation, std::uint64_t& rays) {
-  return total(trace_path(ts, px, py, draw_sample_numbers(ts, px, py, sample_index, rotation), rays));
+  return total(trace_path(ts, px, py, draw_sample_numbers(ts, px, py, sample_index, rotation), nullptr, rays));
+}
+
+static component_radiance estimate_from(const tracer_scene& ts, int px, int py, const sample_numbers& n,
+                                        const RTCRayHit* first_hit, std::uint64_t& rays) {
+  component_radiance c = trace_path(ts, px, py, n, first_hit, rays);
+  if (ts.model) c[component_aerial] -= model_prediction(*ts.model, px, py, n.jitter, n.first_retro);
+  return c;
 }
 
 component_radiance estimate_components(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
                                        const std::array<double, 6>& rotation, std::uint64_t& rays) {
-  const sample_numbers n = draw_sample_numbers(ts, px, py, sample_index, rotation);
-  component_radiance c = trace_path(ts, px, py, n, rays);
-  if (ts.model) c[component_aerial] -= model_prediction(*ts.model, px, py, n.jitter, n.first_retro);
-  return c;
+  return estimate_from(ts, px, py, draw_sample_numbers(ts, px, py, sample_index, rotation), nullptr, rays);
 }
 
 glm::vec3 estimate_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
@@ -163,10 +173,14 @@ glm::vec3 model_value(const tracer_scene& ts, int px, int py) {
   return {p[0], p[1], p[2]};
 }
 
-static component_radiance trace_path(const tracer_scene& ts, int px, int py, sample_numbers n, std::uint64_t& rays) {
-  const pinhole_camera& cam = ts.camera;
+static camera_ray first_ray(const tracer_scene& ts, int px, int py, const sample_numbers& n) {
+  return make_camera_ray(ts.camera, px + n.jitter.x, py + n.jitter.y, n.lens);
+}
+
+static component_radiance trace_path(const tracer_scene& ts, int px, int py, sample_numbers n,
+                                     const RTCRayHit* first_hit, std::uint64_t& rays) {
   pcg32& rng = n.rng;
-  const camera_ray first = make_camera_ray(cam, px + n.jitter.x, py + n.jitter.y, n.lens);
+  const camera_ray first = first_ray(ts, px, py, n);
   bool first_retro = true;
   const auto& hm = ts.layout.half_mirror;
   const double hm_total = hm.reflectance + hm.transmittance;
@@ -179,22 +193,14 @@ static component_radiance trace_path(const tracer_scene& ts, int px, int py, sam
   while (pending > 0) {
     path_state p = stack[--pending];
     for (; p.depth < ts.layout.render.max_depth; ++p.depth) {
-      RTCRayHit rh{};
-      rh.ray.org_x = float(p.origin.x);
-      rh.ray.org_y = float(p.origin.y);
-      rh.ray.org_z = float(p.origin.z);
-      rh.ray.dir_x = float(p.dir.x);
-      rh.ray.dir_y = float(p.dir.y);
-      rh.ray.dir_z = float(p.dir.z);
-      rh.ray.tnear = p.depth == 0 ? 0.0f : ray_epsilon_mm;
-      rh.ray.tfar = std::numeric_limits<float>::infinity();
-      rh.ray.mask = 0xffffffffu;
-      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-      RTCIntersectContext ctx;
-      rtcInitIntersectContext(&ctx);
-      rtcIntersect1(ts.embree->get(), &ctx, &rh);
-      ++rays;
+      RTCRayHit rh;
+      if (p.depth == 0 && first_hit) {
+        rh = *first_hit;  // only the camera ray starts at depth 0
+      } else {
+        rh = make_ray_hit(p.origin, p.dir, p.depth == 0 ? 0.0f : ray_epsilon_mm);
+        intersect(ts.embree->get(), rh);
+        ++rays;
+      }
       if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
 
       const unsigned part = rh.hit.instID[0];
@@ -257,30 +263,46 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
                 std::vector<double>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays,
                 std::vector<double>* odd_sums, std::vector<double>* component_sums) {
   const int w = ts.camera.width;
+  std::vector<std::array<double, 6>> rotations(std::size_t(w), std::array<double, 6>{});
+  std::array<sample_numbers, camera_stream> numbers;
+  std::array<RTCRayHit, camera_stream> hits;
   for (int y = y0; y < y1; ++y) {
     if (cancel.load(std::memory_order_relaxed)) return false;
-    for (int x = 0; x < w; ++x) {
-      double* acc = sums.data() + 3 * (std::size_t(y) * w + x);
-      double* odd = odd_sums ? odd_sums->data() + 3 * (std::size_t(y) * w + x) : nullptr;
-      const std::array<double, 6> rotation = pixel_sequence_rotation(ts, x, y);
-      for (std::uint64_t i = first; i < first + count; ++i) {
-        const component_radiance c = estimate_components(ts, x, y, i, rotation, rays);
-        const glm::vec3 L = total(c);
-        if (component_sums) {
-          double* comp = component_sums->data() + 3 * component_count * (std::size_t(y) * w + x);
-          for (int k = 0; k < component_count; ++k) {
-            comp[3 * k] += c[std::size_t(k)].x;
-            comp[3 * k + 1] += c[std::size_t(k)].y;
-            comp[3 * k + 2] += c[std::size_t(k)].z;
-          }
+    for (int x = 0; x < w; ++x) rotations[std::size_t(x)] = pixel_sequence_rotation(ts, x, y);
+    // Each sample index across a run of the row's pixels: their camera rays go out as one
+    // coherent stream. A pixel still gets its samples in order.
+    for (std::uint64_t i = first; i < first + count; ++i) {
+      for (int x0 = 0; x0 < w; x0 += camera_stream) {
+        const int n = std::min(camera_stream, w - x0);
+        for (int k = 0; k < n; ++k) {
+          numbers[std::size_t(k)] = draw_sample_numbers(ts, x0 + k, y, i, rotations[std::size_t(x0 + k)]);
+          const camera_ray r = first_ray(ts, x0 + k, y, numbers[std::size_t(k)]);
+          hits[std::size_t(k)] = make_ray_hit(r.origin, r.dir);
         }
-        acc[0] += L.x;
-        acc[1] += L.y;
-        acc[2] += L.z;
-        if (odd && (i & 1)) {
-          odd[0] += L.x;
-          odd[1] += L.y;
-          odd[2] += L.z;
+        intersect_coherent(ts.embree->get(), hits.data(), unsigned(n));
+        rays += std::uint64_t(n);
+        for (int k = 0; k < n; ++k) {
+          const int x = x0 + k;
+          double* acc = sums.data() + 3 * (std::size_t(y) * w + x);
+          double* odd = odd_sums ? odd_sums->data() + 3 * (std::size_t(y) * w + x) : nullptr;
+          const component_radiance c = estimate_from(ts, x, y, numbers[std::size_t(k)], &hits[std::size_t(k)], rays);
+          const glm::vec3 L = total(c);
+          if (component_sums) {
+            double* comp = component_sums->data() + 3 * component_count * (std::size_t(y) * w + x);
+            for (int j = 0; j < component_count; ++j) {
+              comp[3 * j] += c[std::size_t(j)].x;
+              comp[3 * j + 1] += c[std::size_t(j)].y;
+              comp[3 * j + 2] += c[std::size_t(j)].z;
+            }
+          }
+          acc[0] += L.x;
+          acc[1] += L.y;
+          acc[2] += L.z;
+          if (odd && (i & 1)) {
+            odd[0] += L.x;
+            odd[1] += L.y;
+            odd[2] += L.z;
+          }
         }
       }
     }

@@ -43,6 +43,13 @@ class embree_mesh_scene {
 // mirror, then the retroreflective sheets in order from part_first_sheet.
 enum part_id : unsigned { part_source = 0, part_half_mirror = 1, part_first_sheet = 2 };
 
+// A ray to intersect from `tnear` on, with no hit yet.
+RTCRayHit make_ray_hit(const glm::dvec3& origin, const glm::dvec3& dir, float tnear = 0.0f);
+// Closest hits of a single ray, and of `count` coherent rays (camera rays of neighbouring
+// pixels) as one stream, which Embree traces in packets.
+void intersect(RTCScene scene, RTCRayHit& ray);
+void intersect_coherent(RTCScene scene, RTCRayHit* rays, unsigned count);
+
 class embree_layout_scene {
  public:
   // Mesh files per part (empty: the built-in unit panel); the same file is built once and instanced.
