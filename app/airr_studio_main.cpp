@@ -158,6 +158,7 @@ int main(int argc, char** argv) {
   st.session_options.threads = opt.threads;
   st.session_options.background_priority = true;
   st.session_options.first_look = true;
+  st.session_options.quick_model_image = true;
   st.session_options.components = true;  // the render view can show each
   for (int k = 0; k < airr::component_count; ++k) {
     if (opt.component == airr::component_names[k]) st.view.component = k;
@@ -191,9 +192,17 @@ int main(int argc, char** argv) {
   int settle_frames = 0;
   int exit_code = 0;
   double edit_at = -1;  // when the scripted --edit was made
+  // A second after the last input the window redraws four times a second, or at the next event:
+  // redrawing continuously would take the cores from the tracer (on software OpenGL, all of them).
+  const bool interactive = opt.frames == 0 && opt.bench_edits == 0;
+  double last_input = 0;
 
   while (true) {
-    glfwPollEvents();
+    if (interactive && now() - last_input > 1.0) {
+      glfwWaitEventsTimeout(0.25);
+    } else {
+      glfwPollEvents();
+    }
     if (glfwWindowShouldClose(window)) {
       glfwSetWindowShouldClose(window, GLFW_FALSE);
       if (opt.frames > 0 || !airr::ui::studio_dirty(st)) break;
@@ -212,6 +221,11 @@ int main(int argc, char** argv) {
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
     airr::ui::studio_frame(st, now());
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.MouseDelta.x != 0 || io.MouseDelta.y != 0 || io.MouseWheel != 0 || io.MouseWheelH != 0 ||
+        ImGui::IsAnyMouseDown() || ImGui::IsAnyItemActive() || !io.InputQueueCharacters.empty()) {
+      last_input = now();
+    }
     ImGui::Render();
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(window, &fw, &fh);
@@ -264,6 +278,8 @@ int main(int argc, char** argv) {
         const bool due = opt.screenshot_after <= 0 ? st.first_image_uploaded : now() - edit_at >= opt.screenshot_after;
         if (!due) {
           glfwSwapBuffers(window);
+          // Meanwhile the window idles as it would a second after the user's edit.
+          if (now() - edit_at > 1.0) glfwWaitEventsTimeout(0.25);
           continue;
         }
       } else if (screenshot_pending) {

@@ -438,9 +438,9 @@ void assign_bin(const std::vector<model_bin>& bins, model_pixel& px) {
 
 }  // namespace
 
-model_image_params model_image_params::for_image(int width, int height) {
+model_image_params model_image_params::for_image(int width, int height, bool quick) {
   model_image_params p;
-  if (std::int64_t(width) * height < 256 * 256) {
+  if (quick || std::int64_t(width) * height < 256 * 256) {
     p.texel_refine = 2;
     p.core_radius_mm = 4;
   }

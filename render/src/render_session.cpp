@@ -57,7 +57,7 @@ std::vector<float> render_snapshot::even_rgb() const {
 
 render_session::render_session(const scene& s, session_params p) : params_(p), target_spp_(p.target_spp) {
   build_tracer_scene(scene_, device_, s);
-  update_model_image(scene_);
+  update_model_image(scene_, nullptr, params_.quick_model_image);
   snapshot_.width = scene_.camera.width;
   snapshot_.height = scene_.camera.height;
   snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
@@ -343,7 +343,7 @@ void render_session::run() {
       cancel_ = false;
       if (model_pending) {
         lock.unlock();
-        update_model_image(scene_, &cancel_);
+        update_model_image(scene_, &cancel_, params_.quick_model_image);
         lock.lock();
         if (cancel_) continue;  // an edit or a pause came first: computed again when the worker resumes
         model_pending = false;

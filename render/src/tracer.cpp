@@ -49,12 +49,12 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   ts.embree->set_transforms(transforms);
 }
 
-void update_model_image(tracer_scene& ts, const std::atomic<bool>* cancel) {
+void update_model_image(tracer_scene& ts, const std::atomic<bool>* cancel, bool quick) {
   ts.model.reset();
   if (!ts.use_model_image || ts.retro.empty()) return;
   try {
     ts.model = compute_model_image(ts.layout, ts.retro.front(), ts.texture.get(),
-                                   model_image_params::for_image(ts.camera.width, ts.camera.height), cancel);
+                                   model_image_params::for_image(ts.camera.width, ts.camera.height, quick), cancel);
   } catch (const input_error&) {
     // A chief ray grazing a part's edge: the plain estimator serves.
   }

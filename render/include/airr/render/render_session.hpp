@@ -29,6 +29,9 @@ struct session_params {
   // After an edit, the model image's first look (model_image_first_look) is shown before any
   // traced sample, from a thread of its own at normal priority, where the layout has one.
   bool first_look = false;
+  // The tracer's control variate is the quick model image (model_image_params::for_image), so
+  // that tracing starts sooner after an edit.
+  bool quick_model_image = false;
   // Also accumulate the image's components (tracer.hpp, component_names), for snapshots'
   // component_image.
   bool components = false;

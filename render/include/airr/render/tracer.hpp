@@ -43,9 +43,10 @@ struct tracer_scene {
 void build_tracer_scene(tracer_scene& ts, const embree_device& device, const scene& s, retro_model_list models = {});
 
 // Computes the model image for the built layout (or leaves none when use_model_image is off or
-// no pixel sees the first sheet, or `cancel` is set while it runs). Building clears it: it takes
-// longer than the rest (about a second at 512 x 512), so the session shows its previews first.
-void update_model_image(tracer_scene& ts, const std::atomic<bool>* cancel = nullptr);
+// no pixel sees the first sheet, or `cancel` is set while it runs), at
+// model_image_params::for_image(width, height, quick). Building clears it: it takes longer than
+// the rest (about 4 s at 512 x 512, 1.4 s quick), so the session shows its previews first.
+void update_model_image(tracer_scene& ts, const std::atomic<bool>* cancel = nullptr, bool quick = false);
 
 // The components of an image (spec section 8), by what a path met before the display: the aerial
 // image (at least one retroreflection), the display seen directly (no half-mirror reflection),
