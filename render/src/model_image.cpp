@@ -245,7 +245,7 @@ void for_each_corner(const glm::dvec2& t, F&& f) {
 }
 
 // The grid's bilinear surface at `base` plus the offset `t`, spread over the four nodes around it
-// as for_each_corner does: four bilinear reads, which together are one 3 x 3 stencil of texels.
+// as for_each_corner does: four bilinear reads, which together are one 3 x 3 stencil of nodes.
 glm::vec3 spread_bilinear(const image_rgb& grid, const glm::dvec2& base, const glm::dvec2& t) {
   const glm::dvec2 b = glm::floor(base), n = glm::floor(t);
   const int x0 = int(b.x + n.x), y0 = int(b.y + n.y);

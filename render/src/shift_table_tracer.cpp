@@ -150,21 +150,9 @@ void trace_ray(RTCScene scene, const std::vector<int>& face_of, const glm::dvec3
   glm::dvec3 org = origin, dir = d;
   int reflections = 0;
   unsigned faces_hit = 0;
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
   while (reflections <= max_reflections) {
-    RTCRayHit rh{};
-    rh.ray.org_x = float(org.x);
-    rh.ray.org_y = float(org.y);
-    rh.ray.org_z = float(org.z);
-    rh.ray.dir_x = float(dir.x);
-    rh.ray.dir_y = float(dir.y);
-    rh.ray.dir_z = float(dir.z);
-    rh.ray.tnear = 0.f;
-    rh.ray.tfar = std::numeric_limits<float>::infinity();
-    rh.ray.mask = 0xffffffffu;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene, &ctx, &rh);
+    RTCRayHit rh = make_ray_hit(org, dir);
+    intersect(scene, rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
     ++reflections;
     faces_hit |= 1u << face_of[rh.hit.primID];
