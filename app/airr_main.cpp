@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   add_sweep_command(app);
   add_fit_command(app);
   add_viewzone_command(app);
+  add_export_gltf_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,6 +1,7 @@
 // airr bench: tracer rays/s, raw Embree rays/s on the same geometry and ray count (rtcIntersect1
 // and coherent streams), their ratios, and the render session's latency from an edit to its first
-// new image; with --noise the time to a noise level (noise_bench.cpp).
+// new image; with --noise the time to a noise level (noise_bench.cpp), with --prop-triangles what a
+// large prop costs (prop_bench.cpp).
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -21,6 +22,7 @@
 #include "commands.hpp"
 #include "model_error_bench.hpp"
 #include "noise_bench.hpp"
+#include "prop_bench.hpp"
 
 namespace {
 
@@ -75,6 +77,7 @@ void add_bench_command(CLI::App& app) {
     noise_bench_options noise_options;
     bool model_error = false;
     std::vector<double> model_error_tilts;
+    std::uint64_t prop_triangles = 0;
   };
   auto opt = std::make_shared<options>();
   auto* cmd = app.add_subcommand(
@@ -90,6 +93,10 @@ void add_bench_command(CLI::App& app) {
                 "Instead: the model image's (and the designer's first look's) relative RMS difference from the tracer "
                 "per preset and sheet tilt 0-45 deg (default 256 x 256, --spp 128)");
   cmd->add_option("--tilts", opt->model_error_tilts, "With --model-error: sheet tilts (deg)");
+  cmd->add_option("--prop-triangles", opt->prop_triangles,
+                  "Instead: what a housing prop of this many triangles costs (load, Embree build, rays/s with and "
+                  "without it)")
+      ->check(CLI::Range(10, 20'000'000));
   cmd->add_option("--compare", opt->noise_options.compare,
                   "With --noise: also measure another build's airr executable, side by side");
   cmd->add_option("--noise-spp", opt->noise_options.spp,
@@ -113,6 +120,10 @@ void add_bench_command(CLI::App& app) {
       m.threads = opt->noise_options.threads;
       if (m.spp < 2) throw airr::input_error("--model-error needs --spp 2 or more (the noise comes from two halves)");
       run_model_error_bench(m);
+      return;
+    }
+    if (opt->prop_triangles > 0) {
+      run_prop_bench(opt->scene_path, opt->prop_triangles, opt->spp);
       return;
     }
     if (opt->noise) {

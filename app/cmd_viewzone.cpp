@@ -14,6 +14,7 @@
 #include "airr/optics/layout.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "airr/optics/viewing_zone.hpp"
+#include "airr/render/prop_hits.hpp"
 #include "commands.hpp"
 #include "progress_bar.hpp"
 
@@ -119,7 +120,8 @@ void add_viewzone_command(CLI::App& app) {
     if (opt->full) {
       map = airr::full_viewing_zone(s, g, {.rows_per_eye = opt->rows, .render_spp = opt->spp}, report);
     } else {
-      const airr::viewing_zone_map geometric = airr::geometric_viewing_zone(s, g, opt->rows, report);
+      const airr::viewing_zone_map geometric =
+          airr::geometric_viewing_zone(s, g, airr::scene_prop_hits(s), opt->rows, report);
       map.grid = geometric.grid;
       map.visible = geometric.visible;
       map.seconds = geometric.seconds;
@@ -138,6 +140,10 @@ void add_viewzone_command(CLI::App& app) {
       for (double v : map.stray_ratio) stray_hi = std::isfinite(v) ? std::max(stray_hi, v) : stray_hi;
       columns.push_back({"stray_ratio", "stray light / aerial image, inside its outline", "_stray", &map.stray_ratio, 0,
                          stray_hi > 0 ? stray_hi : 1});
+      double direct_hi = 0;
+      for (double v : map.direct) direct_hi = std::isfinite(v) ? std::max(direct_hi, v) : direct_hi;
+      columns.push_back({"direct", "display seen directly inside the aerial outline / its own luminance", "_direct",
+                         &map.direct, 0, direct_hi > 0 ? direct_hi : 1});
     }
     airr::write_file_atomic(opt->csv, zone_csv(s, g, columns));
     double best = 0, sum = 0;

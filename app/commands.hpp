@@ -14,6 +14,7 @@ void add_psf_command(CLI::App& app);
 void add_sweep_command(CLI::App& app);
 void add_fit_command(CLI::App& app);
 void add_viewzone_command(CLI::App& app);
+void add_export_gltf_command(CLI::App& app);
 
 // --linear-input / --srgb-input: how integer image files are decoded (default: the loader's rule).
 inline void add_image_encoding_flags(CLI::App* cmd, airr::image_encoding& encoding) {

@@ -1,12 +1,14 @@
 // The scene format: exact round trips, atomic saves, and one clear error per kind of bad input.
 #include <filesystem>
 #include <fstream>
+#include <functional>
 
 #include <gtest/gtest.h>
 
 #include "airr/optics/assets.hpp"
 #include "airr/optics/error.hpp"
 #include "airr/optics/scene_json.hpp"
+#include "gltf_builder.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -197,4 +199,53 @@ TEST(SceneJson, OverridesReachFieldsTheFileOmits) {
             }).find("no element 'retroreflectors.3'"),
             std::string::npos);
   EXPECT_NE(error_of([] { parse_override("no-equals-sign"); }), "");
+}
+
+TEST(SceneJson, PropsRoundTripAndBadValuesNameTheProp) {
+  test::temp_dir dir;
+  test::gltf_builder b;
+  const int mesh = b.add_mesh({{b.add_positions({0, 0, 0, 0.1f, 0, 0, 0, 0.1f, 0}), -1, -1}});
+  b.add_node({{"name", "Hood"}, {"mesh", mesh}});
+  b.write(dir.file("hood.glb"), test::gltf_builder::storage::glb);
+
+  scene s = test::uniform_source_scene(20);
+  s.base_dir = dir.path.string();
+  prop_params p;
+  p.name = "hood";
+  p.mesh = "hood.glb";
+  p.node = "Hood";
+  p.scale = 0.001;
+  p.pose.center_mm = {1.0 / 3.0, -120, 40};
+  p.pose.yaw_deg = 12.5;
+  p.surface = prop_surface::diffuse;
+  p.albedo = {0.1, 0.2, 0.3};
+  p.visible = false;
+  s.props = {p, prop_params{.name = "plain", .mesh = "hood.glb"}};
+  save_scene(s, dir.file("s.json"));
+  const scene back = load_scene(dir.file("s.json"));
+  EXPECT_EQ(back.props, s.props);
+  // --set reaches a prop's fields.
+  EXPECT_EQ(load_scene(dir.file("s.json"), {parse_override("props.1.surface=mirror")}).props[1].surface,
+            prop_surface::mirror);
+
+  auto edited = [&](const std::function<void(nlohmann::json&)>& edit) {
+    nlohmann::json j = scene_to_json(s);
+    edit(j);
+    std::ofstream(dir.file("bad.json")) << j.dump();
+    return error_of([&] { load_scene(dir.file("bad.json")); });
+  };
+  EXPECT_NE(edited([](auto& j) {
+              j["props"][1]["albedo"] = {0.5, 2, 0.5};
+            }).find("props[1].albedo"),
+            std::string::npos);
+  EXPECT_NE(edited([](auto& j) { j["props"][0]["surface"] = "shiny"; }).find("props[0].surface: unknown value 'shiny'"),
+            std::string::npos);
+  EXPECT_NE(edited([](auto& j) { j["props"][0].erase("mesh"); }).find("props[0].mesh: missing"), std::string::npos);
+  EXPECT_NE(edited([](auto& j) { j["props"][0]["scale"] = 0; }).find("props[0].scale"), std::string::npos);
+  EXPECT_NE(edited([](auto& j) { j["props"][0]["wings"] = 2; }).find("props[0].wings: unknown key"), std::string::npos);
+  const std::string missing_node = edited([](auto& j) { j["props"][1]["node"] = "Visor"; });
+  EXPECT_NE(missing_node.find("props[1]"), std::string::npos) << missing_node;
+  EXPECT_NE(missing_node.find("no node named 'Visor'"), std::string::npos) << missing_node;
+  const std::string missing_file = edited([](auto& j) { j["props"][0]["mesh"] = "gone.glb"; });
+  EXPECT_NE(missing_file.find("props[0].mesh: file not found"), std::string::npos) << missing_file;
 }

@@ -92,7 +92,7 @@ TEST(ViewingZone, VisibleFractionMatchesPolygonClippingOnA21x21Grid) {
     g.distance_mm = 300;
     g.x_min = g.y_min = -250;
     g.x_max = g.y_max = 250;
-    const viewing_zone_map map = geometric_viewing_zone(s, g);
+    const viewing_zone_map map = geometric_viewing_zone(s, g, {});
     ASSERT_EQ(map.visible.size(), 441u);
     double worst = 0;
     int partial = 0;
@@ -134,17 +134,17 @@ TEST(ViewingZone, BadGridsAreNamed) {
   const scene s;
   eye_grid g;
   g.nx = 0;
-  EXPECT_THROW(geometric_viewing_zone(s, g), input_error);
+  EXPECT_THROW(geometric_viewing_zone(s, g, {}), input_error);
   g = {};
   g.x_max = std::nan("");
-  EXPECT_THROW(geometric_viewing_zone(s, g), input_error);
+  EXPECT_THROW(geometric_viewing_zone(s, g, {}), input_error);
   g = {};
   g.distance_mm = -1;
-  EXPECT_THROW(geometric_viewing_zone(s, g), input_error);
+  EXPECT_THROW(geometric_viewing_zone(s, g, {}), input_error);
   g = {};
   g.kind = eye_grid::shape::sphere;
   g.y_max = 95;
-  EXPECT_THROW(geometric_viewing_zone(s, g), input_error);
+  EXPECT_THROW(geometric_viewing_zone(s, g, {}), input_error);
 }
 
 TEST(ViewingZone, PlacingTheObserverPutsItAtThePointsCoordinates) {

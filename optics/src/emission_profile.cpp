@@ -1,11 +1,10 @@
 #include "airr/optics/emission_profile.hpp"
 
 #include <filesystem>
-#include <map>
-#include <mutex>
 
 #include "airr/optics/csv_table.hpp"
 #include "airr/optics/error.hpp"
+#include "airr/optics/files.hpp"
 #include "airr/optics/interpolate.hpp"
 
 namespace airr {
@@ -34,20 +33,8 @@ emission_profile read_emission_profile(const std::string& path) {
 }
 
 std::shared_ptr<const emission_profile> load_emission_profile(const std::string& path) {
-  static std::mutex mutex;
-  static std::map<std::string, std::pair<std::filesystem::file_time_type, std::shared_ptr<const emission_profile>>>
-      cache;
-  std::error_code ec;
-  const auto stamp = std::filesystem::last_write_time(path, ec);
-  {
-    std::lock_guard lock(mutex);
-    const auto it = cache.find(path);
-    if (!ec && it != cache.end() && it->second.first == stamp) return it->second.second;
-  }
-  auto p = std::make_shared<const emission_profile>(read_emission_profile(path));
-  std::lock_guard lock(mutex);
-  cache[path] = {stamp, p};
-  return p;
+  static file_cache<emission_profile> cache;
+  return cache.get(path, path, [&] { return std::make_shared<const emission_profile>(read_emission_profile(path)); });
 }
 
 }  // namespace airr

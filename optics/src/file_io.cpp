@@ -53,6 +53,14 @@ std::string rebase_path(const std::string& path, const std::string& old_base, co
   return fs::path(resolve_path(path, old_base)).lexically_relative(new_base).string();
 }
 
+std::optional<file_stamp> stamp_of(const std::string& path) {
+  std::error_code ec_time, ec_size;
+  const auto mtime = fs::last_write_time(path, ec_time);
+  const auto size = fs::file_size(path, ec_size);
+  if (ec_time || ec_size) return std::nullopt;
+  return file_stamp{mtime, size};
+}
+
 std::string absolute_path(const std::string& path) { return fs::absolute(path).lexically_normal().string(); }
 
 nlohmann::json parse_json(std::string_view text, const std::string& origin) {

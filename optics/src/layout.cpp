@@ -1,5 +1,6 @@
 #include "airr/optics/layout.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "airr/optics/error.hpp"
@@ -37,6 +38,25 @@ glm::dmat3 pose_rotation(const pose& p) {
   const glm::dmat3 rx(glm::dvec3(1, 0, 0), glm::dvec3(0, x[1], x[0]), glm::dvec3(0, -x[0], x[1]));
   const glm::dmat3 rz(glm::dvec3(z[1], z[0], 0), glm::dvec3(-z[0], z[1], 0), glm::dvec3(0, 0, 1));
   return ry * rx * rz;
+}
+
+pose pose_from_rotation(const glm::dmat3& r, const glm::dvec3& center) {
+  const glm::dvec3 n = r[2];
+  pose p;
+  p.center_mm = {center.x, center.y, center.z};
+  p.pitch_deg = degrees(std::asin(std::clamp(n.y, -1.0, 1.0)));
+  p.yaw_deg = std::hypot(n.x, n.z) > 1e-12 ? degrees(std::atan2(n.x, n.z)) : 0.0;
+  // What is left after yaw and pitch is the roll about the normal.
+  const glm::dvec3 u = glm::transpose(pose_rotation(p)) * r[0];
+  p.roll_deg = degrees(std::atan2(u.y, u.x));
+  return p;
+}
+
+glm::dmat4 prop_transform(const prop_params& p) {
+  const glm::dmat3 r = pose_rotation(p.pose) * p.scale;
+  glm::dmat4 m(r);
+  m[3] = glm::dvec4(p.pose.center_mm[0], p.pose.center_mm[1], p.pose.center_mm[2], 1.0);
+  return m;
 }
 
 part_frame pose_frame(const pose& p, double width_mm, double height_mm) {

@@ -2,8 +2,6 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <map>
-#include <mutex>
 
 #include "airr/optics/assets.hpp"
 #include "airr/optics/error.hpp"
@@ -77,29 +75,10 @@ sheet_preset preset_from_json(const json& j, const std::string& origin) {
 
 sheet_preset load_preset(const std::string& name_or_path, const std::string& base_dir) {
   const std::string path = resolve_preset_path(name_or_path, base_dir);
-  // Cached by path, modification time and size, so the designer's frame loop does not re-read it;
-  // a changed file is read again.
-  struct entry {
-    std::filesystem::file_time_type mtime;
-    std::uintmax_t size = 0;
-    sheet_preset preset;
-  };
-  static std::mutex mutex;
-  static std::map<std::string, entry> cache;
-  std::error_code ec_time, ec_size;
-  const auto mtime = std::filesystem::last_write_time(path, ec_time);
-  const auto size = std::filesystem::file_size(path, ec_size);
-  if (!ec_time && !ec_size) {
-    std::lock_guard lock(mutex);
-    const auto it = cache.find(path);
-    if (it != cache.end() && it->second.mtime == mtime && it->second.size == size) return it->second.preset;
-  }
-  sheet_preset preset = preset_from_json(read_json_file(path), path);
-  if (!ec_time && !ec_size) {
-    std::lock_guard lock(mutex);
-    cache[path] = {mtime, size, preset};
-  }
-  return preset;
+  // Cached while the file is unchanged, so the designer's frame loop does not re-read it.
+  static file_cache<sheet_preset> cache;
+  return *cache.get(path, path,
+                    [&] { return std::make_shared<const sheet_preset>(preset_from_json(read_json_file(path), path)); });
 }
 
 static json values_to_json(const std::vector<double>& v) { return v.size() == 1 ? json(v[0]) : json(v); }

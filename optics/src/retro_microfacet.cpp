@@ -229,9 +229,7 @@ microfacet_trace microfacet_retro::trace(const glm::dvec3& wi, retro_samples u) 
   const double p_retro = std::min(1.0, era(x_deg, phi_deg));
   if (u.lobe.y >= p_retro) {
     out.branch = microfacet_branch::diffuse;
-    const double s = std::sqrt(u.shift.x);
-    const double phi = 2 * pi * u.shift.y;
-    out.sample = {{s * std::cos(phi), s * std::sin(phi), std::sqrt(std::max(0.0, 1 - u.shift.x))}, {0, 0}, mu_};
+    out.sample = {cosine_hemisphere(u.shift), {0, 0}, mu_};
     return out;
   }
 

@@ -8,8 +8,10 @@
 
 #include "airr/optics/emission_profile.hpp"
 #include "airr/optics/error.hpp"
+#include "airr/optics/gltf_layout.hpp"
 #include "airr/optics/json_reader.hpp"
 #include "airr/optics/layout.hpp"
+#include "airr/optics/mesh_gltf.hpp"
 #include "airr/optics/preset.hpp"
 #include "airr/optics/retro_model.hpp"
 
@@ -26,6 +28,7 @@ scene rebase_scene_paths(const scene& s, const std::string& new_dir) {
   rebase(out.source.mesh);
   rebase(out.source.emission_profile);
   rebase(out.half_mirror.mesh);
+  for (auto& p : out.props) rebase(p.mesh);
   for (auto& r : out.retroreflectors) {
     rebase(r.mesh);
     const retro_model_kind& kind = find_retro_model_kind(r.model.type);
@@ -52,6 +55,17 @@ static json part_to_json(const part_params& p) {
   return {{"mesh", p.mesh}, {"width_mm", p.width_mm}, {"height_mm", p.height_mm}, {"pose", pose_to_json(p.pose)}};
 }
 
+static json prop_to_json(const prop_params& p) {
+  return {{"name", p.name},
+          {"mesh", p.mesh},
+          {"node", p.node},
+          {"scale", p.scale},
+          {"pose", pose_to_json(p.pose)},
+          {"surface", prop_surface_names[int(p.surface)]},
+          {"albedo", p.albedo},
+          {"visible", p.visible}};
+}
+
 static const char* placement_name(observer_placement p) { return p == observer_placement::orbit ? "orbit" : "look_at"; }
 static const char* lens_name(observer_lens l) { return l == observer_lens::pinhole ? "pinhole" : "thin_lens"; }
 
@@ -71,7 +85,7 @@ json scene_to_json(const scene& s) {
     sheets.push_back(j);
   }
   const observer_params& o = s.observer;
-  return {
+  json out = {
       {"format", "airr-scene"},
       {"version", s.version},
       {"seed", s.seed},
@@ -94,6 +108,13 @@ json scene_to_json(const scene& s) {
         {"height", o.height}}},
       {"render", {{"max_depth", s.render.max_depth}}},
   };
+  // Written only when there are any, so layouts without props keep their form.
+  if (!s.props.empty()) {
+    json props = json::array();
+    for (const auto& p : s.props) props.push_back(prop_to_json(p));
+    out["props"] = props;
+  }
+  return out;
 }
 
 // ---------------------------------------------------------------- reading
@@ -148,6 +169,18 @@ static void read_enum(json_reader& r, const std::string& key, Enum& out, const s
     list += (i ? ", " : "") + std::string(names[i]);
   }
   r.fail(r.field(key), "unknown value '" + v + "' (" + list + ")");
+}
+
+static void read_prop(json_reader r, prop_params& p) {
+  r.string("name", p.name);
+  p.mesh = r.string("mesh");
+  r.string("node", p.node);
+  r.number("scale", p.scale);
+  if (r.has("pose")) read_pose(r.child("pose"), p.pose);
+  read_enum(r, "surface", p.surface, std::array{"absorber", "diffuse", "mirror", "material"});
+  r.numbers("albedo", p.albedo);
+  r.boolean("visible", p.visible);
+  r.finish();
 }
 
 static void read_observer(json_reader r, observer_params& o) {
@@ -207,6 +240,15 @@ static scene scene_from_json_v2(json_reader& r) {
       c.finish();
     }
   }
+  if (r.has("props")) {
+    const json& list = r.raw("props");
+    if (!list.is_array() || list.size() > std::size_t(max_props)) {
+      r.fail("props", "must be an array of at most " + std::to_string(max_props) + " props");
+    }
+    s.props.assign(list.size(), prop_params{});
+    for (std::size_t i = 0; i < list.size(); ++i)
+      read_prop(json_reader(list[i], r.origin(), "props[" + std::to_string(i) + "]"), s.props[i]);
+  }
   if (r.has("observer")) read_observer(r.child("observer"), s.observer);
   if (r.has("render")) {
     auto c = r.child("render");
@@ -262,10 +304,13 @@ struct checker {
     positive(field + ".height_mm", p.height_mm);
     range(field + ".width_mm", p.width_mm, 0, 1e5);
     range(field + ".height_mm", p.height_mm, 0, 1e5);
-    position(field + ".pose.center_mm", p.pose.center_mm);
-    range(field + ".pose.yaw_deg", p.pose.yaw_deg, -360, 360);
-    range(field + ".pose.pitch_deg", p.pose.pitch_deg, -360, 360);
-    range(field + ".pose.roll_deg", p.pose.roll_deg, -360, 360);
+    pose(field + ".pose", p.pose);
+  }
+  void pose(const std::string& field, const airr::pose& p) const {
+    position(field + ".center_mm", p.center_mm);
+    range(field + ".yaw_deg", p.yaw_deg, -360, 360);
+    range(field + ".pitch_deg", p.pitch_deg, -360, 360);
+    range(field + ".roll_deg", p.roll_deg, -360, 360);
   }
 };
 }  // namespace
@@ -293,6 +338,15 @@ void validate_scene(const scene& s, const std::string& origin) {
     } catch (const input_error& e) {
       throw input_error(origin + ": " + e.what());
     }
+  }
+  if (s.props.size() > std::size_t(max_props)) c.fail("props", "at most " + std::to_string(max_props) + " props");
+  for (std::size_t i = 0; i < s.props.size(); ++i) {
+    const std::string where = "props[" + std::to_string(i) + "]";
+    const prop_params& p = s.props[i];
+    if (p.mesh.empty()) c.fail(where + ".mesh", "names no file");
+    c.range(where + ".scale", p.scale, 1e-6, 1e6);
+    c.pose(where + ".pose", p.pose);
+    for (double a : p.albedo) c.range(where + ".albedo", a, 0, 1);
   }
   const observer_params& o = s.observer;
   c.range("observer.azimuth_deg", o.azimuth_deg, -360, 360);
@@ -329,6 +383,7 @@ void validate_scene_files(const scene& s, const std::string& origin) {
   need("source.mesh", s.source.mesh);
   need("source.emission_profile", s.source.emission_profile);
   need("half_mirror.mesh", s.half_mirror.mesh);
+  for (std::size_t i = 0; i < s.props.size(); ++i) need("props[" + std::to_string(i) + "].mesh", s.props[i].mesh);
   for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) {
     const std::string where = "retroreflectors[" + std::to_string(i) + "]";
     const retroreflector_params& r = s.retroreflectors[i];
@@ -349,6 +404,13 @@ retro_model_list check_scene(const scene& s, const std::string& origin) {
   validate_scene_files(s, origin);
   check_layout(s, origin);
   if (!s.source.emission_profile.empty()) load_emission_profile(resolve_scene_path(s, s.source.emission_profile));
+  for (std::size_t i = 0; i < s.props.size(); ++i) {
+    try {
+      cached_prop_mesh(resolve_scene_path(s, s.props[i].mesh), s.props[i].node);
+    } catch (const input_error& e) {
+      throw input_error(origin + ": props[" + std::to_string(i) + "]: " + e.what());
+    }
+  }
   retro_model_list models;
   for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) {
     const std::string where = "retroreflectors[" + std::to_string(i) + "]";
@@ -586,19 +648,25 @@ scene with_overrides(scene s, const std::vector<scene_override>& overrides, cons
   return s;
 }
 
-scene parse_scene(const std::string& text, const std::string& origin, const std::string& base_dir,
-                  const std::vector<scene_override>& overrides) {
+// A scene document (JSON form) read, overridden, given its folder and checked.
+static scene scene_from_document(const json& j, const std::string& origin, const std::string& base_dir,
+                                 const std::vector<scene_override>& overrides) {
   const std::string where = overrides.empty() ? origin : origin + " (with --set)";
-  scene s = with_overrides(scene_from_json(parse_json(text, origin), origin), overrides, where);
+  scene s = with_overrides(scene_from_json(j, origin), overrides, where);
   s.base_dir = base_dir;
   check_scene(s, where);
   return s;
 }
 
+scene parse_scene(const std::string& text, const std::string& origin, const std::string& base_dir,
+                  const std::vector<scene_override>& overrides) {
+  return scene_from_document(parse_json(text, origin), origin, base_dir, overrides);
+}
+
 scene load_scene(const std::string& path, const std::vector<scene_override>& overrides) {
-  const std::string text = read_text_file(path);
   const std::string dir = std::filesystem::absolute(path).parent_path().string();
-  return parse_scene(text, path, dir, overrides);
+  if (is_gltf_path(path)) return scene_from_document(gltf_layout_document(path), path, dir, overrides);
+  return parse_scene(read_text_file(path), path, dir, overrides);
 }
 
 void save_scene(const scene& s, const std::string& path) { write_file_atomic(path, scene_to_json(s).dump(2) + "\n"); }

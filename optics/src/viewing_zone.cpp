@@ -1,9 +1,11 @@
 #include "airr/optics/viewing_zone.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <mutex>
+#include <stdexcept>
 #include <string>
 
 #include <tbb/parallel_for.h>
@@ -13,12 +15,15 @@
 
 namespace airr {
 
-viewing_parts::viewing_parts(const scene& s)
+viewing_parts::viewing_parts(const scene& s, prop_hit_function prop_hits)
     : half_mirror(half_mirror_frame(s)),
       display(source_frame(s)),
       panel(source_panel_frame(s)),
-      aerial(aerial_image_frame(s)) {
+      aerial(aerial_image_frame(s)),
+      props(std::move(prop_hits)) {
   for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) sheets.push_back(retroreflector_frame(s, i));
+  const bool any_visible = std::any_of(s.props.begin(), s.props.end(), [](const prop_params& p) { return p.visible; });
+  if (any_visible && !props) throw std::invalid_argument("viewing_parts: the scene has props but no prop_hit_function");
 }
 
 namespace {
@@ -32,7 +37,7 @@ double hit_distance(const part_frame& f, const glm::dvec3& o, const glm::dvec3& 
   return t;
 }
 
-// The first opaque part (the display's panel: -1; sheet i: i) along the ray before `t_max`.
+// The first opaque part (the display's panel: -1; sheet i: i; a prop: -3) along the ray before `t_max`.
 struct first_hit {
   int part = -2;  // -2: none
   double t = std::numeric_limits<double>::infinity();
@@ -44,6 +49,10 @@ first_hit first_opaque(const viewing_parts& parts, const glm::dvec3& o, const gl
   for (std::size_t i = 0; i < parts.sheets.size(); ++i) {
     const double t = hit_distance(parts.sheets[i], o, d);
     if (t < std::min(h.t, t_max)) h = {int(i), t};
+  }
+  if (parts.props) {
+    const double t = parts.props(o, d, std::min(h.t, t_max));
+    if (t < std::min(h.t, t_max)) h = {-3, t};
   }
   return h;
 }
@@ -147,8 +156,8 @@ void check_eye_grid(const eye_grid& g) {
   }
 }
 
-viewing_zone_map geometric_viewing_zone(const scene& s, const eye_grid& g, int rows_per_eye,
-                                        const std::function<void(int, int)>& progress,
+viewing_zone_map geometric_viewing_zone(const scene& s, const eye_grid& g, const prop_hit_function& prop_hits,
+                                        int rows_per_eye, const std::function<void(int, int)>& progress,
                                         const std::atomic<bool>* cancel) {
   check_eye_grid(g);
   if (rows_per_eye < 1 || rows_per_eye > 100000) throw input_error("viewing zone: rows per eye must be 1 to 100000");
@@ -157,7 +166,7 @@ viewing_zone_map geometric_viewing_zone(const scene& s, const eye_grid& g, int r
   map.grid = g;
   map.visible.assign(std::size_t(g.nx) * g.ny, 0.0);
   if (s.retroreflectors.empty()) return map;
-  const viewing_parts parts(s);
+  const viewing_parts parts(s, prop_hits);
   std::atomic<int> done{0};
   std::mutex report;
   tbb::parallel_for(0, g.ny, [&](int j) {

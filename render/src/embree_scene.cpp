@@ -69,19 +69,16 @@ embree_mesh_scene::embree_mesh_scene(const embree_device& device, const triangle
 
 embree_mesh_scene::~embree_mesh_scene() { rtcReleaseScene(scene_); }
 
-embree_layout_scene::embree_layout_scene(const embree_device& device, const std::vector<std::string>& mesh_paths)
-    : paths_(mesh_paths) {
-  for (const auto& path : paths_) {
-    if (!prototypes_.count(path)) {
-      prototypes_[path] =
-          std::make_unique<embree_mesh_scene>(device, path.empty() ? make_unit_panel() : load_gltf_mesh(path));
-    }
+embree_layout_scene::embree_layout_scene(const embree_device& device, const std::vector<instance_mesh>& meshes) {
+  for (const auto& m : meshes) {
+    keys_.push_back(m.key);
+    if (!prototypes_.count(m.key)) prototypes_[m.key] = std::make_unique<embree_mesh_scene>(device, *m.mesh);
   }
   top_ = rtcNewScene(device.get());
-  instances_.resize(paths_.size());
-  for (unsigned i = 0; i < paths_.size(); ++i) {
+  instances_.resize(keys_.size());
+  for (unsigned i = 0; i < keys_.size(); ++i) {
     instances_[i] = rtcNewGeometry(device.get(), RTC_GEOMETRY_TYPE_INSTANCE);
-    rtcSetGeometryInstancedScene(instances_[i], prototypes_.at(paths_[i])->get());
+    rtcSetGeometryInstancedScene(instances_[i], prototypes_.at(keys_[i])->get());
     rtcSetGeometryTimeStepCount(instances_[i], 1);
     const glm::mat4 identity(1.0f);
     rtcSetGeometryTransform(instances_[i], 0, RTC_FORMAT_FLOAT4X4_COLUMN_MAJOR, glm::value_ptr(identity));

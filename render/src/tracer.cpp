@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "airr/optics/error.hpp"
 #include "airr/optics/low_discrepancy.hpp"
@@ -18,10 +19,35 @@ static constexpr int camera_stream = 64;
 
 void build_tracer_scene(tracer_scene& ts, const embree_device& device, const scene& s, retro_model_list models) {
   // Everything that can fail is built first, so a bad edit leaves the previous state intact.
-  std::vector<std::string> meshes = {resolve_scene_path(s, s.source.mesh), resolve_scene_path(s, s.half_mirror.mesh)};
-  for (const auto& r : s.retroreflectors) meshes.push_back(resolve_scene_path(s, r.mesh));
+  std::vector<std::string> part_meshes = {resolve_scene_path(s, s.source.mesh),
+                                          resolve_scene_path(s, s.half_mirror.mesh)};
+  for (const auto& r : s.retroreflectors) part_meshes.push_back(resolve_scene_path(s, r.mesh));
+  std::vector<tracer_scene::prop> props;
+  for (const auto& p : s.props) {
+    if (!p.visible) continue;
+    props.push_back({p, cached_prop_mesh(resolve_scene_path(s, p.mesh), p.node), pose_rotation(p.pose)});
+  }
+  // A prototype's key names its file, and for props the loaded mesh (a changed file is a new one).
+  std::vector<std::string> keys;
+  for (const auto& path : part_meshes) keys.push_back("part:" + path);
+  for (const auto& p : props) {
+    keys.push_back("prop:" + p.params.mesh + "#" + p.params.node + "@" +
+                   std::to_string(reinterpret_cast<std::uintptr_t>(p.mesh.get())));
+  }
   std::unique_ptr<embree_layout_scene> embree;
-  if (!ts.embree || ts.embree->mesh_paths() != meshes) embree = std::make_unique<embree_layout_scene>(device, meshes);
+  if (!ts.embree || ts.embree->keys() != keys) {
+    std::vector<instance_mesh> meshes;
+    std::map<std::string, std::shared_ptr<const triangle_mesh>> parts;
+    for (std::size_t i = 0; i < part_meshes.size(); ++i) {
+      auto& m = parts[part_meshes[i]];
+      if (!m)
+        m = std::make_shared<const triangle_mesh>(part_meshes[i].empty() ? make_unit_panel()
+                                                                         : load_gltf_mesh(part_meshes[i]));
+      meshes.push_back({keys[i], m});
+    }
+    for (std::size_t k = 0; k < props.size(); ++k) meshes.push_back({keys[part_meshes.size() + k], props[k].mesh});
+    embree = std::make_unique<embree_layout_scene>(device, meshes);
+  }
   const std::string tex = resolve_scene_path(s, s.source.image);
   std::shared_ptr<const image_rgb> texture = ts.texture;
   if (tex != ts.texture_path || (!tex.empty() && !texture)) {
@@ -41,11 +67,14 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   ts.layout = s;
   ts.frames = {source_panel_frame(s), half_mirror_frame(s)};
   for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) ts.frames.push_back(retroreflector_frame(s, i));
+  ts.props = std::move(props);
+  ts.first_prop = unsigned(ts.frames.size());
   ts.source_area = source_frame(s);
   ts.camera = make_camera(s);
   ts.model.reset();  // it no longer matches the layout
   std::vector<glm::dmat4> transforms;
   for (const auto& f : ts.frames) transforms.push_back(part_transform(f));
+  for (const auto& p : ts.props) transforms.push_back(prop_transform(p.params));
   ts.embree->set_transforms(transforms);
 }
 
@@ -95,10 +124,12 @@ struct path_state {
   int depth;
   int retroreflections = 0;
   int mirror_reflections = 0;
+  int prop_scatterings = 0;
 };
 
 image_component component_of(const path_state& p) {
   if (p.retroreflections > 0) return component_aerial;
+  if (p.prop_scatterings > 0) return component_rest;
   if (p.mirror_reflections == 0) return component_direct;
   return p.mirror_reflections == 1 ? component_reflection : component_rest;
 }
@@ -177,6 +208,26 @@ static camera_ray first_ray(const tracer_scene& ts, int px, int py, const sample
   return make_camera_ray(ts.camera, px + n.jitter.x, py + n.jitter.y, n.lens);
 }
 
+// Scatters the path at a prop (a mirror reflection, or a Lambertian bounce drawn from the path's
+// generator), both sides alike; false when the prop absorbs it.
+static bool scatter_at_prop(const tracer_scene::prop& prop, const RTCRayHit& rh, path_state& p, pcg32& rng) {
+  const surface_response s = prop_surface_of(prop.params, *prop.mesh, rh.hit.primID);
+  if (s.kind == prop_surface::absorber) return false;
+  // Embree gives the normal in the mesh's frame; the prop's scale is uniform.
+  glm::dvec3 n = glm::normalize(prop.rotation * glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
+  if (glm::dot(n, p.dir) > 0) n = -n;
+  p.origin += p.dir * double(rh.ray.tfar);
+  if (s.kind == prop_surface::mirror) {
+    p.dir = reflect(p.dir, n);
+  } else {
+    const double u1 = rng.next_double(), u2 = rng.next_double();
+    p.dir = glm::normalize(make_basis(n).to_world(cosine_hemisphere({u1, u2})));
+  }
+  p.throughput *= s.reflectance;
+  ++p.prop_scatterings;
+  return true;
+}
+
 static component_radiance trace_path(const tracer_scene& ts, int px, int py, sample_numbers n,
                                      const RTCRayHit* first_hit, std::uint64_t& rays) {
   pcg32& rng = n.rng;
@@ -204,6 +255,10 @@ static component_radiance trace_path(const tracer_scene& ts, int px, int py, sam
       if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
 
       const unsigned part = rh.hit.instID[0];
+      if (part >= ts.first_prop) {
+        if (!scatter_at_prop(ts.props[part - ts.first_prop], rh, p, rng)) break;
+        continue;
+      }
       const part_frame& f = ts.frames[part];
       const glm::dvec3 hit = p.origin + p.dir * double(rh.ray.tfar);
       const double cos_n = glm::dot(p.dir, f.n);

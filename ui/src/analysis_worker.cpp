@@ -13,6 +13,7 @@
 #include "airr/optics/psf.hpp"
 #include "airr/optics/retro_model.hpp"
 #include "airr/optics/sheet_models.hpp"
+#include "airr/render/prop_hits.hpp"
 
 namespace airr::ui {
 
@@ -83,7 +84,7 @@ predicted_plots compute_predicted(const scene& s, std::uint64_t generation, cons
     g.nx = g.ny = p.zone_grid;
     g.x_min = g.y_min = -p.zone_reach_deg;
     g.x_max = g.y_max = p.zone_reach_deg;
-    out.zone = geometric_viewing_zone(s, g, p.zone_rows);
+    out.zone = geometric_viewing_zone(s, g, scene_prop_hits(s), p.zone_rows);
     out.zone_ms = ms_since(t2);
   } catch (const std::exception&) {
     out.zone = {};

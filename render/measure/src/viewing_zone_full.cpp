@@ -5,10 +5,12 @@
 #include <limits>
 
 #include "airr/measure/mtf_routes.hpp"
+#include "airr/optics/color.hpp"
 #include "airr/optics/error.hpp"
 #include "airr/optics/layout.hpp"
 #include "airr/optics/sheet_models.hpp"
 #include "airr/render/parallel_rows.hpp"
+#include "airr/render/prop_hits.hpp"
 #include "airr/render/tracer.hpp"
 
 namespace airr {
@@ -31,7 +33,7 @@ bool inside_quad(const std::array<glm::dvec2, 4>& q, double x, double y) {
 }
 
 struct eye_render {
-  double aerial = 0, stray = 0;  // mean radiance (luminance) of each inside the aerial outline
+  double aerial = 0, stray = 0, direct = 0;  // mean luminance of each inside the aerial outline
 };
 
 // A small render of the aerial image from the eye, split into components: the aerial image and
@@ -62,18 +64,37 @@ eye_render render_from(tracer_scene& ts, const embree_device& device, const scen
       const double* c = components.data() + 3 * component_count * (std::size_t(y) * w + x);
       auto luminance = [&](int comp) {
         const double* v = c + 3 * comp;
-        return 0.2126 * v[0] + 0.7152 * v[1] + 0.0722 * v[2];
+        return rec709_luminance(v[0], v[1], v[2]);
       };
       out.aerial += luminance(component_aerial);
       for (int comp : {component_direct, component_reflection, component_rest}) out.stray += luminance(comp);
+      out.direct += luminance(component_direct);
     }
   }
   const double n = double(inside) * double(p.render_spp);
   if (n > 0) {
     out.aerial /= n;
     out.stray /= n;
+    out.direct /= n;
   }
   return out;
+}
+
+// The luminance of the display's emitting area, face on: its intensity times its image's mean.
+double display_luminance(const tracer_scene& ts) {
+  double mean = 1;
+  if (ts.texture) {
+    const image_rgb& img = *ts.texture;
+    double sum = 0;
+    for (int y = 0; y < img.height; ++y) {
+      for (int x = 0; x < img.width; ++x) {
+        const float* v = img.at(x, y);
+        sum += rec709_luminance(v[0], v[1], v[2]);
+      }
+    }
+    mean = sum / (double(img.width) * img.height);
+  }
+  return ts.layout.source.intensity * mean;
 }
 
 }  // namespace
@@ -94,7 +115,8 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
   out.brightness.assign(n, nan);
   out.mean_mtf.assign(n, nan);
   out.stray_ratio.assign(n, nan);
-  const viewing_parts parts(s);
+  out.direct.assign(n, nan);
+  const viewing_parts parts(s, scene_prop_hits(s));
   const std::shared_ptr<const retro_model> model = make_sheet_model(s);
   embree_device device;
   tracer_scene ts;
@@ -114,8 +136,10 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
     eye.observer.fov_deg =
         degrees(2 * std::atan(reach / std::max(1.0, glm::length(observer_position(eye) - aerial.center))));
     out.visible[e] = visible_fraction(parts, observer_position(eye), p.rows_per_eye);
+    // Every eye is rendered: the display may be seen directly where the aerial image is not.
+    const eye_render r = render_from(ts, device, eye, p, cancel);
+    out.direct[e] = r.direct / display_luminance(ts);
     if (out.visible[e] > 0) {
-      const eye_render r = render_from(ts, device, eye, p, cancel);
       out.brightness[e] = r.aerial;
       out.stray_ratio[e] = r.aerial > 0 ? r.stray / r.aerial : nan;
       best = std::max(best, r.aerial);

@@ -1,6 +1,12 @@
 #pragma once
 // Files and paths: reading text, atomic writes, and resolving the relative paths that scene,
 // preset and measurement files hold.
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -23,5 +29,41 @@ std::string rebase_path(const std::string& path, const std::string& old_base, co
 
 // The absolute, normalised form of a path (for recent-file lists and dropped files).
 std::string absolute_path(const std::string& path);
+
+// What a file was when it was read: a changed modification time or size means it changed.
+struct file_stamp {
+  std::filesystem::file_time_type mtime{};
+  std::uintmax_t size = 0;
+  bool operator==(const file_stamp&) const = default;
+};
+// The file's stamp, or nothing when it cannot be read.
+std::optional<file_stamp> stamp_of(const std::string& path);
+
+// Values read from files, kept while their file is unchanged (so the designer's frame loop and
+// repeated analyses do not read a file again). `key` names the value (the path, perhaps with more);
+// `load` reads it and may throw; a file whose stamp cannot be read is loaded and not kept.
+template <class T>
+class file_cache {
+ public:
+  std::shared_ptr<const T> get(const std::string& key, const std::string& path,
+                               const std::function<std::shared_ptr<const T>()>& load) {
+    const std::optional<file_stamp> stamp = stamp_of(path);
+    if (stamp) {
+      const std::lock_guard lock(mutex_);
+      const auto it = entries_.find(key);
+      if (it != entries_.end() && it->second.first == *stamp) return it->second.second;
+    }
+    std::shared_ptr<const T> value = load();
+    if (stamp) {
+      const std::lock_guard lock(mutex_);
+      entries_[key] = {*stamp, value};
+    }
+    return value;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<std::string, std::pair<file_stamp, std::shared_ptr<const T>>> entries_;
+};
 
 }  // namespace airr

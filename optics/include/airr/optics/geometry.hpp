@@ -25,6 +25,13 @@ inline glm::dvec3 mirror_point(const glm::dvec3& p, const glm::dvec3& c, const g
 // Angle in degrees between unit w and the +z axis of its frame (an incidence angle).
 inline double polar_angle_deg(const glm::dvec3& w) { return degrees(std::acos(std::clamp(w.z, -1.0, 1.0))); }
 
+// A direction about +z with density cos(theta) / pi (a Lambertian surface's), from u in [0, 1)^2.
+inline glm::dvec3 cosine_hemisphere(const glm::dvec2& u) {
+  const double s = std::sqrt(u.x);
+  const double phi = 2 * pi * u.y;
+  return {s * std::cos(phi), s * std::sin(phi), std::sqrt(std::max(0.0, 1 - u.x))};
+}
+
 // An orthonormal basis (t, b, n) around a unit vector n, continuous except at n.z = -1
 // (Duff et al., "Building an orthonormal basis, revisited").
 struct basis {

@@ -113,6 +113,12 @@ class json_reader {
     if (!v.is_string()) fail(field(key), "must be a string");
     out = v.get<std::string>();
   }
+  void boolean(const std::string& key, bool& out) {
+    if (!has(key)) return;
+    const auto& v = j_.at(key);
+    if (!v.is_boolean()) fail(field(key), "must be true or false");
+    out = v.get<bool>();
+  }
   template <std::size_t N>
   void numbers(const std::string& key, std::array<double, N>& out) {
     if (!has(key)) return;

@@ -14,6 +14,12 @@ namespace airr {
 // The rotation of a pose (see scene.hpp for the convention); columns are the part's u, v, n.
 glm::dmat3 pose_rotation(const pose& p);
 part_frame pose_frame(const pose& p, double width_mm, double height_mm);
+// The pose with rotation `r` (a proper rotation; columns u, v, n) and centre `center`: the inverse
+// of pose_rotation, with yaw 0 when the normal is vertical.
+pose pose_from_rotation(const glm::dmat3& r, const glm::dvec3& center);
+
+// Maps a prop's mesh (millimetres, in its own frame) into the world: its pose times its scale.
+glm::dmat4 prop_transform(const prop_params& p);
 
 // The display's emitting area, and the whole panel including its bezel.
 part_frame source_frame(const scene& s);

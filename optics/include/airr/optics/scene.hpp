@@ -19,6 +19,8 @@ inline constexpr int max_resolution_side = 8192;
 inline constexpr long long max_resolution_pixels = 8192LL * 8192LL / 2;
 // Most retroreflective sheets in one layout.
 inline constexpr int max_retroreflectors = 8;
+// Most props in one layout.
+inline constexpr int max_props = 256;
 
 // Where a part is. Its optical face is its local +z, its width runs along local +x and its height
 // along local +y. The world orientation is R = Ry(yaw) Rx(-pitch) Rz(roll), applied in that order
@@ -87,6 +89,28 @@ struct retroreflector_params : part_params {
   bool operator==(const retroreflector_params&) const = default;
 };
 
+// What a prop's surface does with light: absorber, nothing (black); diffuse, Lambertian with
+// reflectance `albedo`; mirror, specular with reflectance `albedo`; material, each triangle as
+// its glTF material maps (see prop_surface_of in mesh_gltf.hpp).
+enum class prop_surface { absorber, diffuse, mirror, material };
+inline constexpr const char* prop_surface_names[] = {"absorber", "diffuse", "mirror", "material"};
+
+// A model placed in the layout: a housing, a hood, a baffle, a frame. It blocks and scatters light
+// in the tracer and blocks it in the viewing-zone analysis. The mesh is read in glTF's metres and
+// placed in millimetres, times `scale`, in the frame of its pose (no size: the mesh has its own).
+struct prop_params {
+  std::string name;
+  std::string mesh;  // glTF or GLB file relative to the scene file
+  std::string node;  // a node of the file (its name, or "#index") with its descendants; empty: all
+  double scale = 1.0;
+  airr::pose pose;
+  prop_surface surface = prop_surface::absorber;
+  std::array<double, 3> albedo{0.5, 0.5, 0.5};  // linear RGB, for diffuse and mirror
+  bool visible = true;                          // a hidden prop takes no part in renders or analyses
+
+  bool operator==(const prop_params&) const = default;
+};
+
 enum class observer_placement { orbit, look_at };
 enum class observer_lens { pinhole, thin_lens };
 
@@ -124,6 +148,7 @@ struct scene {
   source_params source;
   half_mirror_params half_mirror;
   std::vector<retroreflector_params> retroreflectors{retroreflector_params{}};  // at least one
+  std::vector<prop_params> props;
   observer_params observer;
   render_params render;
   std::string base_dir;  // directory relative paths resolve against; not saved

@@ -52,7 +52,8 @@ void validate_scene_files(const scene& s, const std::string& origin);
 // tables) resolving; returns the models it built, for the caller to share.
 retro_model_list check_scene(const scene& s, const std::string& origin);
 
-// Reads, overrides, validates (values, files and layout). Throws input_error.
+// Reads, overrides, validates (values, files and layout). A .gltf or .glb file is read as a whole
+// layout (gltf_layout_document). Throws input_error.
 scene load_scene(const std::string& path, const std::vector<scene_override>& overrides = {});
 // Parses scene JSON text (base_dir for relative paths), then as load_scene.
 scene parse_scene(const std::string& text, const std::string& origin, const std::string& base_dir,

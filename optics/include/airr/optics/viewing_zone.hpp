@@ -14,16 +14,23 @@
 
 namespace airr {
 
-// The parts an ideal path meets or is blocked by, built once per layout.
+// Where the line o + t d (unit d) first meets a prop, for t in (0, t_max); infinity when it meets
+// none. The render library builds one from the scene's props (scene_prop_hits in prop_hits.hpp).
+using prop_hit_function = std::function<double(const glm::dvec3& o, const glm::dvec3& d, double t_max)>;
+
+// The parts an ideal path meets or is blocked by, built once per layout. A scene with visible
+// props needs their prop_hit_function (std::invalid_argument otherwise: the map would be wrong).
 struct viewing_parts {
   part_frame half_mirror, display, panel, aerial;
   std::vector<part_frame> sheets;
-  explicit viewing_parts(const scene& s);
+  prop_hit_function props;
+  explicit viewing_parts(const scene& s, prop_hit_function prop_hits = {});
 };
 
 // Whether the aerial-image point `p` is seen from `eye`: the line from the eye through p meets
 // the half mirror beyond p, then (straight on, or mirrored) the front of a sheet, and straight
-// back and (mirrored, or straight on) the display's emitting area, with no other part between.
+// back and (mirrored, or straight on) the display's emitting area, with no other part or prop
+// between.
 bool aerial_point_visible(const viewing_parts& parts, const glm::dvec3& eye, const glm::dvec3& p);
 
 // The visible fraction at `eye`: `rows` rows across the aerial image, on each the visible
@@ -61,9 +68,9 @@ struct viewing_zone_map {
 };
 
 // The visible fraction over the grid, rows of eyes in parallel; `progress(done, total)` after each
-// row of eyes. Empty `visible` when `cancel` was set.
-viewing_zone_map geometric_viewing_zone(const scene& s, const eye_grid& g, int rows_per_eye = 128,
-                                        const std::function<void(int, int)>& progress = {},
+// row of eyes. Empty `visible` when `cancel` was set. `prop_hits` as for viewing_parts.
+viewing_zone_map geometric_viewing_zone(const scene& s, const eye_grid& g, const prop_hit_function& prop_hits,
+                                        int rows_per_eye = 128, const std::function<void(int, int)>& progress = {},
                                         const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace airr

@@ -40,7 +40,7 @@ class embree_mesh_scene {
 };
 
 // The parts of an AIRR layout; the instance id of a hit says which one: the display, the half
-// mirror, then the retroreflective sheets in order from part_first_sheet.
+// mirror, then the retroreflective sheets in order from part_first_sheet, then the visible props.
 enum part_id : unsigned { part_source = 0, part_half_mirror = 1, part_first_sheet = 2 };
 
 // A ray to intersect from `tnear` on, with no hit yet.
@@ -50,21 +50,27 @@ RTCRayHit make_ray_hit(const glm::dvec3& origin, const glm::dvec3& dir, float tn
 void intersect(RTCScene scene, RTCRayHit& ray);
 void intersect_coherent(RTCScene scene, RTCRayHit* rays, unsigned count);
 
+// One instance's mesh: `key` names it (instances with equal keys share one prototype).
+struct instance_mesh {
+  std::string key;
+  std::shared_ptr<const triangle_mesh> mesh;
+};
+
 class embree_layout_scene {
  public:
-  // Mesh files per part (empty: the built-in unit panel); the same file is built once and instanced.
-  embree_layout_scene(const embree_device& device, const std::vector<std::string>& mesh_paths);
+  // One instance per entry, in order (the instance id is the index); equal keys are built once.
+  embree_layout_scene(const embree_device& device, const std::vector<instance_mesh>& meshes);
   ~embree_layout_scene();
   embree_layout_scene(const embree_layout_scene&) = delete;
   embree_layout_scene& operator=(const embree_layout_scene&) = delete;
 
-  // Moves the parts: updates the instance transforms and recommits the top level only.
+  // Moves the instances: updates their transforms and recommits the top level only.
   void set_transforms(const std::vector<glm::dmat4>& transforms);
   RTCScene get() const { return top_; }
-  const std::vector<std::string>& mesh_paths() const { return paths_; }
+  const std::vector<std::string>& keys() const { return keys_; }
 
  private:
-  std::vector<std::string> paths_;
+  std::vector<std::string> keys_;
   std::map<std::string, std::unique_ptr<embree_mesh_scene>> prototypes_;
   std::vector<RTCGeometry> instances_;
   RTCScene top_ = nullptr;

@@ -30,6 +30,14 @@ struct tracer_scene {
   std::string texture_path;
   std::shared_ptr<const emission_profile> emission;  // null: Lambertian
   retro_model_list retro;                            // one per sheet
+  // The visible props, instanced after the sheets from instance id first_prop on.
+  struct prop {
+    prop_params params;
+    std::shared_ptr<const triangle_mesh> mesh;
+    glm::dmat3 rotation{1.0};  // turns the mesh's normals into the world's
+  };
+  std::vector<prop> props;
+  unsigned first_prop = part_first_sheet;
   std::unique_ptr<embree_layout_scene> embree;
   // The model image, the control variate of every pixel's estimate (null: none, the plain
   // estimator); see update_model_image.
@@ -49,8 +57,9 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
 void update_model_image(tracer_scene& ts, const std::atomic<bool>* cancel = nullptr, bool quick = false);
 
 // The components of an image (spec section 8), by what a path met before the display: the aerial
-// image (at least one retroreflection), the display seen directly (no half-mirror reflection),
-// its plain reflection in the half mirror (one), and the rest (more). They add up to the image.
+// image (at least one retroreflection), the display seen directly (no half-mirror reflection, no
+// prop), its plain reflection in the half mirror (one, no prop), and the rest (more, or light a
+// prop scattered). They add up to the image.
 enum image_component { component_aerial, component_direct, component_reflection, component_rest };
 inline constexpr int component_count = 4;
 inline constexpr const char* component_names[component_count] = {"aerial", "direct", "reflection", "rest"};

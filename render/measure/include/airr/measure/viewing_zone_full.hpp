@@ -2,7 +2,8 @@
 // The viewing zone's full pass (spec section 8): for every eye of a grid, besides the geometric
 // visible fraction, what the eye sees of the aerial image through the full model: its mean
 // brightness (relative to the best eye), the mean MTF over (0, 1] lp/mm of the model PSF at that
-// geometry, and the stray-light ratio from a small render split into components.
+// geometry, and the stray-light ratio and the display seen directly, from a small render split
+// into components. Props block and scatter as everywhere.
 #include <atomic>
 #include <functional>
 #include <vector>
@@ -24,6 +25,9 @@ struct full_zone_map {
   // ny rows of nx each; NaN where nothing of the aerial image is seen (and, for the MTF, where the
   // eye's chief ray through the aerial image's centre misses a part).
   std::vector<double> visible, brightness, mean_mtf, stray_ratio;
+  // The display seen directly: the mean luminance of that component inside the aerial image's
+  // outline, over the display's own face-on luminance (0 where it is hidden; NaN for a black display).
+  std::vector<double> direct;
   double seconds = 0;
 };
 
