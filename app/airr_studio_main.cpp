@@ -357,6 +357,7 @@ int main(int argc, char** argv) {
     airr::ui::studio_clear_recovery();  // a clean exit: the user saved or chose to discard
   }
   st.session->stop();
+  st.view_3d.renderer.reset();  // its OpenGL objects go while the context lives
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();

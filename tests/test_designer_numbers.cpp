@@ -3,14 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <fstream>
 #include <string>
 
 #include "airr/measure/mtf_routes.hpp"
 #include "airr/measure/sweep.hpp"
+#include "airr/optics/gltf_layout.hpp"
 #include "airr/optics/layout.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "airr/ui/analysis_worker.hpp"
 #include "airr/ui/studio.hpp"
+#include "gltf_builder.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -90,4 +93,37 @@ TEST(DesignerNumbers, ExportWritesComponentLayersAndTheShownComponent) {
   st.view.component = -1;
   ASSERT_TRUE(ui::studio_export_render(st, dir.file("whole.png"))) << st.status;
   EXPECT_EQ(read_image_metadata(dir.file("whole.png")).count("airr:component"), 0u);
+}
+
+// Dropping a glTF model on the window adds it as a prop; a glTF file with parts in it is a layout,
+// and opens instead; an unreadable one leaves the layout as it was and says why.
+TEST(DesignerNumbers, DroppedGltfBecomesAPropOrOpensAsALayout) {
+  test::temp_dir dir;
+  ui::studio st;
+  st.keep_recovery = false;
+  st.session_options = {.threads = 1, .target_spp = 1};
+  ui::studio_start(st, test::uniform_source_scene(50, 32), "");
+  scene with_prop = st.doc;
+  test::gltf_builder b;
+  const int mesh = b.add_mesh({{b.add_positions({0, 0, 0, 0.1f, 0, 0, 0, 0.1f, 0}), -1, -1}});
+  b.add_node({{"name", "Baffle"}, {"mesh", mesh}});
+  b.write(dir.file("baffle.glb"), test::gltf_builder::storage::glb);
+  ui::studio_drop_file(st, dir.file("baffle.glb"));
+  ASSERT_EQ(st.doc.props.size(), 1u) << st.status;
+  EXPECT_EQ(st.doc.props[0].name, "baffle");
+  EXPECT_EQ(st.doc.props[0].surface, prop_surface::material);
+  EXPECT_NE(st.status.find("1 triangles"), std::string::npos) << st.status;
+
+  std::ofstream(dir.file("broken.glb")) << "glTF not really";
+  ui::studio_drop_file(st, dir.file("broken.glb"));
+  EXPECT_EQ(st.doc.props.size(), 1u);
+  EXPECT_NE(st.status.find("broken.glb"), std::string::npos) << st.status;
+
+  export_gltf_layout(st.doc, dir.file("layout.glb"));
+  st.saved = st.doc;  // nothing unsaved: the layout opens at once
+  ui::studio_drop_file(st, dir.file("layout.glb"));
+  EXPECT_EQ(st.doc_path, dir.file("layout.glb")) << st.status;
+  ASSERT_EQ(st.doc.props.size(), 1u);
+  EXPECT_EQ(st.doc.props[0].mesh, "layout.glb");
+  st.session->stop();
 }

@@ -11,6 +11,8 @@
 #include <nlohmann/json.hpp>
 
 #include "airr/optics/assets.hpp"
+#include "airr/optics/scene_json.hpp"
+#include "gltf_builder.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -254,4 +256,46 @@ TEST(Gui, FitFromTheDesignerAppliesThePreset) {
   EXPECT_NEAR(preset.at("c_mm").get<double>(), 0.94966, 0.05 * 0.94966);
   EXPECT_NEAR(preset.at("a_per_mm")[0].get<double>(), 9.93020, 0.05 * 9.93020);
   EXPECT_NEAR(preset.at("mu")[9].get<double>(), 0.10973, 0.05 * 0.10973);
+}
+
+// A housing prop (an open box around the device) appears in the side and top views as its box and
+// in the 3D view, which shows the parts shaded (the sheet's green) and the light paths (yellow).
+TEST(Gui, HousingPropShowsInTheLayoutViews) {
+  test::temp_dir dir;
+  test::gltf_builder b;
+  const float x0 = -0.18f, x1 = 0.18f, y0 = -0.2f, y1 = 0.17f, z0 = -0.2f, z1 = 0.09f;
+  const std::vector<float> p = {x0, y0, z0, x1, y0, z0, x1, y1, z0, x0, y1, z0,
+                                x0, y0, z1, x1, y0, z1, x1, y1, z1, x0, y1, z1};
+  const int mesh = b.add_mesh(
+      {{b.add_positions(p),
+        b.add_indices({0, 2, 1, 0, 3, 2, 0, 1, 5, 0, 5, 4, 3, 6, 2, 3, 7, 6, 0, 4, 7, 0, 7, 3, 1, 2, 6, 1, 6, 5}, 5121),
+        -1}});
+  b.add_node({{"name", "Housing"}, {"mesh", mesh}});
+  b.write(dir.file("housing.glb"), test::gltf_builder::storage::glb);
+  nlohmann::json j = scene_to_json(load_scene(default_scene_path()));
+  j["source"]["image"] = asset_dir() + "/charts/test_chart.png";
+  j["props"] = {{{"name", "housing"}, {"mesh", dir.file("housing.glb")}, {"surface", "absorber"}}};
+  std::ofstream(dir.file("housed.json")) << j.dump(1);
+
+  const std::string shot = dir.file("studio.png");
+  const studio_run run = run_studio(dir, dir.file("housed.json") + " --frames 20 --screenshot " + shot);
+  ASSERT_EQ(run.status, 0) << run.log;
+  const rgb8_image img = read_png(shot);
+  ASSERT_GT(img.width, 0) << run.log;
+  const auto regions = nlohmann::json::parse(std::ifstream(shot + ".json"));
+  for (const char* view : {"layout_side", "layout_top"}) {
+    EXPECT_GT(curve_pixels(img, region(regions, view), {230, 160, 80}), 100) << view << ": the housing's box";
+  }
+  const auto view3d = region(regions, "layout_3d");
+  const region_stats stats = grey_stats(img, view3d);
+  EXPECT_GT(stats.stddev, 5.0) << "the 3D view draws something";
+  int green = 0;
+  for (int y = view3d[1]; y < view3d[3]; ++y) {
+    for (int x = view3d[0]; x < view3d[2]; ++x) {
+      const unsigned char* q = img.at(x, y);
+      green += q[1] > q[0] + 15 && q[1] > q[2] + 12;
+    }
+  }
+  EXPECT_GT(green, 100) << "the sheet, shaded green, seen through the housing";
+  EXPECT_GT(curve_pixels(img, view3d, {255, 209, 89}), 10) << "the light paths";
 }

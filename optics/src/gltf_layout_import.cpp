@@ -141,6 +141,14 @@ std::string labels(const gltf::file& f, const std::vector<int>& nodes) {
 
 }  // namespace
 
+bool gltf_has_layout_roles(const std::string& path) {
+  const gltf::file f = gltf::read(path);
+  for (std::size_t k = 0; k < f.model.nodes.size(); ++k) {
+    if (gltf::is_part_role(gltf::node_role(f, int(k)))) return true;
+  }
+  return false;
+}
+
 json gltf_layout_document(const std::string& path) {
   const gltf::file f = gltf::read(path);
   collected c;

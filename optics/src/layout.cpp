@@ -325,3 +325,27 @@ double fov_for_whole_device(const scene& s) {
 }
 
 }  // namespace airr
+
+namespace airr {
+
+std::vector<glm::dvec3> ideal_light_path(const scene& s, const glm::dvec3& aerial_point) {
+  const part_frame hm = half_mirror_frame(s), rr = retroreflector_frame(s), src = source_frame(s);
+  const glm::dvec3 eye = observer_position(s);
+  std::vector<glm::dvec3> path{eye};
+  const glm::dvec3 d = glm::normalize(aerial_point - eye);
+  const auto p1 = hit_part(hm, eye, d, false);
+  if (!p1) return path;
+  const auto p2 = hit_part(rr, *p1, d, false);
+  if (!p2) return path;
+  const auto p3 = hit_part(src, *p1, reflect(-d, hm.n), false);
+  path.insert(path.end(), {*p1, *p2, *p1});
+  if (p3) path.push_back(*p3);
+  return path;
+}
+
+std::array<glm::dvec3, 4> corners(const part_frame& f) {
+  return {part_point(f, -0.5 * f.width, -0.5 * f.height), part_point(f, 0.5 * f.width, -0.5 * f.height),
+          part_point(f, 0.5 * f.width, 0.5 * f.height), part_point(f, -0.5 * f.width, 0.5 * f.height)};
+}
+
+}  // namespace airr

@@ -224,6 +224,53 @@ void observer_section(scene& s) {
   ImGui::Text("%.4f mm per pixel on the aerial image", make_camera(s).mm_per_pixel);
 }
 
+// The props: each with its visibility, name, surface, albedo, scale and pose; add and remove.
+void props_section(studio& st) {
+  scene& s = st.doc;
+  if (s.props.empty()) ImGui::TextDisabled("none: drop a .glb or .gltf model on the window, or add one");
+  std::optional<std::size_t> remove;
+  for (std::size_t i = 0; i < s.props.size(); ++i) {
+    prop_params& p = s.props[i];
+    ImGui::PushID(int(i));
+    ImGui::Checkbox("##visible", &p.visible);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("visible: a hidden prop takes no part in renders or analyses");
+    ImGui::SameLine();
+    const std::string title = (p.name.empty() ? "prop " + std::to_string(i) : p.name) + "###prop";
+    if (ImGui::TreeNode(title.c_str())) {
+      ImGui::SetNextItemWidth(-5.0f * ImGui::GetFontSize());
+      ImGui::InputText("name", &p.name);
+      ImGui::TextDisabled("%s%s%s", std::filesystem::path(p.mesh).filename().string().c_str(),
+                          p.node.empty() ? "" : ", node ", p.node.c_str());
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.mesh.c_str());
+      int surface = int(p.surface);
+      ImGui::SetNextItemWidth(-5.0f * ImGui::GetFontSize());
+      if (ImGui::Combo("surface", &surface, prop_surface_names, IM_ARRAYSIZE(prop_surface_names))) {
+        p.surface = prop_surface(surface);
+      }
+      if (ImGui::IsItemHovered()) {
+        ImGui::SetTooltip("absorber: black; diffuse: Lambertian; mirror: specular; material: the glTF materials");
+      }
+      if (p.surface == prop_surface::diffuse || p.surface == prop_surface::mirror) {
+        float c[3] = {float(p.albedo[0]), float(p.albedo[1]), float(p.albedo[2])};
+        if (ImGui::ColorEdit3(p.surface == prop_surface::mirror ? "reflectance" : "albedo", c,
+                              ImGuiColorEditFlags_Float)) {
+          for (int k = 0; k < 3; ++k) p.albedo[std::size_t(k)] = std::clamp(double(c[k]), 0.0, 1.0);
+        }
+      }
+      edit_number("scale", p.scale, 0.01, 10, "", "%.3f", "on top of glTF's metres to millimetres");
+      edit_pose(p.pose, 1000);
+      if (ImGui::Button("remove this prop")) remove = i;
+      ImGui::TreePop();
+    }
+    ImGui::PopID();
+  }
+  if (remove) s.props.erase(s.props.begin() + std::ptrdiff_t(*remove));
+  if (s.props.size() < std::size_t(max_props) && ImGui::Button("add a prop (glTF)...")) {
+    st.dialog.request(file_purpose::add_prop, false, "Add a glTF model as a prop", st.settings.last_dir,
+                      {".glb", ".gltf"});
+  }
+}
+
 }  // namespace
 
 void draw_layout_panel(studio& st) {
@@ -298,6 +345,11 @@ void draw_layout_panel(studio& st) {
       r.pose.yaw_deg = std::hypot(dir.x, dir.z) < 1e-9 ? 0.0 : degrees(std::atan2(-dir.x, -dir.z));
       s.retroreflectors.push_back(r);
     }
+  }
+  if (ImGui::CollapsingHeader("Props")) {
+    ImGui::PushID("props");
+    props_section(st);
+    ImGui::PopID();
   }
   if (ImGui::CollapsingHeader("Observer")) {
     ImGui::PushID("observer");

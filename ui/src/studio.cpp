@@ -8,6 +8,7 @@
 
 #include "airr/optics/assets.hpp"
 #include "airr/optics/error.hpp"
+#include "airr/optics/gltf_layout.hpp"
 #include "airr/optics/image.hpp"
 #include "airr/optics/json_reader.hpp"
 #include "airr/optics/scene_json.hpp"
@@ -21,7 +22,24 @@ static std::string display_name(const studio& st) {
   return st.doc_path.empty() ? "untitled" : fs::path(st.doc_path).filename().string();
 }
 
+// Every prop's mesh (from the mesh cache, which check_scene filled) and its bounds.
+static void keep_prop_meshes(studio& st, const scene& s) {
+  st.prop_meshes.clear();
+  st.prop_bounds.clear();
+  for (const auto& p : s.props) {
+    std::shared_ptr<const triangle_mesh> m;
+    try {
+      m = cached_prop_mesh(resolve_scene_path(s, p.mesh), p.node);
+    } catch (const std::exception&) {
+    }
+    st.prop_meshes.push_back(m);
+    st.prop_bounds.push_back(m ? bounds_of(*m) : mesh_bounds{});
+  }
+}
+
 void studio_start(studio& st, const scene& s, const std::string& path) {
+  keep_prop_meshes(st, s);
+  st.view_3d.framed = false;
   st.doc = s;
   st.doc_path = path;
   st.saved = s;
@@ -46,6 +64,7 @@ void studio_apply_edits(studio& st, double now) {
   try {
     // The models are built once per accepted edit and shared by the tracer and the plots.
     const retro_model_list models = check_scene(st.doc, "layout");
+    keep_prop_meshes(st, st.doc);
     st.doc_error.clear();
     st.generation = st.session->edit(st.doc, models);
     st.analysis.submit_scene(st.doc, st.generation, models.front());
@@ -85,10 +104,52 @@ bool studio_save(studio& st, const std::string& path) {
   }
 }
 
+bool studio_add_prop(studio& st, const std::string& path) {
+  try {
+    const std::string full = absolute_path(path);
+    const auto mesh = cached_prop_mesh(full, "");
+    prop_params p;
+    p.name = fs::path(path).stem().string();
+    p.mesh = full;
+    p.surface = prop_surface::material;
+    st.doc.props.push_back(p);
+    st.status = "added prop " + p.name + " (" + std::to_string(mesh->indices.size() / 3) + " triangles)";
+    return true;
+  } catch (const std::exception& e) {
+    st.status = std::string("cannot add the prop: ") + e.what();
+    return false;
+  }
+}
+
+bool studio_export_gltf(studio& st, const std::string& path) {
+  try {
+    export_gltf_layout(st.doc, path);
+    st.status = "exported the layout to " + path;
+    return true;
+  } catch (const std::exception& e) {
+    st.status = std::string("cannot export: ") + e.what();
+    return false;
+  }
+}
+
 void studio_drop_file(studio& st, const std::string& path) {
   std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-  if (ext == ".json") {
+  if (is_gltf_path(path)) {
+    // A file with parts in it is a layout to open; any other model is a prop.
+    bool layout = false;
+    try {
+      layout = gltf_has_layout_roles(path);
+    } catch (const std::exception& e) {
+      st.status = std::string("cannot read: ") + e.what();
+      return;
+    }
+    if (!layout) {
+      studio_add_prop(st, path);
+      return;
+    }
+  }
+  if (ext == ".json" || is_gltf_path(path)) {
     if (studio_dirty(st)) {
       st.pending_path = path;
       st.after_save_prompt = studio::pending_action::open_path;
@@ -236,7 +297,15 @@ static std::string start_dir(const studio& st) {
 
 static void request_save_as(studio& st) {
   st.dialog.request(file_purpose::save_scene, true, "Save scene as", start_dir(st), {".json"},
-                    st.doc_path.empty() ? "scene.json" : fs::path(st.doc_path).filename().string());
+                    st.doc_path.empty() ? "scene.json" : fs::path(st.doc_path).stem().string() + ".json");
+}
+
+// Save: to the scene's own file, unless it came from a glTF layout (saved as a scene file instead).
+static void save_or_ask(studio& st) {
+  if (st.doc_path.empty() || is_gltf_path(st.doc_path))
+    request_save_as(st);
+  else
+    studio_save(st, st.doc_path);
 }
 
 // Continues whatever waited for the unsaved-changes question.
@@ -248,7 +317,8 @@ static void run_pending(studio& st) {
       st.quit_requested = true;
       break;
     case studio::pending_action::open_file:
-      st.dialog.request(file_purpose::open_scene, false, "Open scene", start_dir(st), {".json"});
+      st.dialog.request(file_purpose::open_scene, false, "Open scene or glTF layout", start_dir(st),
+                        {".json", ".glb", ".gltf"});
       break;
     case studio::pending_action::open_path:
       studio_open(st, st.pending_path);
@@ -287,12 +357,7 @@ static void draw_menu(studio& st) {
       }
       ImGui::EndMenu();
     }
-    if (ImGui::MenuItem("Save", "Ctrl+S")) {
-      if (st.doc_path.empty())
-        request_save_as(st);
-      else
-        studio_save(st, st.doc_path);
-    }
+    if (ImGui::MenuItem("Save", "Ctrl+S")) save_or_ask(st);
     if (ImGui::MenuItem("Save as...")) request_save_as(st);
     ImGui::Separator();
     if (ImGui::MenuItem("Source image...")) {
@@ -302,6 +367,13 @@ static void draw_menu(studio& st) {
     if (ImGui::MenuItem("Export render...")) {
       st.dialog.request(file_purpose::export_render, true, "Export render (.exr or .png)", start_dir(st),
                         {".exr", ".png"}, "render.exr");
+    }
+    if (ImGui::MenuItem("Add prop (glTF)...")) {
+      st.dialog.request(file_purpose::add_prop, false, "Add a glTF model as a prop", start_dir(st), {".glb", ".gltf"});
+    }
+    if (ImGui::MenuItem("Export layout (glTF)...")) {
+      st.dialog.request(file_purpose::export_gltf, true, "Export the layout as glTF (.glb or .gltf)", start_dir(st),
+                        {".glb", ".gltf"}, "layout.glb");
     }
     if (ImGui::MenuItem("Export plot data...")) {
       st.dialog.request(file_purpose::export_plots, true, "Export plot data (CSV)", start_dir(st), {".csv"},
@@ -326,7 +398,7 @@ static void draw_save_prompt(studio& st) {
     ImGui::Text("%s has unsaved changes.", display_name(st).c_str());
     if (ImGui::Button("Save")) {
       ImGui::CloseCurrentPopup();
-      if (st.doc_path.empty())
+      if (st.doc_path.empty() || is_gltf_path(st.doc_path))
         request_save_as(st);  // the pending action runs after the dialog
       else if (studio_save(st, st.doc_path))
         run_pending(st);
@@ -371,6 +443,12 @@ static void handle_dialog(studio& st) {
     case file_purpose::save_preset:
       save_fitted_preset(st, path);
       break;
+    case file_purpose::add_prop:
+      studio_add_prop(st, path);
+      break;
+    case file_purpose::export_gltf:
+      studio_export_gltf(st, path);
+      break;
   }
 }
 
@@ -378,12 +456,7 @@ static void handle_shortcuts(studio& st) {
   const ImGuiIO& io = ImGui::GetIO();
   if (!io.KeyCtrl || io.WantTextInput) return;
   // ImGui 1.86 indexes keys by the backend's codes; GLFW's letter codes are their ASCII capitals.
-  if (ImGui::IsKeyPressed('S')) {
-    if (st.doc_path.empty())
-      request_save_as(st);
-    else
-      studio_save(st, st.doc_path);
-  }
+  if (ImGui::IsKeyPressed('S')) save_or_ask(st);
   if (ImGui::IsKeyPressed('O')) ask_or_run(st, studio::pending_action::open_file);
 }
 

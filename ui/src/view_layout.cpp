@@ -1,5 +1,6 @@
-// The layout view: the device drawn to scale in two projections, side (y-z) and top (x-z), with
-// the aerial image where it forms, the observer's sight lines and the chief ray, and handles that
+// The layout view: the device drawn to scale in two projections, side (y-z) and top (x-z), beside
+// a 3D view (view_3d.cpp), with
+// the props' boxes, the aerial image where it forms, the observer's sight lines and the chief ray, and handles that
 // pose every part: move (centre), rotate (pitch in the side view, yaw in the top view), the
 // floating distance (the aerial image's handle) and the observer (orbit or position).
 #include <algorithm>
@@ -36,27 +37,6 @@ struct view_map {
 };
 
 double round1(double v) { return std::round(v * 10) / 10; }
-
-// The ideal light path through an aerial-image point, as a polyline from the observer.
-std::vector<glm::dvec3> ray_path(const scene& s, const glm::dvec3& aerial_point) {
-  const part_frame hm = half_mirror_frame(s), rr = retroreflector_frame(s), src = source_frame(s);
-  const glm::dvec3 eye = observer_position(s);
-  std::vector<glm::dvec3> path{eye};
-  const glm::dvec3 d = glm::normalize(aerial_point - eye);
-  const auto p1 = hit_part(hm, eye, d, false);
-  if (!p1) return path;
-  const auto p2 = hit_part(rr, *p1, d, false);
-  if (!p2) return path;
-  const auto p3 = hit_part(src, *p1, reflect(-d, hm.n), false);
-  path.insert(path.end(), {*p1, *p2, *p1});
-  if (p3) path.push_back(*p3);
-  return path;
-}
-
-std::array<glm::dvec3, 4> corners(const part_frame& f) {
-  return {part_point(f, -0.5 * f.width, -0.5 * f.height), part_point(f, 0.5 * f.width, -0.5 * f.height),
-          part_point(f, 0.5 * f.width, 0.5 * f.height), part_point(f, -0.5 * f.width, 0.5 * f.height)};
-}
 
 // A draggable circle; returns the mouse position (projection coordinates) while dragged.
 std::optional<glm::dvec2> handle(const std::string& id, ImVec2 at, ImU32 colour, const view_map& m,
@@ -111,7 +91,21 @@ void draw_projection(studio& st, projection proj, ImVec2 canvas0, ImVec2 canvas,
     parts.push_back({retroreflector_frame(s, i), {"sheet", IM_COL32(120, 230, 140, 255), 3}});
   }
 
-  // Fit every part, the aerial image and the observer into the canvas.
+  // Every visible prop's box: its mesh's bounds, placed.
+  std::vector<std::pair<std::size_t, std::array<glm::dvec3, 8>>> boxes;
+  for (std::size_t i = 0; i < s.props.size() && i < st.prop_bounds.size(); ++i) {
+    const mesh_bounds& b = st.prop_bounds[i];
+    if (!s.props[i].visible || b.lo == b.hi) continue;
+    const glm::dmat4 xf = prop_transform(s.props[i]);
+    std::array<glm::dvec3, 8> k;
+    for (int c = 0; c < 8; ++c) {
+      const glm::dvec3 local(c & 1 ? b.hi.x : b.lo.x, c & 2 ? b.hi.y : b.lo.y, c & 4 ? b.hi.z : b.lo.z);
+      k[std::size_t(c)] = glm::dvec3(xf * glm::dvec4(local, 1.0));
+    }
+    boxes.push_back({i, k});
+  }
+
+  // Fit every part, the props, the aerial image and the observer into the canvas.
   view_map m;
   m.proj = proj;
   glm::dvec2 lo(1e30), hi(-1e30);
@@ -123,6 +117,9 @@ void draw_projection(studio& st, projection proj, ImVec2 canvas0, ImVec2 canvas,
     for (const auto& c : corners(f)) grow(c);
   }
   for (const auto& c : corners(aerial)) grow(c);
+  for (const auto& [i, k] : boxes) {
+    for (const auto& c : k) grow(c);
+  }
   grow(eye);
   const float margin = 1.6f * ImGui::GetFontSize();
   const glm::dvec2 span = glm::max(hi - lo, glm::dvec2(1.0));
@@ -147,9 +144,17 @@ void draw_projection(studio& st, projection proj, ImVec2 canvas0, ImVec2 canvas,
 
   // Sight lines from the observer to the aerial image's corners, then the chief ray's ideal path.
   for (const auto& c : corners(aerial)) seg(eye, c, IM_COL32(150, 150, 150, 110), 0.7f * lw);
-  const auto path = ray_path(s, aerial.center);
+  const auto path = ideal_light_path(s, aerial.center);
   for (std::size_t i = 1; i < path.size(); ++i) seg(path[i - 1], path[i], IM_COL32(255, 210, 90, 220), lw);
 
+  const ImU32 prop_colour = IM_COL32(230, 160, 80, 200);
+  for (const auto& [i, k] : boxes) {
+    for (int a = 0; a < 8; ++a) {
+      for (int bit : {1, 2, 4}) {
+        if (!(a & bit)) seg(k[std::size_t(a)], k[std::size_t(a | bit)], prop_colour, 0.8f * lw);
+      }
+    }
+  }
   for (const auto& [f, style] : parts) outline(f, style.colour, style.width * lw);
   outline(source_frame(s), IM_COL32(255, 255, 255, 255), 3 * lw);  // the emitting area inside the bezel
   outline(aerial, IM_COL32(255, 120, 200, 255), 2 * lw);
@@ -178,6 +183,10 @@ void draw_projection(studio& st, projection proj, ImVec2 canvas0, ImVec2 canvas,
     label(parts[i].first.center + 0.5 * parts[i].first.height * parts[i].first.v, name.c_str());
   }
   label(aerial.center + 0.5 * aerial.height * aerial.v, "aerial image");
+  for (const auto& [i, k] : boxes) {
+    const std::string& name = s.props[i].name;
+    label(k[7], name.empty() ? "prop" : name.c_str());
+  }
   label(eye, s.observer.lens == observer_lens::thin_lens ? "observer (lens)" : "observer");
 
   // Scale bar of 50 mm, the axes, and the numbers a designer reads off.
@@ -206,6 +215,15 @@ void draw_projection(studio& st, projection proj, ImVec2 canvas0, ImVec2 canvas,
     const std::string name = "sheet " + std::to_string(i);
     pose_handles(name, name.c_str(), s.retroreflectors[i].pose, retroreflector_frame(s, i),
                  IM_COL32(120, 230, 140, 255));
+  }
+  for (const auto& [i, k] : boxes) {
+    prop_params& pr = s.props[i];
+    std::snprintf(tip, sizeof tip, "prop %s at (%.1f, %.1f, %.1f) mm: drag to move", pr.name.c_str(),
+                  pr.pose.center_mm[0], pr.pose.center_mm[1], pr.pose.center_mm[2]);
+    const glm::dvec3 c(pr.pose.center_mm[0], pr.pose.center_mm[1], pr.pose.center_mm[2]);
+    if (auto w = handle(p + "prop" + std::to_string(i), m.to_screen(c), prop_colour, m, tip, active_any)) {
+      move_center(pr.pose, m, *w);
+    }
   }
   // The aerial image moves along the line from the half mirror's centre: that is the floating distance.
   std::snprintf(tip, sizeof tip, "floating distance D %.1f mm: drag to change", floating_distance(s));
@@ -256,12 +274,13 @@ void draw_layout_view(studio& st) {
   const ImVec2 canvas0 = ImGui::GetCursorScreenPos();
   const ImVec2 avail = ImGui::GetContentRegionAvail();
   const ImVec2 canvas(std::max(avail.x, 60.0f), std::max(avail.y, 60.0f));
-  // Side by side when the window is wide, one above the other when it is tall.
+  // Side, top and 3D side by side when the window is wide, one above the other when it is tall.
   const bool wide = canvas.x >= canvas.y;
   const float gap = 4.0f;
-  const ImVec2 half = wide ? ImVec2(0.5f * (canvas.x - gap), canvas.y) : ImVec2(canvas.x, 0.5f * (canvas.y - gap));
+  const ImVec2 half = wide ? ImVec2((canvas.x - 2 * gap) / 3, canvas.y) : ImVec2(canvas.x, (canvas.y - 2 * gap) / 3);
   const ImVec2 second =
       wide ? ImVec2(canvas0.x + half.x + gap, canvas0.y) : ImVec2(canvas0.x, canvas0.y + half.y + gap);
+  const ImVec2 third = wide ? ImVec2(second.x + half.x + gap, canvas0.y) : ImVec2(canvas0.x, second.y + half.y + gap);
 
   bool side_active = false, top_active = false;
   std::optional<view_map> side_map = frozen_side, top_map = frozen_top;
@@ -269,6 +288,10 @@ void draw_layout_view(studio& st) {
   draw_projection(st, projection::top, second, half, top_active, top_map);
   frozen_side = side_active ? side_map : std::nullopt;
   frozen_top = top_active ? top_map : std::nullopt;
+  draw_view_3d(st, third, half);
+  st.regions["layout_side"] = {canvas0.x, canvas0.y, canvas0.x + half.x, canvas0.y + half.y};
+  st.regions["layout_top"] = {second.x, second.y, second.x + half.x, second.y + half.y};
+  st.regions["layout_3d"] = {third.x, third.y, third.x + half.x, third.y + half.y};
 
   char info[200];
   const glm::dvec3 a = aerial_image_center(st.doc);

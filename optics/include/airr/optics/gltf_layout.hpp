@@ -31,6 +31,9 @@ bool is_gltf_path(const std::string& path);
 // Throws input_error naming the file and the node.
 nlohmann::json gltf_layout_document(const std::string& path);
 
+// Whether any node of the file has a part's role (a layout, rather than a model to place as a prop).
+bool gltf_has_layout_roles(const std::string& path);
+
 // Writes the layout as glTF (.glb, or .gltf with the buffer embedded), atomically: one node per
 // part with its rectangle, one per visible or hidden prop with its triangles and materials, a
 // camera for the observer, and every role and field in extras. Throws input_error naming the path.

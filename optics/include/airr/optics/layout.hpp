@@ -1,6 +1,7 @@
 #pragma once
 // Where the parts of an AIRR layout are, as rectangles in world space (mm), where the aerial image
 // forms, and the observer's camera.
+#include <array>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,14 @@ double sheet_chief_incidence_deg(const scene& s, std::size_t sheet = 0);
 // D <= 0 or a display centred on the half mirror's centre.
 double floating_distance(const scene& s);
 void set_floating_distance(scene& s, double d_mm);
+
+// The ideal light path through an aerial-image point as a polyline from the observer: to the half
+// mirror, straight on to the first sheet's plane and back, mirrored to the display's plane (as far
+// as it gets; for drawing).
+std::vector<glm::dvec3> ideal_light_path(const scene& s, const glm::dvec3& aerial_point);
+
+// A part's corners, counter-clockwise from (-u, -v).
+std::array<glm::dvec3, 4> corners(const part_frame& f);
 
 // Whether two rectangles share a point (touching counts).
 bool parts_intersect(const part_frame& a, const part_frame& b);

@@ -13,7 +13,9 @@ enum class file_purpose {
   export_plots,
   choose_source_image,
   choose_fit_data,
-  save_preset
+  save_preset,
+  add_prop,
+  export_gltf
 };
 
 struct file_dialog {

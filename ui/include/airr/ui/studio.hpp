@@ -10,12 +10,16 @@
 
 #include <optional>
 
+#include <imgui.h>
+
+#include "airr/optics/mesh_gltf.hpp"
 #include "airr/optics/preset.hpp"
 #include "airr/optics/scene.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/ui/analysis_worker.hpp"
 #include "airr/ui/file_dialog.hpp"
 #include "airr/ui/fit_job.hpp"
+#include "airr/ui/gl_layout_renderer.hpp"
 #include "airr/ui/gl_texture.hpp"
 #include "airr/ui/settings.hpp"
 #include "airr/ui/zone_job.hpp"
@@ -39,12 +43,24 @@ struct render_view_state {
   gl_texture texture;
 };
 
+// The 3D layout view's camera: it orbits `target` (yaw from +z towards +x, pitch towards +y).
+struct view_3d_state {
+  float yaw_deg = -40, pitch_deg = 25, distance_mm = 600;
+  glm::vec3 target{0.0f};
+  bool framed = false;  // false: frame the layout at the next frame
+  std::unique_ptr<gl_layout_renderer> renderer;
+};
+
 struct studio {
   scene doc;                   // what the panels edit
   std::string doc_path;        // empty: untitled
   std::optional<scene> saved;  // as last loaded or saved, for "unsaved changes"; empty: never saved
   scene applied;               // as last handed to the session
   std::string doc_error;       // why the current edit cannot be rendered
+  // The props' meshes (null where one does not load) and their bounds in their own frames, as of
+  // the last accepted edit, for the layout views (the frame loop reads no files).
+  std::vector<std::shared_ptr<const triangle_mesh>> prop_meshes;
+  std::vector<mesh_bounds> prop_bounds;
   std::uint64_t generation = 0;
 
   std::unique_ptr<render_session> session;
@@ -52,6 +68,7 @@ struct studio {
   analysis_worker analysis;
   studio_settings settings;
   render_view_state view;
+  view_3d_state view_3d;
   std::vector<pinned_curve> pinned_mtf;
   std::string status;  // last message for the status bar
   double last_measure_time = -1;
@@ -104,8 +121,13 @@ void studio_apply_edits(studio& st, double now_seconds);
 
 void studio_open(studio& st, const std::string& path);  // with an error in st.status on failure
 bool studio_save(studio& st, const std::string& path);  // atomic; false with st.status on failure
-// Makes an image file the source (drag and drop); scene files are opened instead.
+// Makes an image file the source (drag and drop); scene files and glTF layouts are opened instead,
+// and any other glTF file becomes a prop.
 void studio_drop_file(studio& st, const std::string& path);
+// Adds a glTF file as a prop at the origin (its own coordinates place it), its surface its glTF
+// materials; false with st.status when it cannot be read.
+bool studio_add_prop(studio& st, const std::string& path);
+bool studio_export_gltf(studio& st, const std::string& path);
 bool studio_export_render(studio& st, const std::string& path);
 bool studio_export_plots(studio& st, const std::string& path);
 
@@ -122,6 +144,8 @@ void studio_frame(studio& st, double now_seconds);
 // Panels, one file each.
 void draw_layout_panel(studio& st);
 void draw_layout_view(studio& st);
+// The 3D layout view in the screen rectangle at `at` of `size` (inside the layout view's window).
+void draw_view_3d(studio& st, ImVec2 at, ImVec2 size);
 void draw_render_view(studio& st, double now_seconds);
 void draw_plots_panel(studio& st);
 // Starts the viewing zone's full pass for the applied layout, on the predicted map's sphere
