@@ -25,6 +25,10 @@ struct plate {
   double at = 0;
   double lo[2] = {0, 0}, hi[2] = {0, 0};  // the other two coordinates, in x, y, z order
 
+  plate(int axis_, double at_, double lo0, double hi0, double lo1, double hi1) : axis(axis_), at(at_) {
+    lo[0] = lo0, hi[0] = hi0, lo[1] = lo1, hi[1] = hi1;
+  }
+
   // Whether the segment a -> b crosses the plate grown by `grow` mm on every side.
   bool crossed_by(const glm::dvec3& a, const glm::dvec3& b, double grow) const {
     if ((a[axis] - at) * (b[axis] - at) >= 0) return false;
@@ -109,11 +113,7 @@ eye_class classify(const glm::dvec3& eye, const plate& hood) {
 // grid look over it at the display, eyes high up have it in the way.
 TEST(Props, HoodRemovesTheDisplaySeenDirectlyExactlyWhereItIsHidden) {
   test::temp_dir dir;
-  plate hood;
-  hood.axis = 1;
-  hood.at = -120;
-  hood.lo[0] = -60, hood.hi[0] = 60;  // x
-  hood.lo[1] = 35, hood.hi[1] = 65;   // z
+  const plate hood(1, -120, -60, 60, 35, 65);  // x, then z
   write_plate(hood, dir.file("hood.glb"));
 
   const scene bare = test::uniform_source_scene(50, 32);
@@ -190,11 +190,7 @@ TEST(Props, HoodRemovesTheDisplaySeenDirectlyExactlyWhereItIsHidden) {
 // eye onto the image's plane z = 150 scales by 300 / 250 about the eye).
 TEST(Props, PlateInFrontHidesTheProjectedPartOfTheAerialImage) {
   test::temp_dir dir;
-  plate front;
-  front.axis = 2;
-  front.at = 200;
-  front.lo[0] = 0, front.hi[0] = 100;     // x
-  front.lo[1] = -100, front.hi[1] = 100;  // y
+  const plate front(2, 200, 0, 100, -100, 100);  // x, then y
   write_plate(front, dir.file("front.glb"));
   scene s;
   s.props.push_back(absorber_prop(dir.file("front.glb")));
@@ -240,11 +236,7 @@ std::vector<double> traced_components(const scene& s, std::uint64_t spp) {
 // transparent half mirror, with a field of 0.4 mm.
 TEST(Props, DiffusePlateLitByTheDisplayHasTheViewFactorsRadiance) {
   test::temp_dir dir;
-  plate lid;
-  lid.axis = 1;
-  lid.at = -100;
-  lid.lo[0] = -25, lid.hi[0] = 25;
-  lid.lo[1] = -25, lid.hi[1] = 25;
+  const plate lid(1, -100, -25, 25, -25, 25);  // x, then z
   write_plate(lid, dir.file("lid.glb"));
   scene s = test::uniform_source_scene(50, 16);
   s.half_mirror.reflectance = 0;
@@ -279,11 +271,7 @@ TEST(Props, DiffusePlateLitByTheDisplayHasTheViewFactorsRadiance) {
 // pixel is exactly 0.7 L, all of it light a prop scattered.
 TEST(Props, MirrorPropShowsTheDisplayAtItsReflectance) {
   test::temp_dir dir;
-  plate mirror;
-  mirror.axis = 2;
-  mirror.at = -60;
-  mirror.lo[0] = -60, mirror.hi[0] = 60;    // x
-  mirror.lo[1] = -200, mirror.hi[1] = -80;  // y
+  const plate mirror(2, -60, -60, 60, -200, -80);  // x, then y
   write_plate(mirror, dir.file("mirror.glb"));
   scene s = test::uniform_source_scene(50, 24);
   s.half_mirror.reflectance = 0;
