@@ -271,24 +271,33 @@ TEST(Props, DiffusePlateLitByTheDisplayHasTheViewFactorsRadiance) {
 // pixel is exactly 0.7 L, all of it light a prop scattered.
 TEST(Props, MirrorPropShowsTheDisplayAtItsReflectance) {
   test::temp_dir dir;
-  const plate mirror(2, -60, -60, 60, -200, -80);  // x, then y
-  write_plate(mirror, dir.file("mirror.glb"));
-  scene s = test::uniform_source_scene(50, 24);
-  s.half_mirror.reflectance = 0;
-  s.half_mirror.transmittance = 1;
-  prop_params p = absorber_prop(dir.file("mirror.glb"));
-  p.surface = prop_surface::mirror;
-  p.albedo = {0.7, 0.7, 0.7};
-  s.props.push_back(p);
-  s.observer.placement = observer_placement::look_at;
-  s.observer.position_mm = {0, 150, 410};
-  s.observer.look_at_mm = {0, -150, -120};
-  s.observer.fov_deg = 2;
-  check_scene(s, "mirror");
-  const std::vector<double> got = traced_components(s, 16);
-  EXPECT_NEAR(got[component_rest], 0.7 * s.source.intensity, 1e-5);
-  EXPECT_EQ(got[component_aerial] + got[component_direct] + got[component_reflection], 0.0);
-  // An absorber there shows nothing.
-  s.props.front().surface = prop_surface::absorber;
-  EXPECT_EQ(traced_components(s, 4)[component_rest], 0.0);
+  // The same plate twice: modelled in place, and modelled lying in y = 0 (z from 80 to 200 mm)
+  // and turned into place by its pose (pitch -90 takes (x, 0, z) to (x, -z, 0)), so the prop's
+  // normal must be turned by its pose too.
+  write_plate(plate(2, -60, -60, 60, -200, -80), dir.file("in_place.glb"));
+  write_plate(plate(1, 0, -60, 60, 80, 200), dir.file("flat.glb"));
+  for (const bool turned : {false, true}) {
+    scene s = test::uniform_source_scene(50, 24);
+    s.half_mirror.reflectance = 0;
+    s.half_mirror.transmittance = 1;
+    prop_params p = absorber_prop(dir.file(turned ? "flat.glb" : "in_place.glb"));
+    p.surface = prop_surface::mirror;
+    p.albedo = {0.7, 0.7, 0.7};
+    if (turned) {
+      p.pose.pitch_deg = -90;
+      p.pose.center_mm = {0, 0, -60};
+    }
+    s.props.push_back(p);
+    s.observer.placement = observer_placement::look_at;
+    s.observer.position_mm = {0, 150, 410};
+    s.observer.look_at_mm = {0, -150, -120};
+    s.observer.fov_deg = 2;
+    check_scene(s, "mirror");
+    const std::vector<double> got = traced_components(s, 16);
+    EXPECT_NEAR(got[component_rest], 0.7 * s.source.intensity, 1e-5) << (turned ? "turned" : "in place");
+    EXPECT_EQ(got[component_aerial] + got[component_direct] + got[component_reflection], 0.0);
+    // An absorber there shows nothing.
+    s.props.front().surface = prop_surface::absorber;
+    EXPECT_EQ(traced_components(s, 4)[component_rest], 0.0);
+  }
 }
