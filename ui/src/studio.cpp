@@ -1,5 +1,6 @@
 #include "airr/ui/studio.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
@@ -22,19 +23,26 @@ static std::string display_name(const studio& st) {
   return st.doc_path.empty() ? "untitled" : fs::path(st.doc_path).filename().string();
 }
 
-// Every prop's mesh (from the mesh cache, which check_scene filled) and its bounds.
+// Every prop's mesh (from the mesh cache, which check_scene filled) and its bounds, computed only
+// for a mesh that was not there before (an edit that moves a prop keeps them).
 static void keep_prop_meshes(studio& st, const scene& s) {
-  st.prop_meshes.clear();
-  st.prop_bounds.clear();
+  std::vector<std::shared_ptr<const triangle_mesh>> meshes;
+  std::vector<mesh_bounds> bounds;
   for (const auto& p : s.props) {
     std::shared_ptr<const triangle_mesh> m;
     try {
       m = cached_prop_mesh(resolve_scene_path(s, p.mesh), p.node);
     } catch (const std::exception&) {
     }
-    st.prop_meshes.push_back(m);
-    st.prop_bounds.push_back(m ? bounds_of(*m) : mesh_bounds{});
+    const auto kept = std::find(st.prop_meshes.begin(), st.prop_meshes.end(), m);
+    if (m && kept != st.prop_meshes.end())
+      bounds.push_back(st.prop_bounds[std::size_t(kept - st.prop_meshes.begin())]);
+    else
+      bounds.push_back(m ? bounds_of(*m) : mesh_bounds{});
+    meshes.push_back(std::move(m));
   }
+  st.prop_meshes = std::move(meshes);
+  st.prop_bounds = std::move(bounds);
 }
 
 void studio_start(studio& st, const scene& s, const std::string& path) {
