@@ -166,8 +166,10 @@ static sample_numbers draw_sample_numbers(const tracer_scene& ts, int px, int py
   return n;
 }
 
-// `first_hit`: the camera ray's hit when it was traced already (in a stream), else null.
-static component_radiance trace_path(const tracer_scene& ts, int px, int py, sample_numbers n,
+static camera_ray first_ray(const tracer_scene& ts, int px, int py, const sample_numbers& n);
+
+// `first`: the camera ray; `first_hit`: its hit when it was traced already (in a stream), else null.
+static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, const camera_ray& first,
                                      const RTCRayHit* first_hit, std::uint64_t& rays);
 
 static glm::vec3 total(const component_radiance& c) { return c[0] + c[1] + c[2] + c[3]; }
@@ -178,19 +180,21 @@ glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sam
 
 glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
                        const std::array<double, 6>& rotation, std::uint64_t& rays) {
-  return total(trace_path(ts, px, py, draw_sample_numbers(ts, px, py, sample_index, rotation), nullptr, rays));
+  const sample_numbers n = draw_sample_numbers(ts, px, py, sample_index, rotation);
+  return total(trace_path(ts, n, first_ray(ts, px, py, n), nullptr, rays));
 }
 
 static component_radiance estimate_from(const tracer_scene& ts, int px, int py, const sample_numbers& n,
-                                        const RTCRayHit* first_hit, std::uint64_t& rays) {
-  component_radiance c = trace_path(ts, px, py, n, first_hit, rays);
+                                        const camera_ray& first, const RTCRayHit* first_hit, std::uint64_t& rays) {
+  component_radiance c = trace_path(ts, n, first, first_hit, rays);
   if (ts.model) c[component_aerial] -= model_prediction(*ts.model, px, py, n.jitter, n.first_retro);
   return c;
 }
 
 component_radiance estimate_components(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
                                        const std::array<double, 6>& rotation, std::uint64_t& rays) {
-  return estimate_from(ts, px, py, draw_sample_numbers(ts, px, py, sample_index, rotation), nullptr, rays);
+  const sample_numbers n = draw_sample_numbers(ts, px, py, sample_index, rotation);
+  return estimate_from(ts, px, py, n, first_ray(ts, px, py, n), nullptr, rays);
 }
 
 glm::vec3 estimate_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
@@ -228,10 +232,9 @@ static bool scatter_at_prop(const tracer_scene::prop& prop, const RTCRayHit& rh,
   return true;
 }
 
-static component_radiance trace_path(const tracer_scene& ts, int px, int py, sample_numbers n,
+static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, const camera_ray& first,
                                      const RTCRayHit* first_hit, std::uint64_t& rays) {
   pcg32& rng = n.rng;
-  const camera_ray first = first_ray(ts, px, py, n);
   bool first_retro = true;
   const auto& hm = ts.layout.half_mirror;
   const double hm_total = hm.reflectance + hm.transmittance;
@@ -320,6 +323,7 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
   const int w = ts.camera.width;
   std::vector<std::array<double, 6>> rotations(std::size_t(w), std::array<double, 6>{});
   std::array<sample_numbers, camera_stream> numbers;
+  std::array<camera_ray, camera_stream> camera_rays;
   std::array<RTCRayHit, camera_stream> hits;
   for (int y = y0; y < y1; ++y) {
     if (cancel.load(std::memory_order_relaxed)) return false;
@@ -331,7 +335,7 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
         const int n = std::min(camera_stream, w - x0);
         for (int k = 0; k < n; ++k) {
           numbers[std::size_t(k)] = draw_sample_numbers(ts, x0 + k, y, i, rotations[std::size_t(x0 + k)]);
-          const camera_ray r = first_ray(ts, x0 + k, y, numbers[std::size_t(k)]);
+          const camera_ray& r = camera_rays[std::size_t(k)] = first_ray(ts, x0 + k, y, numbers[std::size_t(k)]);
           hits[std::size_t(k)] = make_ray_hit(r.origin, r.dir);
         }
         intersect_coherent(ts.embree->get(), hits.data(), unsigned(n));
@@ -340,7 +344,8 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
           const int x = x0 + k;
           double* acc = sums.data() + 3 * (std::size_t(y) * w + x);
           double* odd = odd_sums ? odd_sums->data() + 3 * (std::size_t(y) * w + x) : nullptr;
-          const component_radiance c = estimate_from(ts, x, y, numbers[std::size_t(k)], &hits[std::size_t(k)], rays);
+          const component_radiance c = estimate_from(ts, x, y, numbers[std::size_t(k)], camera_rays[std::size_t(k)],
+                                                     &hits[std::size_t(k)], rays);
           const glm::vec3 L = total(c);
           if (component_sums) {
             double* comp = component_sums->data() + 3 * component_count * (std::size_t(y) * w + x);
