@@ -208,6 +208,24 @@ TEST(Props, PlateInFrontHidesTheProjectedPartOfTheAerialImage) {
   EXPECT_NEAR(visible_fraction(none, eye_position(s, g, 30, 0)), 1.0, 1e-9);
 }
 
+// An edit that moves a prop shares the mesh's acceleration structure with the layout before it:
+// each function still answers for its own layout, even after the next one is built.
+TEST(Props, HitsOfAMovedPropFollowItAndEarlierOnesKeepTheirLayout) {
+  test::temp_dir dir;
+  write_plate(plate(2, 200, -50, 50, -50, 50), dir.file("plate.glb"));
+  scene s;
+  s.props.push_back(absorber_prop(dir.file("plate.glb")));
+  check_scene(s, "plate");
+  const prop_hit_function before = scene_prop_hits(s);
+  s.props.front().pose.center_mm = {200, 0, 0};
+  const prop_hit_function after = scene_prop_hits(s);
+  const glm::dvec3 down(0, 0, -1);
+  EXPECT_NEAR(before({0, 0, 400}, down, 1e9), 200, 1e-3);
+  EXPECT_TRUE(std::isinf(before({200, 0, 400}, down, 1e9)));
+  EXPECT_NEAR(after({200, 0, 400}, down, 1e9), 200, 1e-3);
+  EXPECT_TRUE(std::isinf(after({0, 0, 400}, down, 1e9)));
+}
+
 namespace {
 
 // Traces `spp` samples of every pixel with the plain estimator; the per-component means.

@@ -69,10 +69,19 @@ embree_mesh_scene::embree_mesh_scene(const embree_device& device, const triangle
 
 embree_mesh_scene::~embree_mesh_scene() { rtcReleaseScene(scene_); }
 
-embree_layout_scene::embree_layout_scene(const embree_device& device, const std::vector<instance_mesh>& meshes) {
+embree_layout_scene::embree_layout_scene(const embree_device& device, const std::vector<instance_mesh>& meshes,
+                                         const embree_layout_scene* shared) {
   for (const auto& m : meshes) {
     keys_.push_back(m.key);
-    if (!prototypes_.count(m.key)) prototypes_[m.key] = std::make_unique<embree_mesh_scene>(device, *m.mesh);
+    if (prototypes_.count(m.key)) continue;
+    if (shared) {
+      const auto built = shared->prototypes_.find(m.key);
+      if (built != shared->prototypes_.end()) {
+        prototypes_[m.key] = built->second;
+        continue;
+      }
+    }
+    prototypes_[m.key] = std::make_shared<const embree_mesh_scene>(device, *m.mesh);
   }
   top_ = rtcNewScene(device.get());
   instances_.resize(keys_.size());

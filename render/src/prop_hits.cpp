@@ -1,7 +1,9 @@
 #include "airr/render/prop_hits.hpp"
 
+#include <cstdint>
 #include <limits>
 #include <memory>
+#include <mutex>
 
 #include "airr/optics/layout.hpp"
 #include "airr/optics/mesh_gltf.hpp"
@@ -11,9 +13,24 @@ namespace airr {
 
 namespace {
 struct prop_scene {
-  embree_device device;
+  std::shared_ptr<const embree_device> device;  // outlives the scene
+  // Held so that no other mesh takes a key's address while this scene may share its prototype.
+  std::vector<instance_mesh> meshes;
   std::unique_ptr<embree_layout_scene> embree;
 };
+
+// The last props' scene built: the next one shares its meshes' acceleration structures, so an
+// edit that only moves props rebuilds the top level alone. Scenes are never changed once handed
+// out, since another thread may still be tracing one.
+struct last_prop_scene {
+  std::mutex mutex;
+  std::shared_ptr<const embree_device> device;
+  std::shared_ptr<const prop_scene> scene;
+};
+last_prop_scene& last_built() {
+  static last_prop_scene last;
+  return last;
+}
 }  // namespace
 
 prop_hit_function scene_prop_hits(const scene& s) {
@@ -21,14 +38,27 @@ prop_hit_function scene_prop_hits(const scene& s) {
   std::vector<glm::dmat4> transforms;
   for (const auto& p : s.props) {
     if (!p.visible) continue;
-    meshes.push_back({p.mesh + "#" + p.node, cached_prop_mesh(resolve_scene_path(s, p.mesh), p.node)});
+    auto mesh = cached_prop_mesh(resolve_scene_path(s, p.mesh), p.node);
+    // The mesh's address is in the key: a file changed on disk is a new mesh.
+    const std::string key = p.mesh + "#" + p.node + "@" + std::to_string(reinterpret_cast<std::uintptr_t>(mesh.get()));
+    meshes.push_back({key, std::move(mesh)});
     transforms.push_back(prop_transform(p));
   }
   if (meshes.empty()) return {};
+
   auto props = std::make_shared<prop_scene>();
-  props->embree = std::make_unique<embree_layout_scene>(props->device, meshes);
-  props->embree->set_transforms(transforms);
-  return [props](const glm::dvec3& o, const glm::dvec3& d, double t_max) {
+  {
+    last_prop_scene& last = last_built();
+    std::lock_guard<std::mutex> lock(last.mutex);
+    if (!last.device) last.device = std::make_shared<const embree_device>();
+    props->device = last.device;
+    props->meshes = meshes;
+    props->embree =
+        std::make_unique<embree_layout_scene>(*props->device, meshes, last.scene ? last.scene->embree.get() : nullptr);
+    props->embree->set_transforms(transforms);
+    last.scene = props;
+  }
+  return [props = std::shared_ptr<const prop_scene>(props)](const glm::dvec3& o, const glm::dvec3& d, double t_max) {
     RTCRayHit rh = make_ray_hit(o, d, 1e-6f);
     rh.ray.tfar = float(std::min(t_max, double(std::numeric_limits<float>::max())));
     intersect(props->embree->get(), rh);

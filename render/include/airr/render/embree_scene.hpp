@@ -58,8 +58,10 @@ struct instance_mesh {
 
 class embree_layout_scene {
  public:
-  // One instance per entry, in order (the instance id is the index); equal keys are built once.
-  embree_layout_scene(const embree_device& device, const std::vector<instance_mesh>& meshes);
+  // One instance per entry, in order (the instance id is the index); equal keys are built once,
+  // and keys `shared` has already built (on the same device) are shared with it, not rebuilt.
+  embree_layout_scene(const embree_device& device, const std::vector<instance_mesh>& meshes,
+                      const embree_layout_scene* shared = nullptr);
   ~embree_layout_scene();
   embree_layout_scene(const embree_layout_scene&) = delete;
   embree_layout_scene& operator=(const embree_layout_scene&) = delete;
@@ -71,7 +73,7 @@ class embree_layout_scene {
 
  private:
   std::vector<std::string> keys_;
-  std::map<std::string, std::unique_ptr<embree_mesh_scene>> prototypes_;
+  std::map<std::string, std::shared_ptr<const embree_mesh_scene>> prototypes_;
   std::vector<RTCGeometry> instances_;
   RTCScene top_ = nullptr;
 };
