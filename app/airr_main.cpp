@@ -1,11 +1,14 @@
 // `airr`: the command-line face of AIRR Studio.
 #include <cstdio>
 #include <exception>
+#include <string>
 
+#include "airr_version.hpp"
 #include "commands.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"airr: simulate aerial imaging by retroreflection (AIRR)"};
+  app.set_version_flag("--version", std::string("airr ") + AIRR_VERSION);
   app.require_subcommand(1);
   add_render_command(app);
   add_bench_command(app);

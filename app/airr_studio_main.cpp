@@ -16,6 +16,7 @@
 #include "airr/optics/scene_json.hpp"
 #include "airr/ui/screenshot.hpp"
 #include "airr/ui/studio.hpp"
+#include "airr_version.hpp"
 
 namespace {
 
@@ -72,6 +73,7 @@ double percentile(std::vector<double> v, double q) {
 int main(int argc, char** argv) {
   options opt;
   CLI::App cli{"airr-studio: design AIRR optical systems interactively"};
+  cli.set_version_flag("--version", std::string("airr-studio ") + AIRR_VERSION);
   cli.add_option("scene", opt.scene_path, "Scene JSON file (default: the shipped default scene)");
   cli.add_option("--set", opt.sets,
                  "Override a scene value, e.g. retroreflectors.0.pose.pitch_deg=20 or floating_distance_mm=200");
@@ -122,6 +124,9 @@ int main(int argc, char** argv) {
   glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_SCALE_TO_MONITOR, GLFW_TRUE);
+  // The window's class matches the menu entry's StartupWMClass, so docks group it under its icon.
+  glfwWindowHintString(GLFW_X11_CLASS_NAME, "airr-studio");
+  glfwWindowHintString(GLFW_X11_INSTANCE_NAME, "airr-studio");
   GLFWwindow* window =
       glfwCreateWindow(st.settings.window_width, st.settings.window_height, "AIRR Studio", nullptr, nullptr);
   if (!window) {

@@ -70,7 +70,7 @@ double raw_embree_seconds(const airr::tracer_scene& ts, std::uint64_t ray_count,
 
 void add_bench_command(CLI::App& app) {
   struct options {
-    std::string scene_path = airr::default_scene_path();
+    std::string scene_path;  // empty: the shipped default scene
     std::uint64_t spp = 16;
     int edits = 20;
     bool noise = false;
@@ -83,7 +83,7 @@ void add_bench_command(CLI::App& app) {
   auto* cmd = app.add_subcommand(
       "bench",
       "Measure tracer and Embree ray throughput and edit-to-image latency, or (--noise) the time to a noise level");
-  cmd->add_option("scene", opt->scene_path, "Scene JSON file")->capture_default_str();
+  cmd->add_option("scene", opt->scene_path, "Scene JSON file (default: the shipped default scene)");
   cmd->add_option("--spp", opt->spp, "Samples per pixel for the throughput runs")->check(CLI::Range(1, 4096));
   cmd->add_option("--edits", opt->edits, "Edits for the latency measurement")->check(CLI::Range(1, 10000));
   cmd->add_flag("--noise", opt->noise,
@@ -110,6 +110,7 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--threads", opt->noise_options.threads, "With --noise: worker threads (0: all cores)")
       ->check(CLI::Range(0, 1024));
   cmd->callback([opt, cmd] {
+    if (opt->scene_path.empty()) opt->scene_path = airr::default_scene_path();
     if (opt->model_error) {
       model_error_options m;
       m.scene_path = opt->scene_path;

@@ -1,17 +1,17 @@
-// airr make-assets [--dir DIR]: regenerates the glTF models and test charts shipped in assets/.
+// airr make-assets --dir DIR: regenerates the glTF models and test charts shipped in assets/
+// (`--dir assets` in the source tree; installed assets are never rewritten in place).
 #include <filesystem>
 
 #include "airr/measure/test_charts.hpp"
-#include "airr/optics/assets.hpp"
 #include "airr/optics/corner_cube.hpp"
 #include "airr/optics/mesh_gltf.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "commands.hpp"
 
 void add_make_assets_command(CLI::App& app) {
-  auto dir = std::make_shared<std::string>(airr::asset_dir());
+  auto dir = std::make_shared<std::string>();
   auto* cmd = app.add_subcommand("make-assets", "Regenerate the panel model, test charts and default scene in assets/");
-  cmd->add_option("--dir", *dir, "Assets directory")->capture_default_str();
+  cmd->add_option("--dir", *dir, "Directory to write them into (the source tree's assets/ to update them)")->required();
   cmd->callback([dir] {
     namespace fs = std::filesystem;
     fs::create_directories(fs::path(*dir) / "models");

@@ -28,7 +28,7 @@ std::string utc_now_iso8601() {
 void add_shift_table_command(CLI::App& app) {
   struct options {
     std::string out;
-    std::string model = airr::asset_dir() + "/models/corner_cube.gltf";
+    std::string model;  // empty: the shipped corner cube
     int grid = airr::shift_table_params{}.grid;
   };
   auto opt = std::make_shared<options>();
@@ -37,8 +37,9 @@ void add_shift_table_command(CLI::App& app) {
   cmd->add_option("--grid", opt->grid, "Rays per side of the grid, per incidence direction")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
-  cmd->add_option("--model", opt->model, "Corner-cube glTF model")->capture_default_str();
+  cmd->add_option("--model", opt->model, "Corner-cube glTF model (default: the shipped models/corner_cube.gltf)");
   cmd->callback([opt] {
+    if (opt->model.empty()) opt->model = airr::asset_dir() + "/models/corner_cube.gltf";
     const airr::triangle_mesh cube = airr::load_gltf_mesh(opt->model);
     airr::shift_table_params params;
     params.grid = opt->grid;

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Installs everything AIRR Studio needs to build, test and run, from Debian 12 packages.
+# Installs everything AIRR Studio needs to build, test, package and run, from Debian 12 packages.
 # Idempotent: packages already present are left alone; safe to run repeatedly as root.
 set -euo pipefail
 
@@ -10,6 +10,7 @@ packages=(
   libopencv-dev
   libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri xvfb xauth x11-xserver-utils fonts-dejavu-core
   libgtest-dev libgmock-dev clang-format python3
+  librsvg2-bin help2man file desktop-file-utils
 )
 # The Khronos glTF-Validator (npm) judges the glTF files the tests write; it needs Node.js.
 if ! command -v npm >/dev/null 2>&1; then packages+=(nodejs npm); fi

@@ -8,6 +8,7 @@
 
 #include "airr/measure/mtf_routes.hpp"
 #include "airr/measure/viewing_zone_full.hpp"
+#include "airr/optics/assets.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "airr/optics/viewing_zone.hpp"
 #include "airr/render/render_session.hpp"
@@ -29,7 +30,7 @@ scene looking_down(const std::string& model) {
     o.push_back({"retroreflectors.0.model.type", "\"sinc_shift\""});
     o.push_back({"retroreflectors.0.model.preset", "\"" + model + "\""});
   }
-  return load_scene(std::string(AIRR_ASSET_DIR) + "/scenes/default.json", o);
+  return load_scene(default_scene_path(), o);
 }
 
 render_snapshot render_components(const scene& s, std::uint64_t spp) {

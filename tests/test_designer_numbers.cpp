@@ -3,15 +3,19 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <string>
 
 #include "airr/measure/mtf_routes.hpp"
 #include "airr/measure/sweep.hpp"
+#include "airr/optics/assets.hpp"
 #include "airr/optics/gltf_layout.hpp"
 #include "airr/optics/layout.hpp"
 #include "airr/optics/scene_json.hpp"
 #include "airr/ui/analysis_worker.hpp"
+#include "airr/ui/settings.hpp"
 #include "airr/ui/studio.hpp"
 #include "gltf_builder.hpp"
 #include "test_helpers.hpp"
@@ -126,4 +130,71 @@ TEST(DesignerNumbers, DroppedGltfBecomesAPropOrOpensAsALayout) {
   ASSERT_EQ(st.doc.props.size(), 1u);
   EXPECT_EQ(st.doc.props[0].mesh, "layout.glb");
   st.session->stop();
+}
+
+// A shipped scene opens untitled (saving asks where, never over the assets); the same scene saved
+// elsewhere opens as itself.
+TEST(DesignerNumbers, ShippedSceneOpensUntitledSoTheAssetsAreNeverSavedOver) {
+  test::temp_dir dir;
+  EXPECT_TRUE(is_shipped_asset(default_scene_path()));
+  EXPECT_TRUE(is_shipped_asset(asset_dir() + "/presets/../scenes/default.json"));
+  EXPECT_FALSE(is_shipped_asset(dir.file("default.json")));
+  EXPECT_FALSE(is_shipped_asset(""));
+
+  ui::studio st;
+  st.keep_recovery = false;
+  st.session_options = {.threads = 1, .target_spp = 1};
+  const scene shipped = load_scene(default_scene_path());
+  ui::studio_start(st, shipped, default_scene_path());
+  EXPECT_EQ(st.doc_path, "");
+  EXPECT_TRUE(st.settings.recent_files.empty());
+  EXPECT_FALSE(ui::studio_dirty(st));
+
+  save_scene(rebase_scene_paths(shipped, dir.path.string()), dir.file("default.json"));
+  ui::studio_start(st, load_scene(dir.file("default.json")), dir.file("default.json"));
+  EXPECT_EQ(st.doc_path, dir.file("default.json"));
+  st.session->stop();
+}
+
+// The designer keeps settings under $XDG_CONFIG_HOME and recovery copies under $XDG_STATE_HOME;
+// unset or relative (which the XDG specification says to ignore), they default under $HOME.
+TEST(DesignerNumbers, SettingsAndRecoveryLiveInTheXdgDirectories) {
+  test::temp_dir dir;
+  const auto restore = [](const char* name, const char* value) {
+    if (value)
+      setenv(name, value, 1);
+    else
+      unsetenv(name);
+  };
+  const std::string home = std::getenv("HOME") ? std::getenv("HOME") : "";
+  const char* config = std::getenv("XDG_CONFIG_HOME");
+  const char* state = std::getenv("XDG_STATE_HOME");
+  const std::string saved_config = config ? config : "", saved_state = state ? state : "";
+
+  setenv("XDG_CONFIG_HOME", dir.file("config").c_str(), 1);
+  setenv("XDG_STATE_HOME", dir.file("state").c_str(), 1);
+  EXPECT_EQ(ui::config_dir(), dir.file("config") + "/airr-studio");
+  EXPECT_EQ(ui::state_dir(), dir.file("state") + "/airr-studio");
+  EXPECT_TRUE(std::filesystem::is_directory(dir.file("state") + "/airr-studio"));
+
+  setenv("HOME", dir.file("home").c_str(), 1);
+  setenv("XDG_CONFIG_HOME", "relative/config", 1);
+  unsetenv("XDG_STATE_HOME");
+  EXPECT_EQ(ui::config_dir(), dir.file("home") + "/.config/airr-studio");
+  EXPECT_EQ(ui::state_dir(), dir.file("home") + "/.local/state/airr-studio");
+
+  restore("HOME", home.empty() ? nullptr : home.c_str());
+  restore("XDG_CONFIG_HOME", config ? saved_config.c_str() : nullptr);
+  restore("XDG_STATE_HOME", state ? saved_state.c_str() : nullptr);
+}
+
+// AIRR_ASSETS overrides where the assets are; the build tree's programs use the source tree's.
+TEST(DesignerNumbers, AssetsFolderFollowsAirrAssets) {
+  const std::string found = asset_dir();
+  EXPECT_TRUE(std::filesystem::exists(found + "/presets/rf-ay.json")) << found;
+  setenv("AIRR_ASSETS", "/somewhere/else", 1);
+  EXPECT_EQ(asset_dir(), "/somewhere/else");
+  EXPECT_EQ(default_scene_path(), "/somewhere/else/scenes/default.json");
+  unsetenv("AIRR_ASSETS");
+  EXPECT_EQ(asset_dir(), found);
 }

@@ -86,8 +86,9 @@ struct studio_run {
   std::string log;
 };
 studio_run run_studio(const test::temp_dir& dir, const std::string& args) {
-  const std::string cmd = "XDG_CONFIG_HOME=" + dir.file("config") + " xvfb-run -a -s '-screen 0 1600x1000x24' " +
-                          std::string(AIRR_STUDIO) + " " + args + " > " + dir.file("log.txt") + " 2>&1";
+  const std::string cmd = "XDG_CONFIG_HOME=" + dir.file("config") + " XDG_STATE_HOME=" + dir.file("state") +
+                          " xvfb-run -a -s '-screen 0 1600x1000x24' " + std::string(AIRR_STUDIO) + " " + args + " > " +
+                          dir.file("log.txt") + " 2>&1";
   studio_run r;
   r.status = std::system(cmd.c_str());
   std::ifstream log(dir.file("log.txt"));
@@ -219,7 +220,8 @@ TEST(Gui, FontsAndSizesFollowTheContentScale) {
   auto run = [&](int dpi, const std::string& shot) {
     const std::string script = dir.file("run" + std::to_string(dpi) + ".sh");
     std::ofstream(script) << "echo 'Xft.dpi: " << dpi << "' | xrdb -nocpp -merge\n"
-                          << "XDG_CONFIG_HOME=" << dir.file("config" + std::to_string(dpi)) << " " << AIRR_STUDIO << " "
+                          << "XDG_CONFIG_HOME=" << dir.file("config" + std::to_string(dpi))
+                          << " XDG_STATE_HOME=" << dir.file("state" + std::to_string(dpi)) << " " << AIRR_STUDIO << " "
                           << default_scene_path() << " --frames 10 --screenshot " << shot << "\n";
     // -noreset keeps the resource database alive between xrdb and the app.
     const std::string cmd = "xvfb-run -a -s '-noreset -screen 0 3400x2200x24' bash " + script + " > " +

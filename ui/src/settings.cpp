@@ -15,12 +15,13 @@ namespace airr::ui {
 
 namespace fs = std::filesystem;
 
-std::string config_dir() {
+// $<variable>/airr-studio, else ~/<fallback>/airr-studio (the XDG base directories), created.
+static std::string xdg_dir(const char* variable, const char* fallback) {
   fs::path base;
-  if (const char* xdg = std::getenv("XDG_CONFIG_HOME"); xdg && *xdg) {
+  if (const char* xdg = std::getenv(variable); xdg && *xdg && fs::path(xdg).is_absolute()) {
     base = xdg;
   } else if (const char* home = std::getenv("HOME"); home && *home) {
-    base = fs::path(home) / ".config";
+    base = fs::path(home) / fallback;
   } else {
     base = fs::temp_directory_path();
   }
@@ -29,6 +30,9 @@ std::string config_dir() {
   fs::create_directories(dir, ec);
   return dir.string();
 }
+
+std::string config_dir() { return xdg_dir("XDG_CONFIG_HOME", ".config"); }
+std::string state_dir() { return xdg_dir("XDG_STATE_HOME", ".local/state"); }
 
 studio_settings load_settings() {
   studio_settings s;

@@ -19,6 +19,13 @@ namespace airr::ui {
 
 namespace fs = std::filesystem;
 
+// New scene files end in .airr.json, the name their MIME type (application/x-airr-scene) claims.
+static std::string suggested_scene_name(const std::string& doc_path) {
+  if (doc_path.empty()) return "scene.airr.json";
+  const fs::path p(doc_path);
+  return p.extension() == ".json" ? p.filename().string() : p.stem().string() + ".airr.json";
+}
+
 static std::string display_name(const studio& st) {
   return st.doc_path.empty() ? "untitled" : fs::path(st.doc_path).filename().string();
 }
@@ -45,11 +52,12 @@ static void keep_prop_meshes(studio& st, const scene& s) {
   st.prop_bounds = std::move(bounds);
 }
 
+// A shipped scene opens untitled, so that saving asks where: the assets are never written.
 void studio_start(studio& st, const scene& s, const std::string& path) {
   keep_prop_meshes(st, s);
   st.view_3d.framed = false;
   st.doc = s;
-  st.doc_path = path;
+  st.doc_path = is_shipped_asset(path) ? "" : path;
   st.saved = s;
   st.applied = s;
   st.doc_error.clear();
@@ -61,7 +69,7 @@ void studio_start(studio& st, const scene& s, const std::string& path) {
   }
   st.analysis.submit_scene(s, st.generation, nullptr);
   st.view.uploaded_generation = ~0ull;
-  if (!path.empty()) add_recent_file(st.settings, path);
+  if (!st.doc_path.empty()) add_recent_file(st.settings, st.doc_path);
 }
 
 bool studio_dirty(const studio& st) { return !st.saved || !(st.doc == *st.saved); }
@@ -229,7 +237,7 @@ bool studio_export_plots(studio& st, const std::string& path) {
 
 // ---------------------------------------------------------------- recovery
 
-static std::string recovery_path() { return config_dir() + "/recovery.json"; }
+static std::string recovery_path() { return state_dir() + "/recovery.json"; }
 
 void studio_keep_recovery(studio& st, double now) {
   if (!st.keep_recovery) return;
@@ -305,7 +313,7 @@ static std::string start_dir(const studio& st) {
 
 static void request_save_as(studio& st) {
   st.dialog.request(file_purpose::save_scene, true, "Save scene as", start_dir(st), {".json"},
-                    st.doc_path.empty() ? "scene.json" : fs::path(st.doc_path).stem().string() + ".json");
+                    suggested_scene_name(st.doc_path));
 }
 
 // Save: to the scene's own file, unless it came from a glTF layout (saved as a scene file instead).

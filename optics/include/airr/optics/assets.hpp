@@ -1,14 +1,15 @@
 #pragma once
-// Where the shipped assets are: $AIRR_ASSETS, else the source tree's assets/ (set at build time).
-#include <cstdlib>
+// Where the shipped assets (scenes, presets, charts, models) are found.
 #include <string>
 
 namespace airr {
 
-inline std::string asset_dir() {
-  if (const char* env = std::getenv("AIRR_ASSETS"); env && *env) return env;
-  return AIRR_ASSET_DIR;
-}
-inline std::string default_scene_path() { return asset_dir() + "/scenes/default.json"; }
+// $AIRR_ASSETS when set; else share/airr-studio beside an installed program
+// (<prefix>/bin/../share/airr-studio, wherever the prefix was moved); else, for a program still in
+// the build tree, the source tree's assets/. An installed program never looks in the source tree.
+std::string asset_dir();
+std::string default_scene_path();
+// Whether `path` is one of the shipped assets (the designer never saves over those).
+bool is_shipped_asset(const std::string& path);
 
 }  // namespace airr

@@ -1,7 +1,9 @@
 #pragma once
 // What the designer keeps between sessions, in $XDG_CONFIG_HOME/airr-studio/ (default
-// ~/.config/airr-studio/): settings.json (recent files, window size, view options) and imgui.ini
-// (window layout).
+// ~/.config/airr-studio/): settings.json (recent files, window size, view options), imgui.ini
+// (window layout) and the user's presets; the crash-recovery copy is state, in
+// $XDG_STATE_HOME/airr-studio/ (default ~/.local/state/airr-studio/). Nothing is written beside the
+// program or into its install prefix.
 #include <string>
 #include <vector>
 
@@ -16,6 +18,7 @@ struct studio_settings {
 };
 
 std::string config_dir();                      // created on demand
+std::string state_dir();                       // created on demand
 studio_settings load_settings();               // defaults when missing or unreadable (a warning on stderr)
 void save_settings(const studio_settings& s);  // atomic
 void add_recent_file(studio_settings& s, const std::string& path);
