@@ -1,4 +1,5 @@
 // `airr`: the command-line face of AIRR Studio.
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <string>
@@ -7,6 +8,9 @@
 #include "commands.hpp"
 
 int main(int argc, char** argv) {
+  // Past a file-size limit (ulimit -f) a write then fails with an error naming the file, instead
+  // of the signal killing the program half-way.
+  std::signal(SIGXFSZ, SIG_IGN);
   CLI::App app{"airr: simulate aerial imaging by retroreflection (AIRR)"};
   app.set_version_flag("--version", std::string("airr ") + AIRR_VERSION);
   app.require_subcommand(1);

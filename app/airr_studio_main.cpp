@@ -2,6 +2,7 @@
 // the side view and live plots; scripted runs write a screenshot and exit.
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <numeric>
@@ -71,6 +72,9 @@ double percentile(std::vector<double> v, double q) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Past a file-size limit (ulimit -f) a write then fails with an error naming the file, instead
+  // of the signal killing the program half-way.
+  std::signal(SIGXFSZ, SIG_IGN);
   options opt;
   CLI::App cli{"airr-studio: design AIRR optical systems interactively"};
   cli.set_version_flag("--version", std::string("airr-studio ") + AIRR_VERSION);

@@ -10,31 +10,8 @@
 
 using namespace airr;
 
-namespace {
-
-int line_count(const std::string& s) {
-  int n = 0;
-  for (char c : s) n += c == '\n';
-  return n;
-}
-
-void expect_one_line_error(const test::command_result& r, const std::vector<std::string>& must_contain) {
-  EXPECT_NE(r.exit_code, 0) << r.out;
-  EXPECT_EQ(line_count(r.out), 1) << r.out;
-  EXPECT_EQ(r.out.rfind("error: ", 0), 0u) << r.out;
-  for (const auto& m : must_contain)
-    EXPECT_NE(r.out.find(m), std::string::npos) << "missing '" << m << "' in: " << r.out;
-}
-
-std::string scene_file(const test::temp_dir& dir, const std::function<void(nlohmann::json&)>& edit) {
-  nlohmann::json j = scene_to_json(test::uniform_source_scene(20));
-  edit(j);
-  const std::string path = dir.file("scene.json");
-  std::ofstream(path) << j.dump(2);
-  return path;
-}
-
-}  // namespace
+using test::expect_one_line_error;
+using test::scene_file;
 
 TEST(CliErrors, MalformedJson) {
   test::temp_dir dir;

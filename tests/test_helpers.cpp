@@ -1,11 +1,16 @@
 #include "test_helpers.hpp"
 
 #include <sys/wait.h>
+#include <algorithm>
 #include <array>
 #include <cstdio>
+#include <fstream>
 #include <random>
 
+#include <gtest/gtest.h>
+
 #include "airr/optics/assets.hpp"
+#include "airr/optics/scene_json.hpp"
 
 namespace airr::test {
 
@@ -52,9 +57,28 @@ centroid luminance_centroid(const render_snapshot& snap) {
   return c;
 }
 
-command_result run_cli(const std::string& args) {
+command_result run_cli(const std::string& args) { return run_command(std::string(AIRR_CLI) + " " + args); }
+
+void expect_one_line_error(const command_result& r, const std::vector<std::string>& must_contain) {
+  const auto lines = std::count(r.out.begin(), r.out.end(), '\n');
+  EXPECT_NE(r.exit_code, 0) << r.out;
+  EXPECT_EQ(lines, 1) << r.out;
+  EXPECT_EQ(r.out.rfind("error: ", 0), 0u) << r.out;
+  for (const auto& m : must_contain)
+    EXPECT_NE(r.out.find(m), std::string::npos) << "missing '" << m << "' in: " << r.out;
+}
+
+std::string scene_file(const temp_dir& dir, const std::function<void(nlohmann::json&)>& edit) {
+  nlohmann::json j = scene_to_json(uniform_source_scene(20));
+  edit(j);
+  const std::string path = dir.file("scene.json");
+  std::ofstream(path) << j.dump(2);
+  return path;
+}
+
+command_result run_command(const std::string& shell_command) {
   command_result r;
-  const std::string cmd = std::string(AIRR_CLI) + " " + args + " 2>&1";
+  const std::string cmd = "{ " + shell_command + "; } 2>&1";
   FILE* pipe = ::popen(cmd.c_str(), "r");
   if (!pipe) return {-1, "popen failed"};
   std::array<char, 4096> buf;

@@ -1,7 +1,11 @@
 #pragma once
 // Shared by the tests: scenes built in code, temporary directories, running the CLI.
 #include <filesystem>
+#include <functional>
 #include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "airr/optics/image.hpp"
 #include "airr/optics/random.hpp"
@@ -45,6 +49,12 @@ struct command_result {
   int exit_code = 0;
   std::string out;  // stdout and stderr together
 };
+// Runs a shell command; `airr` with these arguments.
+command_result run_command(const std::string& shell_command);
 command_result run_cli(const std::string& args);
+// The command failed with exactly one line, "error: ...", holding every one of `must_contain`.
+void expect_one_line_error(const command_result& r, const std::vector<std::string>& must_contain);
+// uniform_source_scene(20) as JSON, changed by `edit`, written to `dir`/scene.json; its path.
+std::string scene_file(const temp_dir& dir, const std::function<void(nlohmann::json&)>& edit);
 
 }  // namespace airr::test

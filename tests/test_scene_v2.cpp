@@ -210,7 +210,7 @@ TEST(BadLayout, DegeneratePoses) {
   save_scene(s, dir.file("s.json"));
   const std::string path = dir.file("s.json");
   EXPECT_EQ(error_of([&] { load_scene(path, {parse_override("half_mirror.width_mm=0")}); }),
-            path + " (with --set): half_mirror.width_mm: must be positive (is 0.000000)");
+            path + " (with --set): half_mirror.width_mm: must be positive (is 0)");
   EXPECT_NE(error_of([&] {
               load_scene(path, {parse_override("source.pose.yaw_deg=nan")});
             }).find("--set source.pose.yaw_deg: must be a finite number"),

@@ -25,12 +25,6 @@ using nlohmann::json;
 
 namespace {
 
-std::string number_text(double v) {
-  std::ostringstream s;
-  s << v;
-  return s.str();
-}
-
 std::string resolve_file(json_reader& r, const std::string& dir, const std::string& key) {
   const std::string name = r.string(key);
   const std::string path = resolve_path(name, dir);

@@ -1,6 +1,9 @@
+#include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -16,6 +19,9 @@ namespace fs = std::filesystem;
 std::string read_text_file(const std::string& path) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw input_error(path + ": file not found");
+  if (fs::file_size(path, ec) > max_text_file_bytes)
+    throw input_error(path + ": larger than the limit of " + std::to_string(max_text_file_bytes >> 20) +
+                      " MiB for a text file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw input_error(path + ": cannot open for reading");
   std::ostringstream ss;
@@ -25,22 +31,30 @@ std::string read_text_file(const std::string& path) {
 
 void write_file_atomic(const std::string& path, std::string_view bytes) {
   const std::string tmp = path + ".tmp" + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-    if (!out) throw input_error(path + ": cannot write (temporary file " + tmp + ")");
-    out.write(bytes.data(), std::streamsize(bytes.size()));
-    out.flush();
-    if (!out) {
-      std::remove(tmp.c_str());
-      throw input_error(path + ": write failed");
-    }
+  // Closes the temporary file (if open), removes it, and says what failed with errno's reason.
+  int fd = -1;
+  const auto fail = [&](const std::string& what) {
+    const std::string why = std::strerror(errno);
+    if (fd >= 0) ::close(fd);
+    ::unlink(tmp.c_str());
+    throw input_error(path + ": " + what + ": " + why);
+  };
+  fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) fail("cannot write (temporary file " + tmp + ")");
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n == 0) errno = EIO;
+    if (n <= 0) fail("write failed");
+    done += std::size_t(n);
   }
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    throw input_error(path + ": cannot replace file: " + ec.message());
-  }
+  // On disk before the rename makes it the file: a crash leaves the old file or the new one.
+  if (::fsync(fd) != 0) fail("write failed");
+  const int closing = fd;
+  fd = -1;
+  if (::close(closing) != 0) fail("write failed");
+  if (::rename(tmp.c_str(), path.c_str()) != 0) fail("cannot replace file");
 }
 
 std::string resolve_path(const std::string& path, const std::string& base_dir) {
@@ -63,9 +77,45 @@ std::optional<file_stamp> stamp_of(const std::string& path) {
 
 std::string absolute_path(const std::string& path) { return fs::absolute(path).lexically_normal().string(); }
 
+namespace {
+struct too_deep {};
+}  // namespace
+
+static std::string too_deep_message(const std::string& origin) {
+  return origin + ": malformed JSON: nested deeper than " + std::to_string(max_json_depth) + " levels";
+}
+
+void check_json_depth(std::string_view text, const std::string& origin) {
+  int depth = 0;
+  bool in_string = false, escaped = false;
+  for (const char c : text) {
+    if (in_string) {
+      if (escaped)
+        escaped = false;
+      else if (c == '\\')
+        escaped = true;
+      else if (c == '"')
+        in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > max_json_depth) throw input_error(too_deep_message(origin));
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
 nlohmann::json parse_json(std::string_view text, const std::string& origin) {
+  const auto limit_depth = [](int depth, nlohmann::json::parse_event_t event, nlohmann::json&) {
+    using event_t = nlohmann::json::parse_event_t;
+    if ((event == event_t::object_start || event == event_t::array_start) && depth >= max_json_depth) throw too_deep{};
+    return true;
+  };
   try {
-    return nlohmann::json::parse(text);
+    return nlohmann::json::parse(text, limit_depth);
+  } catch (const too_deep&) {
+    throw input_error(too_deep_message(origin));
   } catch (const nlohmann::json::exception& e) {
     std::string what = e.what();
     const auto p = what.find("] ");  // drop nlohmann's "[json.exception...]" tag

@@ -4,6 +4,7 @@
 
 #include "airr/optics/error.hpp"
 #include "airr/optics/gltf_layout.hpp"
+#include "airr/optics/json_reader.hpp"
 #include "airr/optics/layout.hpp"
 #include "gltf_read.hpp"
 
@@ -177,12 +178,7 @@ json gltf_layout_document(const std::string& path) {
                        : 0;
     const std::string& text = f.model.scenes[std::size_t(sc)].extras_json_string;
     if (!text.empty()) {
-      json extras;
-      try {
-        extras = json::parse(text);
-      } catch (const json::exception&) {
-        throw input_error(path + ": scene " + std::to_string(sc) + ": extras are not valid JSON");
-      }
+      const json extras = parse_json(text, path + ": scene " + std::to_string(sc) + ": extras");
       if (extras.is_object() && extras.contains("airr")) {
         if (!extras["airr"].is_object()) throw input_error(path + ": scene extras airr must be a JSON object");
         for (const auto& [key, value] : extras["airr"].items()) {

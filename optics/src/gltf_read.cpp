@@ -12,6 +12,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "airr/optics/error.hpp"
+#include "airr/optics/json_reader.hpp"
 #include "airr/optics/layout.hpp"
 
 namespace airr::gltf {
@@ -21,12 +22,6 @@ namespace {
 // Images are not needed: accept them unread.
 bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
   return true;
-}
-
-std::string one_line(std::string s) {
-  for (auto& c : s) c = (c == '\n' || c == '\r') ? ' ' : c;
-  while (!s.empty() && s.back() == ' ') s.pop_back();
-  return s;
 }
 
 glm::dmat4 local_matrix(const file& f, int node) {
@@ -163,9 +158,20 @@ std::string node_label(const file& f, int node) {
   return "node " + (name.empty() ? std::string() : "'" + name + "' ") + "(#" + std::to_string(node) + ")";
 }
 
+// A GLB's JSON chunk (empty when the header is too short to say; tinygltf then refuses the file).
+static std::string_view glb_json_chunk(const std::string& bytes) {
+  if (bytes.size() < 20) return {};
+  std::uint32_t length = 0;
+  std::memcpy(&length, bytes.data() + 12, 4);
+  return std::string_view(bytes).substr(20, length);
+}
+
 file read(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw input_error(path + ": file not found");
+  if (std::filesystem::file_size(path, ec) > max_gltf_bytes)
+    throw input_error(path + ": larger than the limit of " + std::to_string(max_gltf_bytes >> 20) +
+                      " MiB for a glTF file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw input_error(path + ": cannot open for reading");
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -177,6 +183,7 @@ file read(const std::string& path) {
   std::string err, warn;
   const std::string dir = std::filesystem::path(path).parent_path().string();
   const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
+  check_json_depth(binary ? glb_json_chunk(bytes) : std::string_view(bytes), path);
   bool ok = false;
   try {
     ok = binary
@@ -403,12 +410,7 @@ void append_subtree(const file& f, int node, const glm::dmat4& xf, triangle_mesh
 nlohmann::json airr_extras(const file& f, int node) {
   const std::string& text = f.model.nodes[std::size_t(node)].extras_json_string;
   if (text.empty()) return nullptr;
-  nlohmann::json extras;
-  try {
-    extras = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception&) {
-    throw input_error(f.path + ": " + node_label(f, node) + ": extras are not valid JSON");
-  }
+  const nlohmann::json extras = parse_json(text, f.path + ": " + node_label(f, node) + ": extras");
   if (!extras.is_object() || !extras.contains("airr")) return nullptr;
   if (!extras["airr"].is_object())
     throw input_error(f.path + ": " + node_label(f, node) + ": extras airr must be a JSON object");

@@ -16,6 +16,9 @@ namespace airr::gltf {
 
 // Most triangles one file may hold (a generous housing is a few million).
 inline constexpr std::size_t max_triangles = 20'000'000;
+// Largest glTF or GLB file read (GLB's own length fields stop at 4 GiB; 20 million triangles
+// take under 1 GiB).
+inline constexpr std::uintmax_t max_gltf_bytes = std::uintmax_t(2) << 30;
 
 // The file, read as GLB when it starts with GLB's magic, else as JSON glTF; external and
 // data-URI buffers are read, images are not.

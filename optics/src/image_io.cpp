@@ -1,7 +1,12 @@
+#include <unistd.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <limits>
+#include <mutex>
 #include <system_error>
 
 #include <OpenImageIO/imagebuf.h>
@@ -9,12 +14,58 @@
 
 #include "airr/optics/color.hpp"
 #include "airr/optics/error.hpp"
+#include "airr/optics/files.hpp"
 #include "airr/optics/image.hpp"
 
 namespace airr {
 
 namespace fs = std::filesystem;
 using namespace OIIO;
+
+// libpng and libjpeg inside OpenImageIO print their own complaints ("libpng error: ...") to
+// stderr before OpenImageIO reports the error, which the project's one error line then says.
+// While a file is read, stderr goes to a temporary file; afterwards every line of it that is not
+// such a complaint is passed on (another thread's message is delayed, never lost).
+class library_chatter_filter {
+ public:
+  library_chatter_filter() : lock_(mutex()) {
+    std::fflush(stderr);
+    capture_ = std::tmpfile();
+    saved_ = capture_ ? ::dup(2) : -1;
+    if (saved_ < 0 || ::dup2(::fileno(capture_), 2) < 0) release();
+  }
+  ~library_chatter_filter() {
+    if (!capture_) return;
+    std::fflush(stderr);
+    ::dup2(saved_, 2);
+    std::rewind(capture_);
+    char line[1024];
+    while (std::fgets(line, sizeof line, capture_)) {
+      const std::string_view l(line);
+      if (l.rfind("libpng ", 0) == 0 || l.rfind("Corrupt JPEG", 0) == 0 || l.rfind("Premature end of JPEG", 0) == 0)
+        continue;
+      std::fputs(line, stderr);
+    }
+    release();
+  }
+  library_chatter_filter(const library_chatter_filter&) = delete;
+  library_chatter_filter& operator=(const library_chatter_filter&) = delete;
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  void release() {
+    if (saved_ >= 0) ::close(saved_);
+    if (capture_) std::fclose(capture_);
+    saved_ = -1;
+    capture_ = nullptr;
+  }
+  std::lock_guard<std::mutex> lock_;
+  std::FILE* capture_ = nullptr;
+  int saved_ = -1;
+};
 
 static bool is_float_format(TypeDesc t) {
   return t.basetype == TypeDesc::FLOAT || t.basetype == TypeDesc::HALF || t.basetype == TypeDesc::DOUBLE;
@@ -51,9 +102,19 @@ loaded_image load_image(const std::string& path, image_encoding encoding) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw input_error(path + ": no such file");
   if (fs::is_directory(path, ec)) throw input_error(path + ": is a directory, not an image");
+  // OpenImageIO's own size limit would refuse a huge header first, naming its attribute; the
+  // project's limit (checked below, before any pixel is allocated) names ours.
+  static const bool own_limit = OIIO::attribute("limits:imagesize_MB", std::numeric_limits<int>::max());
+  (void)own_limit;
+  const library_chatter_filter quiet;
   auto in = ImageInput::open(path);
   if (!in) {
-    std::string why = geterror();
+    const std::string why = one_line(geterror());
+    // Beyond even that raised limit, OpenImageIO refuses the header itself; say it in our terms.
+    if (why.find("limits:imagesize_MB") != std::string::npos)
+      throw input_error(path + ": image too large (its header declares more than " +
+                        std::to_string(std::numeric_limits<int>::max()) + " MB of pixels; the limit is " +
+                        std::to_string(max_image_pixels) + " pixels)");
     throw input_error(path + ": cannot read image: " + (why.empty() ? "unknown format" : why));
   }
   const ImageSpec spec = in->spec();
@@ -67,9 +128,11 @@ loaded_image load_image(const std::string& path, image_encoding encoding) {
   out.channels = spec.nchannels;
   out.format = spec.format.c_str();
   out.mm_per_pixel = read_mm_per_pixel(path, spec);
-  std::vector<float> px(std::size_t(spec.width) * spec.height * spec.nchannels);
-  if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, px.data())) {
-    const std::string why = in->geterror();
+  // Only RGB (or grey) is read: a file's other channels, however many it declares, take no memory.
+  const int nc = spec.nchannels >= 3 ? 3 : 1;
+  std::vector<float> px(std::size_t(spec.width) * spec.height * nc);
+  if (!in->read_image(0, 0, 0, nc, TypeDesc::FLOAT, px.data())) {
+    const std::string why = one_line(in->geterror());
     throw input_error(path + ": cannot read pixels: " + (why.empty() ? std::string("truncated or corrupt file") : why));
   }
   const bool wide = is_float_format(spec.format) || spec.format.size() > 1;
@@ -81,10 +144,9 @@ loaded_image load_image(const std::string& path, image_encoding encoding) {
   img.width = spec.width;
   img.height = spec.height;
   img.rgb.resize(std::size_t(spec.width) * spec.height * 3);
-  const int nc = spec.nchannels;
   for (std::size_t i = 0; i < std::size_t(spec.width) * spec.height; ++i) {
     for (int c = 0; c < 3; ++c) {
-      const float v = px[i * nc + (nc >= 3 ? c : 0)];
+      const float v = px[i * nc + (nc == 3 ? c : 0)];
       if (!std::isfinite(v)) {
         throw input_error(path + ": image contains NaN or infinite values (first at pixel (" +
                           std::to_string(i % std::size_t(spec.width)) + ", " +
@@ -94,6 +156,11 @@ loaded_image load_image(const std::string& path, image_encoding encoding) {
     }
   }
   return out;
+}
+
+std::shared_ptr<const image_rgb> cached_image_pixels(const std::string& path) {
+  static file_cache<image_rgb> cache;
+  return cache.get(path, path, [&] { return std::make_shared<const image_rgb>(load_image(path).pixels); });
 }
 
 void write_image(const std::string& path, const image_rgb& img, const image_metadata& meta, float exposure,
@@ -130,27 +197,33 @@ void write_image(const std::string& path, const image_rgb& img, const image_meta
       std::copy_n(layers[l].image->rgb.data() + 3 * px, 3, o + 3 * (l + 1));
   }
 
-  const fs::path tmp = p.parent_path() / (".tmp." + p.stem().string() + ext);
-  auto o = ImageOutput::create(tmp.string());
-  if (!o || !o->open(tmp.string(), spec)) throw input_error(path + ": cannot write image: " + geterror());
-  const bool ok = o->write_image(TypeDesc::FLOAT, out.data());
-  const std::string err = ok ? "" : o->geterror();
-  o->close();
-  if (!ok) {
-    fs::remove(tmp);
-    throw input_error(path + ": cannot write image: " + err);
-  }
+  const fs::path tmp = p.parent_path() / (".tmp." + std::to_string(::getpid()) + "." + p.stem().string() + ext);
   std::error_code ec;
+  auto o = ImageOutput::create(tmp.string());
+  if (!o || !o->open(tmp.string(), spec)) {
+    fs::remove(tmp, ec);
+    throw input_error(path + ": cannot write image: " + one_line(geterror()));
+  }
+  // Closing flushes: a full disk may only show there.
+  const bool ok = o->write_image(TypeDesc::FLOAT, out.data()) && o->close();
+  if (!ok) {
+    const std::string err = one_line(o->geterror());
+    o.reset();
+    fs::remove(tmp, ec);
+    throw input_error(path + ": cannot write image: " + (err.empty() ? "write failed" : err));
+  }
   fs::rename(tmp, p, ec);
   if (ec) {
-    fs::remove(tmp);
-    throw input_error(path + ": cannot replace file: " + ec.message());
+    const std::string why = ec.message();
+    fs::remove(tmp, ec);
+    throw input_error(path + ": cannot replace file: " + why);
   }
 }
 
 std::vector<std::string> read_image_layer_names(const std::string& path) {
+  const library_chatter_filter quiet;
   auto in = ImageInput::open(path);
-  if (!in) throw input_error(path + ": cannot read image: " + geterror());
+  if (!in) throw input_error(path + ": cannot read image: " + one_line(geterror()));
   std::vector<std::string> names;
   for (const std::string& c : in->spec().channelnames) {
     const auto dot = c.rfind('.');
@@ -162,8 +235,9 @@ std::vector<std::string> read_image_layer_names(const std::string& path) {
 }
 
 image_metadata read_image_metadata(const std::string& path) {
+  const library_chatter_filter quiet;
   auto in = ImageInput::open(path);
-  if (!in) throw input_error(path + ": cannot read image: " + geterror());
+  if (!in) throw input_error(path + ": cannot read image: " + one_line(geterror()));
   image_metadata meta;
   for (const auto& a : in->spec().extra_attribs) {
     const std::string name = a.name().string();

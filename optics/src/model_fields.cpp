@@ -53,12 +53,6 @@ const model_field* find_field(const model_fields& fields, const std::string& key
 
 static bool is_numeric(field_kind k) { return k == field_kind::number || k == field_kind::optional_number; }
 
-static std::string number_text(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
-
 model_values::model_values(const retro_model_params& p, const model_fields& fields, std::string where)
     : p_(p), fields_(fields), where_(std::move(where)) {}
 

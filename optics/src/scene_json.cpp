@@ -287,23 +287,23 @@ struct checker {
   }
   void positive(const std::string& field, double v) const {
     finite(field, v);
-    if (v <= 0) fail(field, "must be positive (is " + std::to_string(v) + ")");
+    if (v <= 0) fail(field, "must be positive (is " + number_text(v) + ")");
   }
   void range(const std::string& field, double v, double lo, double hi) const {
     finite(field, v);
     if (v < lo || v > hi) {
-      fail(field, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (is " + std::to_string(v) + ")");
+      fail(field, "must be in [" + number_text(lo) + ", " + number_text(hi) + "] (is " + number_text(v) + ")");
     }
   }
   // Parts and observers stay within 100 m of the origin; angles within one turn either way.
   void position(const std::string& field, const std::array<double, 3>& p) const {
-    for (double v : p) range(field, v, -1e5, 1e5);
+    for (double v : p) range(field, v, -max_distance_mm, max_distance_mm);
   }
   void part(const std::string& field, const part_params& p) const {
     positive(field + ".width_mm", p.width_mm);
     positive(field + ".height_mm", p.height_mm);
-    range(field + ".width_mm", p.width_mm, 0, 1e5);
-    range(field + ".height_mm", p.height_mm, 0, 1e5);
+    range(field + ".width_mm", p.width_mm, min_part_size_mm, max_distance_mm);
+    range(field + ".height_mm", p.height_mm, min_part_size_mm, max_distance_mm);
     pose(field + ".pose", p.pose);
   }
   void pose(const std::string& field, const airr::pose& p) const {
@@ -351,7 +351,7 @@ void validate_scene(const scene& s, const std::string& origin) {
   const observer_params& o = s.observer;
   c.range("observer.azimuth_deg", o.azimuth_deg, -360, 360);
   c.range("observer.elevation_deg", o.elevation_deg, -89.9, 89.9);
-  c.range("observer.distance_mm", o.distance_mm, 1, 1e5);
+  c.range("observer.distance_mm", o.distance_mm, 1, max_distance_mm);
   c.position("observer.position_mm", o.position_mm);
   c.position("observer.look_at_mm", o.look_at_mm);
   if (o.placement == observer_placement::look_at && o.position_mm == o.look_at_mm) {
@@ -359,7 +359,7 @@ void validate_scene(const scene& s, const std::string& origin) {
   }
   c.range("observer.focal_length_mm", o.focal_length_mm, 1, 2000);
   c.range("observer.f_number", o.f_number, 0.5, 128);
-  if (o.focus_distance_mm) c.range("observer.focus_distance_mm", *o.focus_distance_mm, 1, 1e5);
+  if (o.focus_distance_mm) c.range("observer.focus_distance_mm", *o.focus_distance_mm, 1, max_distance_mm);
   c.range("observer.fov_deg", o.fov_deg, 0.01, 170);
   c.range("observer.width", o.width, 1, max_resolution_side);
   c.range("observer.height", o.height, 1, max_resolution_side);

@@ -29,13 +29,6 @@ constexpr const char* format_name = "airr-shift-table";
 constexpr int format_version = 1;
 constexpr double row_sum_tolerance = 1e-6;
 
-std::string number_text(double v) {
-  std::ostringstream s;
-  s.precision(9);
-  s << v;
-  return s.str();
-}
-
 // Index of the bin whose cumulative range holds u (cumulative values end at exactly 1).
 int bin_from_cdf(const std::vector<double>& cdf, double u) {
   const auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
@@ -119,7 +112,7 @@ shift_table load_shift_table(const std::string& path) {
       row.push_back(v);
       sum += v;
     }
-    if (std::abs(sum - 1.0) > row_sum_tolerance) r.fail(where, "sums to " + number_text(sum) + ", not 1");
+    if (std::abs(sum - 1.0) > row_sum_tolerance) r.fail(where, "sums to " + number_text(sum, 9) + ", not 1");
     t.probability.push_back(std::move(row));
   }
 

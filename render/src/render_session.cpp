@@ -99,8 +99,6 @@ double render_session::seconds_since_edit() const {
 }
 
 void render_session::run_first_look() {
-  std::string texture_path;
-  std::shared_ptr<const image_rgb> texture;
   std::unique_lock lock(mutex_);
   while (true) {
     changed_.wait(lock, [&] { return stopping_ || first_look_; });
@@ -113,10 +111,7 @@ void render_session::run_first_look() {
     try {
       const scene& s = request.layout;
       const std::string path = resolve_scene_path(s, s.source.image);
-      if (path != texture_path || (!path.empty() && !texture)) {
-        texture = path.empty() ? nullptr : std::make_shared<const image_rgb>(load_image(path).pixels);
-        texture_path = path;
-      }
+      const std::shared_ptr<const image_rgb> texture = path.empty() ? nullptr : cached_image_pixels(path);
       std::shared_ptr<const retro_model> model = request.model;
       if (!model && !s.retroreflectors.empty()) model = make_sheet_models(s).front();
       if (model) image = model_image_first_look(s, model, texture.get(), &first_look_cancel_);
@@ -217,8 +212,9 @@ void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb, 
     // Traced samples replace previews and are never replaced by one; the model image's first look
     // replaces the coarse traced preview, not the other way round; a refused edit shows neither.
     if (!snapshot_.preview || !snapshot_.error.empty() || (snapshot_.model_image && !model_image)) return;
-  } else if (model_image) {
-    before_first_look_ = snapshot_;  // shown again if the tracer refuses this edit
+  } else {
+    if (model_image) before_first_look_ = snapshot_;  // shown again if the tracer refuses this edit
+    snapshot_.error.clear();                          // an earlier edit's refusal
   }
   snapshot_.generation = gen;
   snapshot_.model_image = model_image;
@@ -233,7 +229,6 @@ void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb, 
   snapshot_.components.reset();
   snapshot_.rays = 0;
   snapshot_.seconds = 0;
-  snapshot_.error.clear();
   changed_.notify_all();
 }
 
@@ -282,7 +277,6 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::ve
   snapshot_.edit_seconds = seconds_since_edit();
   snapshot_.rays = rays;
   snapshot_.seconds = seconds;
-  snapshot_.error.clear();
   changed_.notify_all();
 }
 
@@ -323,6 +317,8 @@ void render_session::run() {
         seconds = 0;
         next_wave = 1;
         lock.lock();
+        // A refusal stays said, over the last good layout's images, until an edit is applied.
+        if (error.empty()) snapshot_.error.clear();
         if (!error.empty()) {
           // Keep the last good layout in the tracer and say why the edit was refused.
           if (snapshot_.generation == gen && snapshot_.model_image) snapshot_ = before_first_look_;

@@ -49,10 +49,7 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
     embree = std::make_unique<embree_layout_scene>(device, meshes);
   }
   const std::string tex = resolve_scene_path(s, s.source.image);
-  std::shared_ptr<const image_rgb> texture = ts.texture;
-  if (tex != ts.texture_path || (!tex.empty() && !texture)) {
-    texture = tex.empty() ? nullptr : std::make_shared<const image_rgb>(load_image(tex).pixels);
-  }
+  std::shared_ptr<const image_rgb> texture = tex.empty() ? nullptr : cached_image_pixels(tex);
   std::shared_ptr<const emission_profile> emission;
   if (!s.source.emission_profile.empty()) {
     emission = load_emission_profile(resolve_scene_path(s, s.source.emission_profile));
@@ -61,7 +58,6 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
 
   if (embree) ts.embree = std::move(embree);
   ts.texture = std::move(texture);
-  ts.texture_path = tex;
   ts.emission = std::move(emission);
   ts.retro = std::move(models);
   ts.layout = s;

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 #include <imgui.h>
 
@@ -24,6 +25,19 @@ static std::string suggested_scene_name(const std::string& doc_path) {
   if (doc_path.empty()) return "scene.airr.json";
   const fs::path p(doc_path);
   return p.extension() == ".json" ? p.filename().string() : p.stem().string() + ".airr.json";
+}
+
+static std::string recovery_path() { return state_dir() + "/recovery.json"; }
+
+// Writes the open scene where the next start offers it back; the reason when it cannot.
+static std::optional<std::string> write_recovery_copy(const studio& st) {
+  const nlohmann::json j = {{"path", st.doc_path}, {"base_dir", st.doc.base_dir}, {"scene", scene_to_json(st.doc)}};
+  try {
+    write_file_atomic(recovery_path(), j.dump(2) + "\n");
+    return std::nullopt;
+  } catch (const std::exception& e) {
+    return e.what();
+  }
 }
 
 static std::string display_name(const studio& st) {
@@ -115,7 +129,11 @@ bool studio_save(studio& st, const std::string& path) {
     st.status = "saved " + path;
     return true;
   } catch (const std::exception& e) {
-    st.status = std::string("cannot save: ") + e.what();
+    // The scene stays open and unsaved; a copy goes where a restart offers it back.
+    const auto failed = write_recovery_copy(st);
+    st.status =
+        std::string("cannot save: ") + e.what() + "; the changes are still here, unsaved, " +
+        (failed ? "and no recovery copy could be written: " + *failed : "with a recovery copy in " + recovery_path());
     return false;
   }
 }
@@ -237,8 +255,6 @@ bool studio_export_plots(studio& st, const std::string& path) {
 
 // ---------------------------------------------------------------- recovery
 
-static std::string recovery_path() { return state_dir() + "/recovery.json"; }
-
 void studio_keep_recovery(studio& st, double now) {
   if (!st.keep_recovery) return;
   if (!studio_dirty(st)) {
@@ -248,12 +264,7 @@ void studio_keep_recovery(studio& st, double now) {
   }
   if (st.last_recovery_write >= 0 && now - st.last_recovery_write < 10.0) return;
   st.last_recovery_write = now;
-  const nlohmann::json j = {{"path", st.doc_path}, {"base_dir", st.doc.base_dir}, {"scene", scene_to_json(st.doc)}};
-  try {
-    write_file_atomic(recovery_path(), j.dump(2) + "\n");
-  } catch (const std::exception& e) {
-    st.status = std::string("cannot write the recovery copy: ") + e.what();
-  }
+  if (const auto failed = write_recovery_copy(st)) st.status = "cannot write the recovery copy: " + *failed;
 }
 
 void studio_clear_recovery() {

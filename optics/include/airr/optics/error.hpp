@@ -20,4 +20,11 @@ struct measurement_error : airr_error {
   using airr_error::airr_error;
 };
 
+// A number as error messages show it: `digits` significant digits, no trailing zeros ("0.1",
+// "1e+30", "7").
+std::string number_text(double v, int digits = 6);
+
+// A library's message made one line of an error: its lines joined by "; ", blank ones dropped.
+std::string one_line(const std::string& message);
+
 }  // namespace airr

@@ -1,6 +1,7 @@
 #pragma once
 // Files and paths: reading text, atomic writes, and resolving the relative paths that scene,
 // preset and measurement files hold.
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <map>
@@ -12,11 +13,15 @@
 
 namespace airr {
 
-// Throws input_error "<path>: file not found" / "cannot open for reading".
+// Largest text file read (scenes, presets, shift tables, measurements are kilobytes to megabytes).
+inline constexpr std::uintmax_t max_text_file_bytes = std::uintmax_t(512) << 20;
+
+// Throws input_error "<path>: file not found" / "cannot open for reading" / over the size limit.
 std::string read_text_file(const std::string& path);
 
-// Writes bytes to a temporary file beside `path`, then renames it over `path`, so a reader sees
-// the old or the new file, never a torn one. Throws input_error naming the path.
+// Writes bytes to a temporary file beside `path`, flushes it to disk, then renames it over `path`,
+// so a reader (or a crash at any moment) sees the old or the new file, never a torn one. Throws
+// input_error naming the path and the system's reason (e.g. "No space left on device").
 void write_file_atomic(const std::string& path, std::string_view bytes);
 
 // `path` as written in a file whose relative paths count from `base_dir`: empty stays empty, an

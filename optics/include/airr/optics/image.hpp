@@ -6,6 +6,7 @@
 // A caller may force either reading (image_encoding).
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,6 +42,9 @@ struct loaded_image {
 // Reads EXR, PNG, TIFF, JPEG, HDR... Throws input_error "<path>: <problem>" for a missing,
 // unreadable or truncated file, an absurd size, non-finite pixels or a bad pixel-size attribute.
 loaded_image load_image(const std::string& path, image_encoding encoding = image_encoding::automatic);
+// An image's linear pixels (read as load_image reads them by default), kept while the file is
+// unchanged: a file replaced on disk is read again at the next call.
+std::shared_ptr<const image_rgb> cached_image_pixels(const std::string& path);
 
 // String metadata written into the file (PNG text chunks, EXR header attributes).
 using image_metadata = std::map<std::string, std::string>;

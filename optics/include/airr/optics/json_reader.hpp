@@ -16,8 +16,15 @@
 
 namespace airr {
 
-// Parses JSON text; throws input_error "<origin>: malformed JSON: <where and what>".
+// Deepest nesting of arrays and objects accepted (the project's files nest fewer than 10 levels).
+inline constexpr int max_json_depth = 64;
+
+// Parses JSON text; throws input_error "<origin>: malformed JSON: <where and what>", also for
+// nesting deeper than max_json_depth (refused while parsing, before the deeper levels are built).
 nlohmann::json parse_json(std::string_view text, const std::string& origin);
+// Throws that input_error when JSON text nests deeper than max_json_depth, without parsing it
+// (for text another parser reads, e.g. a glTF file's JSON).
+void check_json_depth(std::string_view text, const std::string& origin);
 // Reads and parses a file (errors name the file).
 nlohmann::json read_json_file(const std::string& path);
 

@@ -21,6 +21,10 @@ inline constexpr long long max_resolution_pixels = 8192LL * 8192LL / 2;
 inline constexpr int max_retroreflectors = 8;
 // Most props in one layout.
 inline constexpr int max_props = 256;
+// Every position and size stays within 100 m of the origin (Embree traces in float), and a
+// part is at least 0.1 mm across (smaller is a typing slip, not a device).
+inline constexpr double max_distance_mm = 1e5;
+inline constexpr double min_part_size_mm = 0.1;
 
 // Where a part is. Its optical face is its local +z, its width runs along local +x and its height
 // along local +y. The world orientation is R = Ry(yaw) Rx(-pitch) Rz(roll), applied in that order

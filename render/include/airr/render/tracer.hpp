@@ -26,8 +26,7 @@ struct tracer_scene {
   std::vector<part_frame> frames;  // by part_id: the display's whole panel, the half mirror, the sheets
   part_frame source_area;          // the display's emitting area
   pinhole_camera camera;
-  std::shared_ptr<const image_rgb> texture;  // null: uniform white source
-  std::string texture_path;
+  std::shared_ptr<const image_rgb> texture;          // null: uniform white source
   std::shared_ptr<const emission_profile> emission;  // null: Lambertian
   retro_model_list retro;                            // one per sheet
   // The visible props, instanced after the sheets from instance id first_prop on.

@@ -1,0 +1,215 @@
+// Files that declare absurd sizes, and absurd physical sizes and distances, as a new user would
+// meet them with mutated files: the command line refuses each with one line naming the file and
+// the limit, before allocating for it (the command runs with its address space capped at 4 GB),
+// and no library's own message leaks around that line.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+
+#include "airr/optics/assets.hpp"
+#include "airr/optics/files.hpp"
+#include "airr/optics/json_reader.hpp"
+#include "airr/optics/scene_json.hpp"
+#include "airr/optics/shift_table.hpp"
+#include "gltf_builder.hpp"
+#include "test_helpers.hpp"
+
+using namespace airr;
+
+namespace {
+
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+constexpr const char* memory_cap = "";  // sanitizers reserve terabytes of address space
+#else
+constexpr const char* memory_cap = "ulimit -v 4000000; ";
+#endif
+
+test::command_result run_capped(const std::string& args) {
+  return test::run_command(std::string(memory_cap) + AIRR_CLI + " " + args);
+}
+
+void expect_refused(const test::command_result& r, const std::vector<std::string>& must_contain) {
+  test::expect_one_line_error(r, must_contain);
+  EXPECT_EQ(r.out.find("bad_alloc"), std::string::npos) << r.out;
+}
+
+using test::scene_file;
+
+std::uint32_t crc32(const std::string& bytes) {
+  std::uint32_t c = 0xffffffffu;
+  for (unsigned char b : bytes) {
+    c ^= b;
+    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+  }
+  return ~c;
+}
+
+std::string big_endian(std::uint32_t v) { return {char(v >> 24), char(v >> 16), char(v >> 8), char(v)}; }
+
+std::string png_chunk(const std::string& type, const std::string& data) {
+  return big_endian(std::uint32_t(data.size())) + type + data + big_endian(crc32(type + data));
+}
+
+// A PNG whose header claims `w` x `h` RGB pixels, with a few bytes of (compressed) data.
+void write_png_claiming(const std::string& path, std::uint32_t w, std::uint32_t h) {
+  const std::string ihdr = big_endian(w) + big_endian(h) + std::string("\x08\x02\x00\x00\x00", 5);
+  const std::string idat("\x78\x9c\x63\x60\x00\x00\x00\x02\x00\x01", 10);
+  std::ofstream(path, std::ios::binary) << std::string("\x89PNG\r\n\x1a\n", 8) << png_chunk("IHDR", ihdr)
+                                        << png_chunk("IDAT", idat) << png_chunk("IEND", "");
+}
+
+// A little-endian TIFF whose directory claims `w` x `h` 8-bit grey pixels in one strip.
+void write_tiff_claiming(const std::string& path, std::uint32_t w, std::uint32_t h) {
+  std::string t("II\x2a\x00\x08\x00\x00\x00", 8);
+  const auto u16 = [&](std::uint16_t v) { t += char(v & 0xff), t += char(v >> 8); };
+  const auto u32 = [&](std::uint32_t v) { u16(std::uint16_t(v & 0xffff)), u16(std::uint16_t(v >> 16)); };
+  const auto entry = [&](std::uint16_t tag, std::uint16_t type, std::uint32_t value) {
+    u16(tag), u16(type), u32(1), u32(value);
+  };
+  u16(8);
+  entry(256, 4, w);    // ImageWidth
+  entry(257, 4, h);    // ImageLength
+  entry(258, 3, 8);    // BitsPerSample
+  entry(259, 3, 1);    // Compression: none
+  entry(262, 3, 1);    // Photometric: black is zero
+  entry(273, 4, 200);  // StripOffsets
+  entry(278, 4, h);    // RowsPerStrip
+  entry(279, 4, 16);   // StripByteCounts
+  u32(0);
+  t.resize(216, '\0');
+  std::ofstream(path, std::ios::binary) << t;
+}
+
+}  // namespace
+
+TEST(ResourceLimits, ImageHeadersClaimingBillionsOfPixelsAreRefusedNamingTheLimit) {
+  test::temp_dir dir;
+  write_png_claiming(dir.file("huge.png"), 65535, 65535);
+  expect_refused(run_capped("mtf " + dir.file("huge.png") + " -o " + dir.file("mtf.csv")),
+                 {dir.file("huge.png"), "65535x65535", "limit is 67108864 pixels"});
+  write_tiff_claiming(dir.file("huge.tif"), 1000000000, 1000000000);
+  expect_refused(run_capped("mtf " + dir.file("huge.tif") + " -o " + dir.file("mtf.csv")),
+                 {dir.file("huge.tif"), "image too large", "limit is 67108864 pixels"});
+}
+
+TEST(ResourceLimits, RenderOfHundredThousandPixelsSquareIsRefused) {
+  test::temp_dir dir;
+  const auto path = scene_file(dir, [](nlohmann::json& j) {
+    j["observer"]["width"] = 100000;
+    j["observer"]["height"] = 100000;
+  });
+  expect_refused(run_capped("render " + path + " -o " + dir.file("o.exr")), {path, "observer.width", "[1, 8192]"});
+}
+
+TEST(ResourceLimits, GltfAccessorOfTwoToTheFortyElementsIsRefused) {
+  test::temp_dir dir;
+  test::gltf_builder b;
+  const int positions = b.add_positions({0, 0, 0, 0.1f, 0, 0, 0, 0.1f, 0});
+  b.doc["accessors"][std::size_t(positions)]["count"] = std::uint64_t(1) << 40;
+  const int mesh = b.add_mesh({{positions, -1, -1}});
+  b.add_node({{"name", "huge"}, {"mesh", mesh}});
+  b.write(dir.file("huge.gltf"), test::gltf_builder::storage::data_uri);
+  const auto path = scene_file(dir, [&](nlohmann::json& j) {
+    j["props"] = {{{"name", "huge"}, {"mesh", dir.file("huge.gltf")}}};
+  });
+  expect_refused(run_capped("render " + path + " -o " + dir.file("o.exr")),
+                 {path, "huge.gltf", "accessor", "1099511627776"});
+}
+
+TEST(ResourceLimits, ShiftTableOfTenToTheTwelveBinsIsRefused) {
+  test::temp_dir dir;
+  nlohmann::json table = read_json_file(default_shift_table_path());
+  table["bins"] = std::int64_t(1000000) * 1000000;
+  std::ofstream(dir.file("table.json")) << table.dump();
+  const auto path = scene_file(dir, [&](nlohmann::json& j) {
+    j["retroreflectors"][0]["model"] = {
+        {"type", "sinc_shift"}, {"preset", "rf-ay"}, {"shift_table", dir.file("table.json")}};
+  });
+  expect_refused(run_capped("render " + path + " -o " + dir.file("o.exr")),
+                 {dir.file("table.json"), "bins", "1000000"});
+}
+
+TEST(ResourceLimits, JsonNestedAHundredThousandDeepIsRefusedNamingTheLimit) {
+  test::temp_dir dir;
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  std::ofstream(dir.file("scene.json")) << "{\"format\": \"airr-scene\", \"version\": 2, \"props\": " << deep << "}";
+  expect_refused(run_capped("render " + dir.file("scene.json") + " -o " + dir.file("o.exr")),
+                 {dir.file("scene.json"), "nested deeper than 64 levels"});
+  // The same in a glTF file (its JSON is parsed by tinygltf, after the depth is checked).
+  std::ofstream(dir.file("deep.gltf")) << "{\"asset\": {\"version\": \"2.0\"}, \"extras\": " << deep << "}";
+  const auto path = scene_file(dir, [&](nlohmann::json& j) {
+    j["props"] = {{{"name", "deep"}, {"mesh", dir.file("deep.gltf")}}};
+  });
+  expect_refused(run_capped("render " + path + " -o " + dir.file("o.exr")),
+                 {dir.file("deep.gltf"), "nested deeper than 64 levels"});
+}
+
+TEST(ResourceLimits, AbsurdDistancesAndSizesAreRefusedWithTheirRange) {
+  test::temp_dir dir;
+  const std::vector<std::pair<std::function<void(nlohmann::json&)>, std::vector<std::string>>> cases = {
+      {[](nlohmann::json& j) { j["observer"]["distance_mm"] = 9.2e18; },
+       {"observer.distance_mm", "[1, 100000]", "9.2e+18"}},
+      {[](nlohmann::json& j) {
+         j["observer"]["placement"] = "look_at";
+         j["observer"]["position_mm"] = {0, 0, 9.2e18};
+       },
+       {"observer.position_mm", "[-100000, 100000]"}},
+      {[](nlohmann::json& j) { j["half_mirror"]["width_mm"] = 1e-30; }, {"half_mirror.width_mm", "[0.1, 100000]"}},
+      {[](nlohmann::json& j) {
+         j["retroreflectors"][0]["pose"]["center_mm"] = {0, 0, -1e30};
+       },
+       {"retroreflectors[0].pose.center_mm", "[-100000, 100000]", "-1e+30"}},
+  };
+  for (const auto& [edit, expected] : cases) {
+    const auto path = scene_file(dir, edit);
+    auto must = expected;
+    must.push_back(path);
+    expect_refused(run_capped("render " + path + " -o " + dir.file("o.exr")), must);
+  }
+}
+
+// libpng prints "libpng error: ..." itself; only the project's line may reach the user.
+TEST(ResourceLimits, LibraryMessagesDoNotLeakAroundTheErrorLine) {
+  test::temp_dir dir;
+  const std::string chart = read_text_file(asset_dir() + "/charts/test_chart.png");
+  std::ofstream(dir.file("truncated.png"), std::ios::binary) << chart.substr(0, 200);
+  std::ofstream(dir.file("garbage.png"), std::ios::binary) << std::string("\x89PNG\r\n\x1a\n", 8) << "garbage!";
+  std::string flipped = chart;
+  const std::size_t idat = chart.find("IDAT");
+  ASSERT_NE(idat, std::string::npos);
+  flipped[idat + 20] = char(flipped[idat + 20] ^ 0x5a);  // the image data's checksum fails
+  std::ofstream(dir.file("flipped.png"), std::ios::binary) << flipped;
+  for (const char* name : {"truncated.png", "garbage.png", "flipped.png"}) {
+    const auto r = run_capped("mtf " + dir.file(name) + " -o " + dir.file("mtf.csv"));
+    expect_refused(r, {dir.file(name)});
+    EXPECT_EQ(r.out.find("libpng"), std::string::npos) << r.out;
+  }
+}
+
+// A full disk while a render is written (a file-size limit of a few KiB, as `ulimit -f` sets): one
+// line naming the output, and the render already there is untouched with nothing left beside it.
+TEST(ResourceLimits, FullDiskWhileWritingARenderLeavesTheOldOne) {
+  test::temp_dir dir;
+  const auto path = scene_file(dir, [](nlohmann::json& j) {
+    j["source"]["image"] = asset_dir() + "/charts/test_chart.png";
+    j["observer"]["width"] = 128;
+    j["observer"]["height"] = 128;
+  });
+  const std::string out = dir.file("render.exr");
+  ASSERT_EQ(test::run_cli("render " + path + " -o " + out + " --spp 1").exit_code, 0);
+  const std::string before = read_text_file(out);
+  ASSERT_GT(before.size(), 8192u);
+  const auto r = test::run_command("ulimit -f 4; " + std::string(AIRR_CLI) + " render " + path + " -o " + out +
+                                   " --spp 2 --seed 9");
+  EXPECT_NE(r.exit_code, 0) << r.out;
+  EXPECT_EQ(r.out.find("File size limit"), std::string::npos) << "killed by the signal: " << r.out;
+  EXPECT_NE(r.out.find("error: " + out + ": cannot write image"), std::string::npos) << r.out;
+  EXPECT_EQ(read_text_file(out), before);
+  std::size_t files = 0;
+  for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path)) ++files;
+  EXPECT_EQ(files, 2u) << "a temporary file was left beside the render";
+}
