@@ -332,7 +332,9 @@ fit_result fit_sheet(const fit_data& d, const fit_params& p, const fit_progress_
                            .measured_mean_mtf = distances[i].mean,
                            .simulated_mean_mtf = sim_means[i],
                            .input = input_of(distances[i])});
-  auto a0_at = [&](double trial_c) { return a0_fits.count(trial_c) ? a0_fits.at(trial_c).a_per_mm : a0.a_per_mm; };
+  // Named again: clang 14 cannot capture a structured binding in a lambda.
+  const auto& fits = a0_fits;
+  auto a0_at = [&](double trial_c) { return fits.count(trial_c) ? fits.at(trial_c).a_per_mm : a0.a_per_mm; };
   cr.c_mm = c;
   cr.loss = (slope_sim - slope_real) * (slope_sim - slope_real);
   cr.slope_measured_per_mm = slope_real;

@@ -1,0 +1,114 @@
+#include "fuzz_targets.hpp"
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "airr/analysis/fit_data.hpp"
+#include "airr/optics/csv_table.hpp"
+#include "airr/optics/error.hpp"
+#include "airr/optics/gltf_layout.hpp"
+#include "airr/optics/image.hpp"
+#include "airr/optics/mesh_gltf.hpp"
+#include "airr/optics/preset.hpp"
+#include "airr/optics/scene_json.hpp"
+#include "airr/optics/shift_table.hpp"
+
+namespace airr::fuzz {
+
+namespace fs = std::filesystem;
+
+// A folder of this process's own for the files the loaders read (they take paths); removed at exit.
+struct work_folder {
+  fs::path path = fs::temp_directory_path() / ("airr-fuzz-" + std::to_string(::getpid()));
+  work_folder() { fs::create_directories(path); }
+  ~work_folder() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+static const fs::path& work_dir() {
+  static const work_folder folder;
+  return folder.path;
+}
+
+static std::string write_input(const std::string& name, std::string_view bytes) {
+  const fs::path p = work_dir() / name;
+  std::ofstream(p, std::ios::binary).write(bytes.data(), std::streamsize(bytes.size()));
+  return p.string();
+}
+
+template <class F>
+static void expecting_input_errors(F&& f) {
+  try {
+    f();
+  } catch (const airr_error&) {
+    // the answer to bad input
+  }
+}
+
+void scene_json(std::string_view bytes) {
+  expecting_input_errors([&] { parse_scene(std::string(bytes), "fuzz.json", work_dir().string()); });
+}
+
+void gltf(std::string_view bytes) {
+  const std::string path = write_input("fuzz.glb", bytes);
+  expecting_input_errors([&] { load_prop_mesh(path, ""); });
+  expecting_input_errors([&] {
+    if (gltf_has_layout_roles(path)) gltf_layout_document(path);
+  });
+}
+
+void preset(std::string_view bytes) {
+  expecting_input_errors([&] { load_preset(write_input("preset.json", bytes)); });
+}
+
+void shift_table(std::string_view bytes) {
+  expecting_input_errors([&] { load_shift_table(write_input("table.json", bytes)); });
+}
+
+void fit_json(std::string_view bytes) {
+  // The example's measurements, copied once, sit beside the fit.json the input becomes.
+  static const fs::path dir = [] {
+    const fs::path d = work_dir() / "fit";
+    fs::create_directories(d);
+    for (const auto& e : fs::directory_iterator(AIRR_FIT_EXAMPLE_DIR))
+      if (e.path().filename() != "fit.json")
+        fs::copy_file(e.path(), d / e.path().filename(), fs::copy_options::overwrite_existing);
+    return d;
+  }();
+  write_input("fit/fit.json", bytes);
+  expecting_input_errors([&] { analysis::load_fit_data(dir.string()); });
+}
+
+void csv(std::string_view bytes) {
+  expecting_input_errors([&] { read_csv_table(write_input("table.csv", bytes)); });
+}
+
+// The extension a user's file of that content would have (the image library picks its reader by
+// the name first).
+static std::string image_name(std::string_view bytes) {
+  const auto starts = [&](std::string_view magic) { return bytes.substr(0, magic.size()) == magic; };
+  if (starts("v/1\x01")) return "image.exr";
+  if (starts("II*") || starts("MM\0*")) return "image.tif";
+  if (starts("\xff\xd8")) return "image.jpg";
+  return "image.png";
+}
+
+void image(std::string_view bytes) {
+  expecting_input_errors([&] { load_image(write_input(image_name(bytes), bytes)); });
+}
+
+bool run(const std::string& target, std::string_view bytes) {
+  if (target == "scene_json") return scene_json(bytes), true;
+  if (target == "gltf") return gltf(bytes), true;
+  if (target == "preset") return preset(bytes), true;
+  if (target == "shift_table") return shift_table(bytes), true;
+  if (target == "fit_json") return fit_json(bytes), true;
+  if (target == "csv") return csv(bytes), true;
+  if (target == "image") return image(bytes), true;
+  return false;
+}
+
+}  // namespace airr::fuzz

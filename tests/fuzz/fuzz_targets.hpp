@@ -1,0 +1,22 @@
+#pragma once
+// The loaders of users' files as fuzz targets: each takes one input as a file of its kind. An
+// input_error (or measurement_error) is the expected answer to bad input; a crash, a sanitizer
+// report or any other exception is a finding. Compiled into the ordinary build too, where a test
+// replays every kept crash input (tests/fuzz/regressions/<target>/).
+#include <string>
+#include <string_view>
+
+namespace airr::fuzz {
+
+void scene_json(std::string_view bytes);   // scene files, version 1 and the current one
+void gltf(std::string_view bytes);         // glTF (JSON) and GLB, as a prop mesh and as a layout
+void preset(std::string_view bytes);       // sheet presets
+void shift_table(std::string_view bytes);  // corner-cube shift tables
+void fit_json(std::string_view bytes);     // a fit's fit.json beside the example measurements
+void csv(std::string_view bytes);          // measurement CSV tables
+void image(std::string_view bytes);        // source and measurement images (PNG, EXR, TIFF, JPEG)
+
+// Runs one target by name; false for an unknown name.
+bool run(const std::string& target, std::string_view bytes);
+
+}  // namespace airr::fuzz
