@@ -77,10 +77,6 @@ std::optional<file_stamp> stamp_of(const std::string& path) {
 
 std::string absolute_path(const std::string& path) { return fs::absolute(path).lexically_normal().string(); }
 
-namespace {
-struct too_deep {};
-}  // namespace
-
 static std::string too_deep_message(const std::string& origin) {
   return origin + ": malformed JSON: nested deeper than " + std::to_string(max_json_depth) + " levels";
 }
@@ -107,15 +103,9 @@ void check_json_depth(std::string_view text, const std::string& origin) {
 }
 
 nlohmann::json parse_json(std::string_view text, const std::string& origin) {
-  const auto limit_depth = [](int depth, nlohmann::json::parse_event_t event, nlohmann::json&) {
-    using event_t = nlohmann::json::parse_event_t;
-    if ((event == event_t::object_start || event == event_t::array_start) && depth >= max_json_depth) throw too_deep{};
-    return true;
-  };
+  check_json_depth(text, origin);
   try {
-    return nlohmann::json::parse(text, limit_depth);
-  } catch (const too_deep&) {
-    throw input_error(too_deep_message(origin));
+    return nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     std::string what = e.what();
     const auto p = what.find("] ");  // drop nlohmann's "[json.exception...]" tag

@@ -1,5 +1,6 @@
 #include "airr/render/embree_scene.hpp"
 
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -68,6 +69,10 @@ embree_mesh_scene::embree_mesh_scene(const embree_device& device, const triangle
 }
 
 embree_mesh_scene::~embree_mesh_scene() { rtcReleaseScene(scene_); }
+
+std::string prop_mesh_key(const prop_params& p, const triangle_mesh* mesh) {
+  return "prop:" + p.mesh + "#" + p.node + "@" + std::to_string(reinterpret_cast<std::uintptr_t>(mesh));
+}
 
 embree_layout_scene::embree_layout_scene(const embree_device& device, const std::vector<instance_mesh>& meshes,
                                          const embree_layout_scene* shared) {

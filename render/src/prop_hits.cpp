@@ -1,6 +1,5 @@
 #include "airr/render/prop_hits.hpp"
 
-#include <cstdint>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -39,8 +38,7 @@ prop_hit_function scene_prop_hits(const scene& s) {
   for (const auto& p : s.props) {
     if (!p.visible) continue;
     auto mesh = cached_prop_mesh(resolve_scene_path(s, p.mesh), p.node);
-    // The mesh's address is in the key: a file changed on disk is a new mesh.
-    const std::string key = p.mesh + "#" + p.node + "@" + std::to_string(reinterpret_cast<std::uintptr_t>(mesh.get()));
+    const std::string key = prop_mesh_key(p, mesh.get());
     meshes.push_back({key, std::move(mesh)});
     transforms.push_back(prop_transform(p));
   }

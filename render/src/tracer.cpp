@@ -30,10 +30,7 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   // A prototype's key names its file, and for props the loaded mesh (a changed file is a new one).
   std::vector<std::string> keys;
   for (const auto& path : part_meshes) keys.push_back("part:" + path);
-  for (const auto& p : props) {
-    keys.push_back("prop:" + p.params.mesh + "#" + p.params.node + "@" +
-                   std::to_string(reinterpret_cast<std::uintptr_t>(p.mesh.get())));
-  }
+  for (const auto& p : props) keys.push_back(prop_mesh_key(p.params, p.mesh.get()));
   std::unique_ptr<embree_layout_scene> embree;
   if (!ts.embree || ts.embree->keys() != keys) {
     std::vector<instance_mesh> meshes;

@@ -20,7 +20,7 @@ namespace airr {
 inline constexpr int max_json_depth = 64;
 
 // Parses JSON text; throws input_error "<origin>: malformed JSON: <where and what>", also for
-// nesting deeper than max_json_depth (refused while parsing, before the deeper levels are built).
+// nesting deeper than max_json_depth (refused before parsing).
 nlohmann::json parse_json(std::string_view text, const std::string& origin);
 // Throws that input_error when JSON text nests deeper than max_json_depth, without parsing it
 // (for text another parser reads, e.g. a glTF file's JSON).

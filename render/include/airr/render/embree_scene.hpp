@@ -56,6 +56,10 @@ struct instance_mesh {
   std::shared_ptr<const triangle_mesh> mesh;
 };
 
+// A prop's prototype key: its file and node, and the loaded mesh (a file changed on disk is a new
+// mesh, so a new prototype).
+std::string prop_mesh_key(const prop_params& p, const triangle_mesh* mesh);
+
 class embree_layout_scene {
  public:
   // One instance per entry, in order (the instance id is the index); equal keys are built once,
