@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Installs what is needed, builds, and runs the whole test suite.
+# Installs what is needed, builds, and runs the whole test suite (but the `slow` label: the suite
+# under AddressSanitizer). Arguments go to ctest instead: `-L slow` runs the slow tests.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash packaging/setup.sh
 cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
 cmake --build build -j2
+if [ $# -eq 0 ]; then set -- -LE slow; fi
 cd build && ctest --output-on-failure -j2 "$@"

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs everything AIRR Studio needs to build, test, package and run, from Debian 12 packages.
 # Idempotent: packages already present are left alone; safe to run repeatedly as root.
+# --fuzz also installs clang and libFuzzer for the fuzz harnesses (tests/fuzz).
 set -euo pipefail
 
 packages=(
@@ -12,6 +13,7 @@ packages=(
   libgtest-dev libgmock-dev clang-format python3
   librsvg2-bin help2man file desktop-file-utils
 )
+if [ "${1:-}" = "--fuzz" ]; then packages+=(clang libclang-rt-14-dev); fi
 # The Khronos glTF-Validator (npm) judges the glTF files the tests write; it needs Node.js.
 if ! command -v npm >/dev/null 2>&1; then packages+=(nodejs npm); fi
 

@@ -1,19 +1,22 @@
-// Every fuzz target on the shipped assets it is seeded from and on every input kept from a
-// finding (tests/fuzz/regressions/<target>/): each is read or refused with the project's error,
-// never anything else (under the asan tree: never a sanitizer report either).
+// Every fuzz target on its seeds (tests/fuzz/seeds.txt) and on every input kept from a finding
+// (tests/fuzz/regressions/<target>/): each is read or refused with the project's error, never
+// anything else (under the asan tree: never a sanitizer report either).
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
 #include <vector>
 
-#include "airr/optics/assets.hpp"
 #include "airr/optics/files.hpp"
 #include "fuzz/fuzz_targets.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
+
+const fs::path source_dir = AIRR_SOURCE_DIR;
 
 std::vector<fs::path> files_in(const fs::path& dir, const std::string& extension = "") {
   std::vector<fs::path> out;
@@ -23,26 +26,43 @@ std::vector<fs::path> files_in(const fs::path& dir, const std::string& extension
   return out;
 }
 
+// seeds.txt: "target file" or "target folder [extension]" per line, '#' starts a comment.
+std::map<std::string, std::vector<fs::path>> seeds() {
+  std::map<std::string, std::vector<fs::path>> out;
+  std::ifstream in(source_dir / "tests/fuzz/seeds.txt");
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream words(line);
+    std::string target, where, extension;
+    words >> target >> where >> extension;
+    const fs::path p = source_dir / where;
+    auto& files = out[target];
+    if (fs::is_directory(p)) {
+      for (const auto& f : files_in(p, extension)) files.push_back(f);
+    } else {
+      EXPECT_TRUE(fs::is_regular_file(p)) << "seeds.txt names a missing file: " << where;
+      files.push_back(p);
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 TEST(FuzzReplay, SeedsAndKeptFindingsAreReadOrRefused) {
-  const fs::path assets = airr::asset_dir();
-  const std::map<std::string, std::vector<fs::path>> seeds = {
-      {"scene_json", files_in(assets / "scenes", ".json")}, {"gltf", files_in(assets / "models", ".gltf")},
-      {"preset", files_in(assets / "presets", ".json")},    {"shift_table", files_in(assets / "shift_tables", ".json")},
-      {"fit_json", {assets / "fit_example/fit.json"}},      {"csv", files_in(assets / "fit_example", ".csv")},
-      {"image", files_in(assets / "charts", ".png")},
-  };
+  const auto all_seeds = seeds();
   int inputs = 0;
-  for (const auto& [target, files] : seeds) {
-    std::vector<fs::path> all = files;
-    for (const auto& f : files_in(fs::path(AIRR_FUZZ_REGRESSIONS_DIR) / target)) all.push_back(f);
-    EXPECT_FALSE(files.empty()) << target;
+  for (const char* target : airr::fuzz::targets) {
+    const auto found = all_seeds.find(target);
+    ASSERT_TRUE(found != all_seeds.end() && !found->second.empty()) << "no seeds for " << target;
+    std::vector<fs::path> all = found->second;
+    for (const auto& f : files_in(source_dir / "tests/fuzz/regressions" / target)) all.push_back(f);
     for (const auto& f : all) {
       const std::string bytes = airr::read_text_file(f.string());
       EXPECT_NO_THROW(EXPECT_TRUE(airr::fuzz::run(target, bytes))) << target << ": " << f;
       ++inputs;
     }
   }
-  EXPECT_GT(inputs, 20);
+  EXPECT_EQ(all_seeds.size(), std::size(airr::fuzz::targets)) << "seeds.txt names a target that does not exist";
+  EXPECT_GT(inputs, 40);
 }

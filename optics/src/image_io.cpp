@@ -98,7 +98,7 @@ static std::optional<double> read_mm_per_pixel(const std::string& path, const Im
   return value;
 }
 
-loaded_image load_image(const std::string& path, image_encoding encoding) {
+loaded_image load_image(const std::string& path, image_encoding encoding, std::int64_t pixel_limit) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw input_error(path + ": no such file");
   if (fs::is_directory(path, ec)) throw input_error(path + ": is a directory, not an image");
@@ -120,9 +120,9 @@ loaded_image load_image(const std::string& path, image_encoding encoding) {
   const ImageSpec spec = in->spec();
   if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) throw input_error(path + ": image has no pixels");
   if (spec.depth > 1) throw input_error(path + ": volume images are not supported");
-  if (std::int64_t(spec.width) * spec.height > max_image_pixels) {
+  if (std::int64_t(spec.width) * spec.height > pixel_limit) {
     throw input_error(path + ": image too large (" + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
-                      "; the limit is " + std::to_string(max_image_pixels) + " pixels)");
+                      "; the limit is " + std::to_string(pixel_limit) + " pixels)");
   }
   loaded_image out;
   out.channels = spec.nchannels;

@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "airr/analysis/fit_data.hpp"
+#include "airr/analysis/onnx_inputs.hpp"
 #include "airr/optics/csv_table.hpp"
 #include "airr/optics/error.hpp"
 #include "airr/optics/gltf_layout.hpp"
@@ -53,7 +54,7 @@ void scene_json(std::string_view bytes) {
 }
 
 void gltf(std::string_view bytes) {
-  const std::string path = write_input("fuzz.glb", bytes);
+  const std::string path = write_input(bytes.substr(0, 4) == "glTF" ? "fuzz.glb" : "fuzz.gltf", bytes);
   expecting_input_errors([&] { load_prop_mesh(path, ""); });
   expecting_input_errors([&] {
     if (gltf_has_layout_roles(path)) gltf_layout_document(path);
@@ -96,8 +97,17 @@ static std::string image_name(std::string_view bytes) {
   return "image.png";
 }
 
+// Mutated headers within the loader's own limit would make most runs allocate and convert
+// hundreds of megabytes; a lower limit keeps them cheap and exercises the same code.
+constexpr std::int64_t fuzz_image_pixel_limit = 1 << 20;
+
 void image(std::string_view bytes) {
-  expecting_input_errors([&] { load_image(write_input(image_name(bytes), bytes)); });
+  expecting_input_errors(
+      [&] { load_image(write_input(image_name(bytes), bytes), image_encoding::automatic, fuzz_image_pixel_limit); });
+}
+
+void onnx(std::string_view bytes) {
+  expecting_input_errors([&] { analysis::read_onnx_inputs(write_input("model.onnx", bytes)); });
 }
 
 bool run(const std::string& target, std::string_view bytes) {
@@ -108,6 +118,7 @@ bool run(const std::string& target, std::string_view bytes) {
   if (target == "fit_json") return fit_json(bytes), true;
   if (target == "csv") return csv(bytes), true;
   if (target == "image") return image(bytes), true;
+  if (target == "onnx") return onnx(bytes), true;
   return false;
 }
 

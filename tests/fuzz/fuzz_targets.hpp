@@ -15,6 +15,11 @@ void shift_table(std::string_view bytes);  // corner-cube shift tables
 void fit_json(std::string_view bytes);     // a fit's fit.json beside the example measurements
 void csv(std::string_view bytes);          // measurement CSV tables
 void image(std::string_view bytes);        // source and measurement images (PNG, EXR, TIFF, JPEG)
+void onnx(std::string_view bytes);         // an LPIPS model's inputs, as the project reads them
+
+// Every target's name.
+inline constexpr const char* targets[] = {"scene_json", "gltf", "preset", "shift_table",
+                                          "fit_json",   "csv",  "image",  "onnx"};
 
 // Runs one target by name; false for an unknown name.
 bool run(const std::string& target, std::string_view bytes);

@@ -1,42 +1,47 @@
 #!/usr/bin/env bash
-# Fuzzes one loader for a bounded time, from seeds out of the shipped assets, in a clang tree built
-# with AIRR_FUZZ (build-fuzz/, made here when missing). A crash input is kept in
+# Fuzzes one loader for a bounded time in a clang tree built with AIRR_FUZZ (default build-fuzz/,
+# configured and built here when needed), from the corpus kept in that tree and the seeds named in
+# tests/fuzz/seeds.txt. A crash, leak, timeout or out-of-memory input is kept in
 # tests/fuzz/regressions/<target>/ for the ordinary suite to replay; the run then fails.
-# Usage: run_fuzz.sh TARGET SECONDS [SOURCE_DIR]
+# Usage: run_fuzz.sh TARGET SECONDS [BUILD_DIR]
 set -euo pipefail
 target=$1
 seconds=$2
-source_dir=$(cd "${3:-$(dirname "$0")/../..}" && pwd)
-build=$source_dir/build-fuzz
+source_dir=$(cd "$(dirname "$0")/../.." && pwd)
+build=${3:-$source_dir/build-fuzz}
 if ! command -v clang++ >/dev/null || [ -z "$(ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a 2>/dev/null)" ]; then
-  echo "fuzzing needs clang and libFuzzer: apt-get install clang libclang-rt-14-dev" >&2
+  echo "fuzzing needs clang and libFuzzer: bash packaging/setup.sh --fuzz" >&2
   exit 2
 fi
 if [ ! -f "$build/CMakeCache.txt" ]; then
   CC=clang CXX=clang++ cmake -S "$source_dir" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DAIRR_FUZZ=ON >/dev/null
 fi
-cmake --build "$build" -j2 --target "fuzz_$target" >/dev/null
+# Under ctest the tree is built already (and another fuzz test may be running beside this one).
+if [ ! -x "$build/tests/fuzz_$target" ] || [ -z "${AIRR_FUZZ_BUILT:-}" ]; then
+  cmake --build "$build" -j2 --target "fuzz_$target" >/dev/null
+fi
 
-assets=$source_dir/assets
-case $target in
-  scene_json) seeds=("$assets"/scenes/*.json "$assets"/fit_example/setup.json) ;;
-  gltf) seeds=("$assets"/models/*.gltf) ;;
-  preset) seeds=("$assets"/presets/*.json) ;;
-  shift_table) seeds=("$assets"/shift_tables/*.json) ;;
-  fit_json) seeds=("$assets"/fit_example/fit.json) ;;
-  csv) seeds=("$assets"/fit_example/*.csv "$assets"/displays/*.csv) ;;
-  image) seeds=("$assets"/charts/*.png "$assets"/fit_example/white_00.exr) ;;
-  *) echo "unknown target $target" >&2; exit 2 ;;
-esac
-corpus=$source_dir/build-fuzz/corpus/$target
+corpus=$build/corpus/$target
 mkdir -p "$corpus"
-cp "${seeds[@]}" "$corpus"/
+found=0
+while read -r t where extension; do
+  [ "$t" = "$target" ] || continue
+  found=1
+  if [ -d "$source_dir/$where" ]; then
+    find "$source_dir/$where" -maxdepth 1 -type f -name "*${extension:-}" -exec cp {} "$corpus"/ \;
+  else
+    cp "$source_dir/$where" "$corpus"/
+  fi
+done < <(grep -v '^#' "$source_dir/tests/fuzz/seeds.txt")
+[ "$found" = 1 ] || { echo "no seeds for $target in tests/fuzz/seeds.txt" >&2; exit 2; }
+
 regressions=$source_dir/tests/fuzz/regressions/$target
 mkdir -p "$regressions"
-LSAN_OPTIONS="suppressions=$source_dir/tests/fuzz/lsan.supp" "$build/tests/fuzz_$target" "$corpus" -max_total_time="$seconds" -timeout=20 -rss_limit_mb=4096 \
-  -max_len=262144 -artifact_prefix="$regressions/" -print_final_stats=1 2>&1 | grep -E "^(#[0-9]+ +DONE|stat::|==|SUMMARY|artifact)" || true
-# libFuzzer writes crash-*, leak-*, timeout-*, oom-* into the regressions folder.
-if ls "$regressions"/{crash,leak,timeout,oom}-* >/dev/null 2>&1; then
+# The process prints its figures: executions (stat::number_of_executed_units) and coverage (cov:).
+LSAN_OPTIONS="suppressions=$source_dir/tests/lsan_suppressions.txt" "$build/tests/fuzz_$target" "$corpus" \
+  -max_total_time="$seconds" -timeout=20 -rss_limit_mb=4096 -max_len=262144 -artifact_prefix="$regressions/" \
+  -print_final_stats=1 2>&1 | grep -E "^(#[0-9]+[[:space:]]+DONE|stat::number_of_executed_units|==[0-9]+==ERROR|SUMMARY|artifact)" || true
+if ls "$regressions"/{crash,leak,timeout,oom,slow-unit}-* >/dev/null 2>&1; then
   echo "findings kept in $regressions" >&2
   exit 1
 fi

@@ -41,7 +41,9 @@ struct loaded_image {
 
 // Reads EXR, PNG, TIFF, JPEG, HDR... Throws input_error "<path>: <problem>" for a missing,
 // unreadable or truncated file, an absurd size, non-finite pixels or a bad pixel-size attribute.
-loaded_image load_image(const std::string& path, image_encoding encoding = image_encoding::automatic);
+// A caller may lower the pixel limit (the fuzz harness does, so that mutated headers stay cheap).
+loaded_image load_image(const std::string& path, image_encoding encoding = image_encoding::automatic,
+                        std::int64_t pixel_limit = max_image_pixels);
 // An image's linear pixels (read as load_image reads them by default), kept while the file is
 // unchanged: a file replaced on disk is read again at the next call.
 std::shared_ptr<const image_rgb> cached_image_pixels(const std::string& path);
