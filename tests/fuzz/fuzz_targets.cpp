@@ -99,7 +99,7 @@ static std::string image_name(std::string_view bytes) {
 
 // Mutated headers within the loader's own limit would make most runs allocate and convert
 // hundreds of megabytes; a lower limit keeps them cheap and exercises the same code.
-constexpr std::int64_t fuzz_image_pixel_limit = 1 << 20;
+constexpr std::int64_t fuzz_image_pixel_limit = 1 << 16;
 
 void image(std::string_view bytes) {
   expecting_input_errors(
