@@ -2,6 +2,7 @@
 // (tests/fuzz/regressions/<target>/): each is read or refused with the project's error, never
 // anything else (under the asan tree: never a sanitizer report either).
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -9,7 +10,9 @@
 #include <sstream>
 #include <vector>
 
+#include "airr/optics/error.hpp"
 #include "airr/optics/files.hpp"
+#include "airr/optics/image.hpp"
 #include "fuzz/fuzz_targets.hpp"
 
 namespace fs = std::filesystem;
@@ -65,4 +68,35 @@ TEST(FuzzReplay, SeedsAndKeptFindingsAreReadOrRefused) {
   }
   EXPECT_EQ(all_seeds.size(), std::size(airr::fuzz::targets)) << "seeds.txt names a target that does not exist";
   EXPECT_GT(inputs, 40);
+}
+
+// Found by the image target: a JPEG whose Photoshop IPTC block claims more bytes than its segment
+// holds made OpenImageIO read past the segment (AddressSanitizer: heap-buffer-overflow in
+// decode_iptc_iim). The loader refuses it first; a JPEG with a sound IPTC block still loads.
+TEST(FuzzFindings, JpegWhoseIptcBlockOverrunsItsSegmentIsRefused) {
+  const fs::path finding = source_dir / "tests/fuzz/regressions/image/crash-56b2e2fecc064e9865224ae525aeb51f7d05a60e";
+  const fs::path sound = source_dir / "tests/fuzz/seeds/image/rgb.jpg";
+  ASSERT_NE(airr::read_text_file(sound.string()).find("Photoshop 3.0"), std::string::npos);
+  EXPECT_EQ(airr::load_image(sound.string()).pixels.width, 8);
+  try {
+    airr::load_image(finding.string());
+    ADD_FAILURE() << "loaded";
+  } catch (const airr::input_error& e) {
+    EXPECT_NE(std::string(e.what()).find("IPTC block claims 96 bytes, the segment holds 20"), std::string::npos)
+        << e.what();
+  }
+  // The sound file with its first IPTC record's length raised beyond the block.
+  std::string bytes = airr::read_text_file(sound.string());
+  const std::size_t block = bytes.find("Photoshop 3.0") + 26;
+  ASSERT_EQ(bytes[block], '\x1c');
+  bytes[block + 3] = '\x7f';
+  const fs::path overrun = fs::temp_directory_path() / ("airr-iptc-" + std::to_string(::getpid()) + ".jpg");
+  airr::write_file_atomic(overrun.string(), bytes);
+  try {
+    airr::load_image(overrun.string());
+    ADD_FAILURE() << "loaded";
+  } catch (const airr::input_error& e) {
+    EXPECT_NE(std::string(e.what()).find("an IPTC record claims"), std::string::npos) << e.what();
+  }
+  fs::remove(overrun);
 }

@@ -16,6 +16,7 @@
 #include "airr/optics/error.hpp"
 #include "airr/optics/files.hpp"
 #include "airr/optics/image.hpp"
+#include "jpeg_iptc_check.hpp"
 
 namespace airr {
 
@@ -106,6 +107,7 @@ loaded_image load_image(const std::string& path, image_encoding encoding, std::i
   // project's limit (checked below, before any pixel is allocated) names ours.
   static const bool own_limit = OIIO::attribute("limits:imagesize_MB", std::numeric_limits<int>::max());
   (void)own_limit;
+  if (const auto problem = jpeg_iptc_problem(path)) throw input_error(path + ": cannot read image: " + *problem);
   const library_chatter_filter quiet;
   auto in = ImageInput::open(path);
   if (!in) {
@@ -221,6 +223,7 @@ void write_image(const std::string& path, const image_rgb& img, const image_meta
 }
 
 std::vector<std::string> read_image_layer_names(const std::string& path) {
+  if (const auto problem = jpeg_iptc_problem(path)) throw input_error(path + ": cannot read image: " + *problem);
   const library_chatter_filter quiet;
   auto in = ImageInput::open(path);
   if (!in) throw input_error(path + ": cannot read image: " + one_line(geterror()));
@@ -235,6 +238,7 @@ std::vector<std::string> read_image_layer_names(const std::string& path) {
 }
 
 image_metadata read_image_metadata(const std::string& path) {
+  if (const auto problem = jpeg_iptc_problem(path)) throw input_error(path + ": cannot read image: " + *problem);
   const library_chatter_filter quiet;
   auto in = ImageInput::open(path);
   if (!in) throw input_error(path + ": cannot read image: " + one_line(geterror()));

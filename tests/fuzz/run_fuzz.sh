@@ -42,13 +42,19 @@ kept_before=$(ls "$regressions")
 # heap for leaks after almost every image input; the ordinary suite (under asan) checks leaks there.
 leaks=1
 [ "$target" = image ] && leaks=0
+# Sanitizer reports go to files: while an image is read, the loader sends stderr elsewhere.
+logs=$build/fuzz-logs/$target
+rm -rf "$logs"
+mkdir -p "$logs"
 # The process prints its figures: executions (stat::number_of_executed_units) and coverage (cov:).
-LSAN_OPTIONS="suppressions=$source_dir/tests/lsan_suppressions.txt" "$build/tests/fuzz_$target" "$corpus" \
+ASAN_OPTIONS="log_path=$logs/report" UBSAN_OPTIONS="log_path=$logs/report" \
+  LSAN_OPTIONS="suppressions=$source_dir/tests/lsan_suppressions.txt" "$build/tests/fuzz_$target" "$corpus" \
   -max_total_time="$seconds" -timeout=20 -rss_limit_mb=4096 -max_len=262144 -detect_leaks=$leaks -artifact_prefix="$regressions/" \
   -print_final_stats=1 2>&1 | grep -E "^(#[0-9]+[[:space:]]+DONE|stat::number_of_executed_units|==[0-9]+==ERROR|SUMMARY|artifact)" || true
 # libFuzzer names what it keeps crash-*, leak-*, timeout-*, oom-* or slow-unit-*.
 new=$(comm -13 <(echo "$kept_before") <(ls "$regressions"))
 if [ -n "$new" ]; then
   echo "findings kept in $regressions: $new" >&2
+  cat "$logs"/report.* >&2 2>/dev/null || true
   exit 1
 fi
