@@ -74,16 +74,18 @@ TEST(FuzzReplay, SeedsAndKeptFindingsAreReadOrRefused) {
 // holds made OpenImageIO read past the segment (AddressSanitizer: heap-buffer-overflow in
 // decode_iptc_iim). The loader refuses it first; a JPEG with a sound IPTC block still loads.
 TEST(FuzzFindings, JpegWhoseIptcBlockOverrunsItsSegmentIsRefused) {
-  const fs::path finding = source_dir / "tests/fuzz/regressions/image/crash-56b2e2fecc064e9865224ae525aeb51f7d05a60e";
   const fs::path sound = source_dir / "tests/fuzz/seeds/image/rgb.jpg";
   ASSERT_NE(airr::read_text_file(sound.string()).find("Photoshop 3.0"), std::string::npos);
   EXPECT_EQ(airr::load_image(sound.string()).pixels.width, 8);
-  try {
-    airr::load_image(finding.string());
-    ADD_FAILURE() << "loaded";
-  } catch (const airr::input_error& e) {
-    EXPECT_NE(std::string(e.what()).find("IPTC block claims 96 bytes, the segment holds 20"), std::string::npos)
-        << e.what();
+  // The second one has two stray bytes before the segment, which libjpeg skips.
+  for (const char* finding :
+       {"crash-56b2e2fecc064e9865224ae525aeb51f7d05a60e", "crash-f1b8460f6a4804672aed385dad49bac54ec23721"}) {
+    try {
+      airr::load_image((source_dir / "tests/fuzz/regressions/image" / finding).string());
+      ADD_FAILURE() << finding << " loaded";
+    } catch (const airr::input_error& e) {
+      EXPECT_NE(std::string(e.what()).find("IPTC block claims"), std::string::npos) << e.what();
+    }
   }
   // The sound file with its first IPTC record's length raised beyond the block.
   std::string bytes = airr::read_text_file(sound.string());

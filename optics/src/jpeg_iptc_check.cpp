@@ -45,7 +45,7 @@ std::optional<std::string> jpeg_iptc_problem(const std::string& path) {
   if (byte() != 0xff || byte() != 0xd8) return std::nullopt;
   while (in) {
     int marker = byte();
-    if (marker != 0xff) return std::nullopt;  // not a marker: the library says what is wrong
+    while (marker >= 0 && marker != 0xff) marker = byte();  // libjpeg skips stray bytes between segments
     while (marker == 0xff) marker = byte();
     if (marker < 0 || marker == 0xda || marker == 0xd9) return std::nullopt;  // pixel data or end
     if (marker == 0x01 || (marker >= 0xd0 && marker <= 0xd7)) continue;       // markers without a length
