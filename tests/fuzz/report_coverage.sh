@@ -9,7 +9,7 @@ build=${2:-$source_dir/build-fuzz}
 out=$(mktemp)
 trap 'rm -f "$out"' EXIT
 LSAN_OPTIONS="suppressions=$source_dir/tests/lsan_suppressions.txt" "$build/tests/fuzz_$target" "$build/corpus/$target" \
-  -runs=0 -print_coverage=1 >"$out" 2>&1 || true
+  -runs=0 -print_coverage=1 -rss_limit_mb=4096 -detect_leaks=0 >"$out" 2>&1 || true
 grep -E "INITED" "$out" | sed -E 's/.*INITED (cov: [0-9]+ ft: [0-9]+ corp: [^ ]+).*/\1/'
 # COVERED_FUNC: hits: H edges: C/T NAME FILE:LINE (UNCOVERED_FUNC lines count their edges as 0/T)
 awk -v src="$source_dir/" '
