@@ -102,3 +102,72 @@ TEST(FuzzFindings, JpegWhoseIptcBlockOverrunsItsSegmentIsRefused) {
   }
   fs::remove(overrun);
 }
+
+namespace {
+
+// The seed EXR's bytes with its 38-byte 'capDate' string attribute (name, type, size, value)
+// replaced by `attribute`.
+std::string exr_with_attribute(const std::string& attribute) {
+  std::string bytes = airr::read_text_file((source_dir / "tests/fuzz/seeds/image/rgbh.exr").string());
+  const std::size_t at = bytes.find(std::string("capDate\0string\0", 15));
+  EXPECT_NE(at, std::string::npos);
+  return bytes.replace(at, 38, attribute);
+}
+
+std::string le32(std::uint32_t v) { return {char(v), char(v >> 8), char(v >> 16), char(v >> 24)}; }
+
+std::string load_error(const std::string& bytes, std::int64_t pixel_limit = airr::max_image_pixels) {
+  const fs::path p = fs::temp_directory_path() / ("airr-exr-" + std::to_string(::getpid()) + ".exr");
+  airr::write_file_atomic(p.string(), bytes);
+  std::string error;
+  try {
+    airr::load_image(p.string(), airr::image_encoding::automatic, pixel_limit);
+  } catch (const airr::input_error& e) {
+    error = e.what();
+  }
+  fs::remove(p);
+  return error;
+}
+
+}  // namespace
+
+// Found by the image target (as its slowest inputs): OpenEXR allocates a header attribute by the
+// size written before it, and a string list's strings and a preview's pixels by theirs, so a
+// damaged size in a file of a few hundred bytes made it allocate up to 2 GB; and it allocates
+// several lines of pixels as it opens a file, before the loader's size check. The loader checks
+// those sizes first; sound attributes of the same types still load.
+TEST(FuzzFindings, ExrHeaderSizesAreCheckedBeforeTheLibraryAllocates) {
+  const std::string kept = airr::read_text_file(
+      (source_dir / "tests/fuzz/regressions/image/slow-unit-b597cdbd30b352fdb4d423c089ef9cce01d66614").string());
+  EXPECT_NE(load_error(kept).find("its header attribute 'capDate' (string) claims 1667457891 bytes, the file holds"),
+            std::string::npos)
+      << load_error(kept);
+
+  const std::string date("2026:11:24 14:10:54", 19);
+  const std::string string_attribute = std::string("capDate\0string\0", 15);
+  EXPECT_EQ(load_error(exr_with_attribute(string_attribute + le32(19) + date)), "");
+  EXPECT_NE(load_error(exr_with_attribute(string_attribute + le32(0x7fffff00) + date))
+                .find("its header attribute 'capDate' (string) claims 2147483392 bytes, the file holds"),
+            std::string::npos);
+
+  // 16 + 4 + 18 bytes: one string of 14 characters.
+  const std::string list = std::string("cD\0stringvector\0", 16);
+  EXPECT_EQ(load_error(exr_with_attribute(list + le32(18) + le32(14) + date.substr(0, 14))), "");
+  EXPECT_NE(load_error(exr_with_attribute(list + le32(18) + le32(1000) + date.substr(0, 14)))
+                .find("a string in its header attribute 'cD' claims 1000 bytes, the attribute holds 14"),
+            std::string::npos);
+
+  // 22 + 4 + 12 bytes: a preview of one pixel.
+  const std::string preview = std::string("previewSample\0preview\0", 22);
+  EXPECT_EQ(load_error(exr_with_attribute(preview + le32(12) + le32(1) + le32(1) + "RGBA")), "");
+  EXPECT_NE(load_error(exr_with_attribute(preview + le32(12) + le32(1000) + le32(1000) + "RGBA"))
+                .find("its preview image 'previewSample' declares 1000000 pixels in 12 bytes"),
+            std::string::npos);
+
+  // The data window 2^30 pixels wide: refused before the library allocates a line of it.
+  std::string wide = exr_with_attribute(string_attribute + le32(19) + date);
+  const std::size_t window = wide.find(std::string("dataWindow\0box2i\0", 17)) + 17 + 4;
+  wide.replace(window + 8, 4, le32((1u << 30) - 1));
+  EXPECT_NE(load_error(wide).find("image too large (1073741824x8; the limit is 67108864 pixels)"), std::string::npos)
+      << load_error(wide);
+}

@@ -16,7 +16,7 @@
 #include "airr/optics/error.hpp"
 #include "airr/optics/files.hpp"
 #include "airr/optics/image.hpp"
-#include "jpeg_iptc_check.hpp"
+#include "image_header_check.hpp"
 
 namespace airr {
 
@@ -68,6 +68,11 @@ class library_chatter_filter {
   int saved_ = -1;
 };
 
+static void refuse_damaged_header(const std::string& path,
+                                  std::int64_t pixel_limit = std::numeric_limits<std::int64_t>::max()) {
+  if (const auto problem = image_header_problem(path, pixel_limit)) throw input_error(path + ": " + *problem);
+}
+
 static bool is_float_format(TypeDesc t) {
   return t.basetype == TypeDesc::FLOAT || t.basetype == TypeDesc::HALF || t.basetype == TypeDesc::DOUBLE;
 }
@@ -107,7 +112,7 @@ loaded_image load_image(const std::string& path, image_encoding encoding, std::i
   // project's limit (checked below, before any pixel is allocated) names ours.
   static const bool own_limit = OIIO::attribute("limits:imagesize_MB", std::numeric_limits<int>::max());
   (void)own_limit;
-  if (const auto problem = jpeg_iptc_problem(path)) throw input_error(path + ": cannot read image: " + *problem);
+  refuse_damaged_header(path, pixel_limit);
   const library_chatter_filter quiet;
   auto in = ImageInput::open(path);
   if (!in) {
@@ -223,7 +228,7 @@ void write_image(const std::string& path, const image_rgb& img, const image_meta
 }
 
 std::vector<std::string> read_image_layer_names(const std::string& path) {
-  if (const auto problem = jpeg_iptc_problem(path)) throw input_error(path + ": cannot read image: " + *problem);
+  refuse_damaged_header(path);
   const library_chatter_filter quiet;
   auto in = ImageInput::open(path);
   if (!in) throw input_error(path + ": cannot read image: " + one_line(geterror()));
@@ -238,7 +243,7 @@ std::vector<std::string> read_image_layer_names(const std::string& path) {
 }
 
 image_metadata read_image_metadata(const std::string& path) {
-  if (const auto problem = jpeg_iptc_problem(path)) throw input_error(path + ": cannot read image: " + *problem);
+  refuse_damaged_header(path);
   const library_chatter_filter quiet;
   auto in = ImageInput::open(path);
   if (!in) throw input_error(path + ": cannot read image: " + one_line(geterror()));
