@@ -43,7 +43,7 @@ kept_before=$(ls "$regressions")
 leaks=1
 [ "$target" = image ] && leaks=0
 # Sanitizer reports go to files: while an image is read, the loader sends stderr elsewhere.
-logs=$build/fuzz-logs/$target
+logs=$build/fuzz-logs/$target.$$  # this run's own: runs of one target may go side by side
 rm -rf "$logs"
 mkdir -p "$logs"
 # The process prints its figures: executions (stat::number_of_executed_units) and coverage (cov:).
