@@ -1,6 +1,6 @@
-// Every fuzz target on its seeds (tests/fuzz/seeds.txt) and on every input kept from a finding
-// (tests/fuzz/regressions/<target>/): each is read or refused with the project's error, never
-// anything else (under the asan tree: never a sanitizer report either).
+// Every fuzz target on its seeds (tests/fuzz/seeds.txt), each of which it reads, and on every
+// input kept from a finding (tests/fuzz/regressions/<target>/), each read or refused with the
+// project's error, never anything else (under the asan tree: never a sanitizer report either).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
@@ -58,11 +58,15 @@ TEST(FuzzReplay, SeedsAndKeptFindingsAreReadOrRefused) {
   for (const char* target : airr::fuzz::targets) {
     const auto found = all_seeds.find(target);
     ASSERT_TRUE(found != all_seeds.end() && !found->second.empty()) << "no seeds for " << target;
-    std::vector<fs::path> all = found->second;
-    for (const auto& f : files_in(source_dir / "tests/fuzz/regressions" / target)) all.push_back(f);
-    for (const auto& f : all) {
-      const std::string bytes = airr::read_text_file(f.string());
-      EXPECT_NO_THROW(EXPECT_TRUE(airr::fuzz::run(target, bytes))) << target << ": " << f;
+    // Seeds are sound files: each loads, or the target does not reach its loader's depths.
+    for (const auto& f : found->second) {
+      bool loaded = false;
+      EXPECT_NO_THROW(loaded = airr::fuzz::run(target, airr::read_text_file(f.string()))) << target << ": " << f;
+      EXPECT_TRUE(loaded) << "the seed is refused: " << target << ": " << f;
+      ++inputs;
+    }
+    for (const auto& f : files_in(source_dir / "tests/fuzz/regressions" / target)) {
+      EXPECT_NO_THROW(airr::fuzz::run(target, airr::read_text_file(f.string()))) << target << ": " << f;
       ++inputs;
     }
   }

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <stdexcept>
 
 #include "airr/analysis/fit_data.hpp"
 #include "airr/analysis/onnx_inputs.hpp"
@@ -40,51 +41,73 @@ static std::string write_input(const std::string& name, std::string_view bytes) 
   return p.string();
 }
 
+// Whether the loader read the input (false: it refused it with the project's error).
 template <class F>
-static void expecting_input_errors(F&& f) {
+static bool expecting_input_errors(F&& f) {
   try {
     f();
+    return true;
   } catch (const airr_error&) {
-    // the answer to bad input
+    return false;  // the answer to bad input
   }
 }
 
-void scene_json(std::string_view bytes) {
-  expecting_input_errors([&] { parse_scene(std::string(bytes), "fuzz.json", work_dir().string()); });
+// Scenes and fit data name their files relative to themselves, as assets/ holds them: the model,
+// the charts and the display profile, copied once into ../models/, ../charts/ and ../displays/.
+static void copy_assets_beside() {
+  static const bool copied = [] {
+    for (const char* file :
+         {"models/panel.gltf", "charts/test_chart.png", "charts/slanted_edge.png", "displays/lcd_typical.csv"}) {
+      fs::create_directories((work_dir() / file).parent_path());
+      fs::copy_file(fs::path(AIRR_ASSETS_DIR) / file, work_dir() / file, fs::copy_options::overwrite_existing);
+    }
+    return true;
+  }();
+  (void)copied;
 }
 
-void gltf(std::string_view bytes) {
+bool scene_json(std::string_view bytes) {
+  copy_assets_beside();
+  return expecting_input_errors(
+      [&] { parse_scene(std::string(bytes), "fuzz.json", (work_dir() / "scenes").string()); });
+}
+
+bool gltf(std::string_view bytes) {
   const std::string path = write_input(bytes.substr(0, 4) == "glTF" ? "fuzz.glb" : "fuzz.gltf", bytes);
-  expecting_input_errors([&] { load_prop_mesh(path, ""); });
-  expecting_input_errors([&] {
-    if (gltf_has_layout_roles(path)) gltf_layout_document(path);
+  const bool mesh = expecting_input_errors([&] { load_prop_mesh(path, ""); });
+  const bool layout = expecting_input_errors([&] {
+    if (!gltf_has_layout_roles(path)) throw input_error("no layout roles");
+    gltf_layout_document(path);
   });
+  return mesh || layout;
 }
 
-void preset(std::string_view bytes) {
-  expecting_input_errors([&] { load_preset(write_input("preset.json", bytes)); });
+bool preset(std::string_view bytes) {
+  return expecting_input_errors([&] { load_preset(write_input("preset.json", bytes)); });
 }
 
-void shift_table(std::string_view bytes) {
-  expecting_input_errors([&] { load_shift_table(write_input("table.json", bytes)); });
+bool shift_table(std::string_view bytes) {
+  return expecting_input_errors([&] { load_shift_table(write_input("table.json", bytes)); });
 }
 
-void fit_json(std::string_view bytes) {
-  // The example's measurements, copied once, sit beside the fit.json the input becomes.
+bool fit_json(std::string_view bytes) {
+  // The example's measurements and setup scene, copied once, sit beside the fit.json the input
+  // becomes.
   static const fs::path dir = [] {
     const fs::path d = work_dir() / "fit";
     fs::create_directories(d);
-    for (const auto& e : fs::directory_iterator(AIRR_FIT_EXAMPLE_DIR))
+    for (const auto& e : fs::directory_iterator(fs::path(AIRR_ASSETS_DIR) / "fit_example"))
       if (e.path().filename() != "fit.json")
         fs::copy_file(e.path(), d / e.path().filename(), fs::copy_options::overwrite_existing);
     return d;
   }();
+  copy_assets_beside();
   write_input("fit/fit.json", bytes);
-  expecting_input_errors([&] { analysis::load_fit_data(dir.string()); });
+  return expecting_input_errors([&] { analysis::load_fit_data(dir.string()); });
 }
 
-void csv(std::string_view bytes) {
-  expecting_input_errors([&] { read_csv_table(write_input("table.csv", bytes)); });
+bool csv(std::string_view bytes) {
+  return expecting_input_errors([&] { read_csv_table(write_input("table.csv", bytes)); });
 }
 
 // The extension a user's file of that content would have (the image library picks its reader by
@@ -101,25 +124,25 @@ static std::string image_name(std::string_view bytes) {
 // hundreds of megabytes; a lower limit keeps them cheap and exercises the same code.
 constexpr std::int64_t fuzz_image_pixel_limit = 1 << 16;
 
-void image(std::string_view bytes) {
-  expecting_input_errors(
+bool image(std::string_view bytes) {
+  return expecting_input_errors(
       [&] { load_image(write_input(image_name(bytes), bytes), image_encoding::automatic, fuzz_image_pixel_limit); });
 }
 
-void onnx(std::string_view bytes) {
-  expecting_input_errors([&] { analysis::read_onnx_inputs(write_input("model.onnx", bytes)); });
+bool onnx(std::string_view bytes) {
+  return expecting_input_errors([&] { analysis::read_onnx_inputs(write_input("model.onnx", bytes)); });
 }
 
 bool run(const std::string& target, std::string_view bytes) {
-  if (target == "scene_json") return scene_json(bytes), true;
-  if (target == "gltf") return gltf(bytes), true;
-  if (target == "preset") return preset(bytes), true;
-  if (target == "shift_table") return shift_table(bytes), true;
-  if (target == "fit_json") return fit_json(bytes), true;
-  if (target == "csv") return csv(bytes), true;
-  if (target == "image") return image(bytes), true;
-  if (target == "onnx") return onnx(bytes), true;
-  return false;
+  if (target == "scene_json") return scene_json(bytes);
+  if (target == "gltf") return gltf(bytes);
+  if (target == "preset") return preset(bytes);
+  if (target == "shift_table") return shift_table(bytes);
+  if (target == "fit_json") return fit_json(bytes);
+  if (target == "csv") return csv(bytes);
+  if (target == "image") return image(bytes);
+  if (target == "onnx") return onnx(bytes);
+  throw std::invalid_argument("no fuzz target named " + target);
 }
 
 }  // namespace airr::fuzz

@@ -1,27 +1,29 @@
 #pragma once
-// The loaders of users' files as fuzz targets: each takes one input as a file of its kind. An
-// input_error (or measurement_error) is the expected answer to bad input; a crash, a sanitizer
-// report or any other exception is a finding. Compiled into the ordinary build too, where a test
-// replays every kept crash input (tests/fuzz/regressions/<target>/).
+// The loaders of users' files as fuzz targets: each takes one input as a file of its kind and
+// says whether its loader read it. An input_error (or measurement_error) is the expected answer
+// to bad input; a crash, a sanitizer report or any other exception is a finding. Compiled into
+// the ordinary build too, where a test replays every kept crash input
+// (tests/fuzz/regressions/<target>/).
 #include <string>
 #include <string_view>
 
 namespace airr::fuzz {
 
-void scene_json(std::string_view bytes);   // scene files, version 1 and the current one
-void gltf(std::string_view bytes);         // glTF (JSON) and GLB, as a prop mesh and as a layout
-void preset(std::string_view bytes);       // sheet presets
-void shift_table(std::string_view bytes);  // corner-cube shift tables
-void fit_json(std::string_view bytes);     // a fit's fit.json beside the example measurements
-void csv(std::string_view bytes);          // measurement CSV tables
-void image(std::string_view bytes);        // source and measurement images (PNG, EXR, TIFF, JPEG)
-void onnx(std::string_view bytes);         // an LPIPS model's inputs, as the project reads them
+bool scene_json(std::string_view bytes);   // scene files, version 1 and the current one
+bool gltf(std::string_view bytes);         // glTF (JSON) and GLB, as a prop mesh and as a layout
+bool preset(std::string_view bytes);       // sheet presets
+bool shift_table(std::string_view bytes);  // corner-cube shift tables
+bool fit_json(std::string_view bytes);     // a fit's fit.json beside the example measurements
+bool csv(std::string_view bytes);          // measurement CSV tables
+bool image(std::string_view bytes);        // source and measurement images (PNG, EXR, TIFF, JPEG)
+bool onnx(std::string_view bytes);         // an LPIPS model's inputs, as the project reads them
 
 // Every target's name.
 inline constexpr const char* targets[] = {"scene_json", "gltf", "preset", "shift_table",
                                           "fit_json",   "csv",  "image",  "onnx"};
 
-// Runs one target by name; false for an unknown name.
+// Runs one target by name (one of `targets`, else std::invalid_argument): whether the loader read
+// the input.
 bool run(const std::string& target, std::string_view bytes);
 
 }  // namespace airr::fuzz
