@@ -90,12 +90,11 @@ static std::optional<std::string> exr_value_problem(const std::string& name, con
     }
   }
   if (type == "preview") {
-    const std::int64_t pixels =
-        value.size() < 8 ? -1 : std::int64_t(std::uint32_t(le32(value.data()))) * std::uint32_t(le32(value.data() + 4));
-    if (pixels < 0 || 8 + 4 * pixels != std::int64_t(value.size())) {
-      return "cannot read image: its preview image '" + name + "' declares " +
-             std::to_string(std::max<std::int64_t>(pixels, 0)) + " pixels in " + std::to_string(value.size()) +
-             " bytes";
+    const std::uint64_t pixels =
+        value.size() < 8 ? 0 : std::uint64_t(std::uint32_t(le32(value.data()))) * std::uint32_t(le32(value.data() + 4));
+    if (value.size() < 8 || (value.size() - 8) % 4 != 0 || (value.size() - 8) / 4 != pixels) {
+      return "cannot read image: its preview image '" + name + "' declares " + std::to_string(pixels) + " pixels in " +
+             std::to_string(value.size()) + " bytes";
     }
   }
   return std::nullopt;
@@ -131,7 +130,7 @@ static std::optional<std::string> exr_header_problem(std::ifstream& in, std::int
         const std::int64_t width = le32(box + 8) - le32(box) + 1, height = le32(box + 12) - le32(box + 4) + 1;
         // The library allocates a buffer of several whole lines as it opens a file, before the
         // loader's own size check, so the size is checked here.
-        if (width > 0 && height > 0 && width * height > pixel_limit) {
+        if (width > 0 && height > 0 && width > pixel_limit / height) {
           return "image too large (" + std::to_string(width) + "x" + std::to_string(height) + "; the limit is " +
                  std::to_string(pixel_limit) + " pixels)";
         }
