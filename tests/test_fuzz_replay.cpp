@@ -10,6 +10,7 @@
 #include <sstream>
 #include <vector>
 
+#include "airr/analysis/fit_data.hpp"
 #include "airr/optics/error.hpp"
 #include "airr/optics/files.hpp"
 #include "airr/optics/image.hpp"
@@ -168,10 +169,32 @@ TEST(FuzzFindings, ExrHeaderSizesAreCheckedBeforeTheLibraryAllocates) {
                 .find("its preview image 'previewSample' declares 1000000 pixels in 12 bytes"),
             std::string::npos);
 
+  // Found by the image target in the check itself: a preview's width times height overflowed.
+  EXPECT_NE(load_error(exr_with_attribute(preview + le32(12) + le32(0xffffffff) + le32(0xffffffff) + "RGBA"))
+                .find("declares 18446744065119617025 pixels in 12 bytes"),
+            std::string::npos);
+
   // The data window 2^30 pixels wide: refused before the library allocates a line of it.
   std::string wide = exr_with_attribute(string_attribute + le32(19) + date);
   const std::size_t window = wide.find(std::string("dataWindow\0box2i\0", 17)) + 17 + 4;
   wide.replace(window + 8, 4, le32((1u << 30) - 1));
   EXPECT_NE(load_error(wide).find("image too large (1073741824x8; the limit is 67108864 pixels)"), std::string::npos)
       << load_error(wide);
+}
+
+// Found by the fit_json target: a file name in fit.json too long for the system made the
+// existence check throw a filesystem error, which nothing caught.
+TEST(FuzzFindings, FitDataFileNameTooLongIsNotFound) {
+  const fs::path dir = fs::temp_directory_path() / ("airr-fit-name-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  airr::write_file_atomic((dir / "fit.json").string(),
+                          R"({"format": "airr-fit-data", "version": 1, "scene": ")" + std::string(5000, 'x') + R"("})");
+  try {
+    airr::analysis::load_fit_data(dir.string());
+    ADD_FAILURE() << "loaded";
+  } catch (const airr::input_error& e) {
+    EXPECT_NE(std::string(e.what()).find("scene: file 'xxxx"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("not found"), std::string::npos) << e.what();
+  }
+  fs::remove_all(dir);
 }

@@ -28,7 +28,8 @@ namespace {
 std::string resolve_file(json_reader& r, const std::string& dir, const std::string& key) {
   const std::string name = r.string(key);
   const std::string path = resolve_path(name, dir);
-  if (!fs::is_regular_file(path)) r.fail(r.field(key), "file '" + name + "' not found (" + path + ")");
+  std::error_code ec;  // a name the system refuses (too long, say) is not found either
+  if (!fs::is_regular_file(path, ec)) r.fail(r.field(key), "file '" + name + "' not found (" + path + ")");
   return path;
 }
 
@@ -252,10 +253,11 @@ std::vector<std::string> fit_data::files() const {
 fit_data load_fit_data(const std::string& dir_text) {
   fit_data d;
   d.dir = fs::path(dir_text).lexically_normal().string();
-  if (!fs::is_directory(d.dir))
+  std::error_code ec;
+  if (!fs::is_directory(d.dir, ec))
     throw input_error(dir_text + ": not a directory (expected a fit data directory holding fit.json)");
   d.fit_json = (fs::path(d.dir) / "fit.json").string();
-  if (!fs::is_regular_file(d.fit_json))
+  if (!fs::is_regular_file(d.fit_json, ec))
     throw input_error(d.fit_json + ": missing (a fit data directory needs fit.json; see assets/fit_example/README.md)");
   const json j = read_json_file(d.fit_json);
   json_reader r(j, d.fit_json, "");
