@@ -2,7 +2,6 @@
 // input kept from a finding (tests/fuzz/regressions/<target>/), each read or refused with the
 // project's error, never anything else (under the asan tree: never a sanitizer report either).
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -15,8 +14,10 @@
 #include "airr/optics/files.hpp"
 #include "airr/optics/image.hpp"
 #include "fuzz/fuzz_targets.hpp"
+#include "test_helpers.hpp"
 
 namespace fs = std::filesystem;
+using airr::test::error_of;
 
 namespace {
 
@@ -85,27 +86,19 @@ TEST(FuzzFindings, JpegWhoseIptcBlockOverrunsItsSegmentIsRefused) {
   // The second one has two stray bytes before the segment, which libjpeg skips.
   for (const char* finding :
        {"crash-56b2e2fecc064e9865224ae525aeb51f7d05a60e", "crash-f1b8460f6a4804672aed385dad49bac54ec23721"}) {
-    try {
-      airr::load_image((source_dir / "tests/fuzz/regressions/image" / finding).string());
-      ADD_FAILURE() << finding << " loaded";
-    } catch (const airr::input_error& e) {
-      EXPECT_NE(std::string(e.what()).find("IPTC block claims"), std::string::npos) << e.what();
-    }
+    const std::string error =
+        error_of([&] { airr::load_image((source_dir / "tests/fuzz/regressions/image" / finding).string()); });
+    EXPECT_NE(error.find("IPTC block claims"), std::string::npos) << finding << ": " << error;
   }
   // The sound file with its first IPTC record's length raised beyond the block.
   std::string bytes = airr::read_text_file(sound.string());
   const std::size_t block = bytes.find("Photoshop 3.0") + 26;
   ASSERT_EQ(bytes[block], '\x1c');
   bytes[block + 3] = '\x7f';
-  const fs::path overrun = fs::temp_directory_path() / ("airr-iptc-" + std::to_string(::getpid()) + ".jpg");
-  airr::write_file_atomic(overrun.string(), bytes);
-  try {
-    airr::load_image(overrun.string());
-    ADD_FAILURE() << "loaded";
-  } catch (const airr::input_error& e) {
-    EXPECT_NE(std::string(e.what()).find("an IPTC record claims"), std::string::npos) << e.what();
-  }
-  fs::remove(overrun);
+  const airr::test::temp_dir dir;
+  airr::write_file_atomic(dir.file("overrun.jpg"), bytes);
+  const std::string error = error_of([&] { airr::load_image(dir.file("overrun.jpg")); });
+  EXPECT_NE(error.find("an IPTC record claims"), std::string::npos) << error;
 }
 
 namespace {
@@ -122,16 +115,9 @@ std::string exr_with_attribute(const std::string& attribute) {
 std::string le32(std::uint32_t v) { return {char(v), char(v >> 8), char(v >> 16), char(v >> 24)}; }
 
 std::string load_error(const std::string& bytes, std::int64_t pixel_limit = airr::max_image_pixels) {
-  const fs::path p = fs::temp_directory_path() / ("airr-exr-" + std::to_string(::getpid()) + ".exr");
-  airr::write_file_atomic(p.string(), bytes);
-  std::string error;
-  try {
-    airr::load_image(p.string(), airr::image_encoding::automatic, pixel_limit);
-  } catch (const airr::input_error& e) {
-    error = e.what();
-  }
-  fs::remove(p);
-  return error;
+  const airr::test::temp_dir dir;
+  airr::write_file_atomic(dir.file("image.exr"), bytes);
+  return error_of([&] { airr::load_image(dir.file("image.exr"), airr::image_encoding::automatic, pixel_limit); });
 }
 
 }  // namespace
@@ -185,16 +171,10 @@ TEST(FuzzFindings, ExrHeaderSizesAreCheckedBeforeTheLibraryAllocates) {
 // Found by the fit_json target: a file name in fit.json too long for the system made the
 // existence check throw a filesystem error, which nothing caught.
 TEST(FuzzFindings, FitDataFileNameTooLongIsNotFound) {
-  const fs::path dir = fs::temp_directory_path() / ("airr-fit-name-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  airr::write_file_atomic((dir / "fit.json").string(),
+  const airr::test::temp_dir dir;
+  airr::write_file_atomic(dir.file("fit.json"),
                           R"({"format": "airr-fit-data", "version": 1, "scene": ")" + std::string(5000, 'x') + R"("})");
-  try {
-    airr::analysis::load_fit_data(dir.string());
-    ADD_FAILURE() << "loaded";
-  } catch (const airr::input_error& e) {
-    EXPECT_NE(std::string(e.what()).find("scene: file 'xxxx"), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("not found"), std::string::npos) << e.what();
-  }
-  fs::remove_all(dir);
+  const std::string error = error_of([&] { airr::analysis::load_fit_data(dir.path.string()); });
+  EXPECT_NE(error.find("scene: file 'xxxx"), std::string::npos) << error;
+  EXPECT_NE(error.find("not found"), std::string::npos) << error;
 }

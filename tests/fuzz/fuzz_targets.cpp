@@ -53,14 +53,21 @@ static bool expecting_input_errors(F&& f) {
 }
 
 // Scenes and fit data name their files relative to themselves, as assets/ holds them: the model,
-// the charts and the display profile, copied once into ../models/, ../charts/ and ../displays/.
+// the charts and the display profile go to models/, charts/ and displays/, and the fit example's
+// measurements and setup scene to fit/, where the fit.json an input becomes sits beside them.
+// Copied once.
 static void copy_assets_beside() {
   static const bool copied = [] {
+    const fs::path assets = AIRR_ASSETS_DIR;
     for (const char* file :
          {"models/panel.gltf", "charts/test_chart.png", "charts/slanted_edge.png", "displays/lcd_typical.csv"}) {
       fs::create_directories((work_dir() / file).parent_path());
-      fs::copy_file(fs::path(AIRR_ASSETS_DIR) / file, work_dir() / file, fs::copy_options::overwrite_existing);
+      fs::copy_file(assets / file, work_dir() / file, fs::copy_options::overwrite_existing);
     }
+    fs::create_directories(work_dir() / "fit");
+    for (const auto& e : fs::directory_iterator(assets / "fit_example"))
+      if (e.path().filename() != "fit.json")
+        fs::copy_file(e.path(), work_dir() / "fit" / e.path().filename(), fs::copy_options::overwrite_existing);
     return true;
   }();
   (void)copied;
@@ -91,19 +98,9 @@ bool shift_table(std::string_view bytes) {
 }
 
 bool fit_json(std::string_view bytes) {
-  // The example's measurements and setup scene, copied once, sit beside the fit.json the input
-  // becomes.
-  static const fs::path dir = [] {
-    const fs::path d = work_dir() / "fit";
-    fs::create_directories(d);
-    for (const auto& e : fs::directory_iterator(fs::path(AIRR_ASSETS_DIR) / "fit_example"))
-      if (e.path().filename() != "fit.json")
-        fs::copy_file(e.path(), d / e.path().filename(), fs::copy_options::overwrite_existing);
-    return d;
-  }();
   copy_assets_beside();
   write_input("fit/fit.json", bytes);
-  return expecting_input_errors([&] { analysis::load_fit_data(dir.string()); });
+  return expecting_input_errors([&] { analysis::load_fit_data((work_dir() / "fit").string()); });
 }
 
 bool csv(std::string_view bytes) {
