@@ -13,8 +13,8 @@
 #include <imgui.h>
 #include <CLI/CLI.hpp>
 
-#include "airr/optics/assets.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/formats/scene_json.hpp"
 #include "airr/ui/screenshot.hpp"
 #include "airr/ui/studio.hpp"
 #include "airr_version.hpp"
@@ -310,8 +310,24 @@ int main(int argc, char** argv) {
           const float sx = ww ? float(fw) / ww : 1.0f, sy = wh ? float(fh) / wh : 1.0f;
           nlohmann::json regions;
           for (const auto& [name, r] : st.regions) regions[name] = {r[0] * sx, r[1] * sy, r[2] * sx, r[3] * sy};
-          airr::write_file_atomic(opt.screenshot + ".json",
-                                  nlohmann::json{{"width", fw}, {"height", fh}, {"regions", regions}}.dump(2) + "\n");
+          // The layout view's labels, the parts' outlines and the marks (scale bar, handles) they keep clear of.
+          auto rect = [&](const airr::ui::screen_rect& r) {
+            return nlohmann::json{r.x0 * sx, r.y0 * sy, r.x1 * sx, r.y1 * sy};
+          };
+          nlohmann::json views;
+          for (const auto& [name, v] : st.layout_views) {
+            nlohmann::json& j = views[name];
+            j["labels"] = nlohmann::json::array();
+            for (const auto& t : v.labels) j["labels"].push_back({{"text", t.text}, {"box", rect(t.place.box)}});
+            j["outlines"] = nlohmann::json::array();
+            for (const auto& g : v.outlines) j["outlines"].push_back({g.a.x * sx, g.a.y * sy, g.b.x * sx, g.b.y * sy});
+            j["marks"] = nlohmann::json::array({rect(v.scale_box)});
+            for (const auto& r : v.handles) j["marks"].push_back(rect(r));
+          }
+          airr::write_file_atomic(
+              opt.screenshot + ".json",
+              nlohmann::json{{"width", fw}, {"height", fh}, {"regions", regions}, {"layout_views", views}}.dump(2) +
+                  "\n");
           const int shown = st.view.uploaded_component;
           std::fprintf(stderr, "wrote %s (%dx%d); the render view shows %s%s%s\n", opt.screenshot.c_str(), fw, fh,
                        st.view.uploaded_model_image

@@ -13,10 +13,10 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "airr/optics/assets.hpp"
-#include "airr/optics/error.hpp"
-#include "airr/optics/random.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/core/error.hpp"
+#include "airr/core/random.hpp"
+#include "airr/formats/scene_json.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/render/tracer.hpp"
 #include "commands.hpp"

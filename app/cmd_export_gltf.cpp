@@ -4,8 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "airr/optics/gltf_layout.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/formats/gltf_layout.hpp"
+#include "airr/formats/scene_json.hpp"
 #include "commands.hpp"
 
 void add_export_gltf_command(CLI::App& app) {

@@ -2,10 +2,10 @@
 // (`--dir assets` in the source tree; installed assets are never rewritten in place).
 #include <filesystem>
 
+#include "airr/formats/mesh_gltf.hpp"
+#include "airr/formats/scene_json.hpp"
 #include "airr/measure/test_charts.hpp"
-#include "airr/optics/corner_cube.hpp"
-#include "airr/optics/mesh_gltf.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/models/corner_cube.hpp"
 #include "commands.hpp"
 
 void add_make_assets_command(CLI::App& app) {

@@ -8,9 +8,9 @@
 
 #include "airr/analysis/plot_png.hpp"
 #include "airr/analysis/psf_mtf.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/layout.hpp"
 #include "airr/measure/mtf_routes.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/scene_json.hpp"
 #include "commands.hpp"
 
 namespace {

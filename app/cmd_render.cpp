@@ -4,9 +4,9 @@
 #include <cmath>
 #include <thread>
 
-#include "airr/optics/error.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/core/error.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/layout.hpp"
 #include "airr/render/render_metadata.hpp"
 #include "airr/render/render_session.hpp"
 #include "commands.hpp"

@@ -5,9 +5,9 @@
 
 #include <tbb/task_arena.h>
 
-#include "airr/optics/assets.hpp"
-#include "airr/optics/error.hpp"
-#include "airr/optics/shift_table.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/core/error.hpp"
+#include "airr/models/shift_table.hpp"
 #include "airr/render/shift_table_tracer.hpp"
 #include "commands.hpp"
 #include "progress_bar.hpp"

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "airr/analysis/plot_png.hpp"
+#include "airr/formats/scene_json.hpp"
 #include "airr/measure/sweep.hpp"
-#include "airr/optics/scene_json.hpp"
 #include "commands.hpp"
 #include "progress_bar.hpp"
 

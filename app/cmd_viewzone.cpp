@@ -8,12 +8,12 @@
 #include <vector>
 
 #include "airr/analysis/plot_png.hpp"
+#include "airr/core/error.hpp"
+#include "airr/core/files.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/layout/viewing_zone.hpp"
 #include "airr/measure/viewing_zone_full.hpp"
-#include "airr/optics/error.hpp"
-#include "airr/optics/files.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/scene_json.hpp"
-#include "airr/optics/viewing_zone.hpp"
 #include "airr/render/prop_hits.hpp"
 #include "commands.hpp"
 #include "progress_bar.hpp"

@@ -2,7 +2,7 @@
 // The subcommands of the `airr` command line; each registers itself on the app.
 #include <CLI/CLI.hpp>
 
-#include "airr/optics/image.hpp"
+#include "airr/formats/image.hpp"
 
 void add_render_command(CLI::App& app);
 void add_bench_command(CLI::App& app);

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "airr/formats/image.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/sheet_models.hpp"
 #include "airr/measure/noise_level.hpp"
-#include "airr/optics/image.hpp"
-#include "airr/optics/scene_json.hpp"
-#include "airr/optics/sheet_models.hpp"
 #include "airr/render/model_image.hpp"
 #include "airr/render/render_session.hpp"
 

@@ -8,9 +8,9 @@
 #include <filesystem>
 #include <fstream>
 
+#include "airr/core/error.hpp"
+#include "airr/formats/image.hpp"
 #include "airr/measure/noise_level.hpp"
-#include "airr/optics/error.hpp"
-#include "airr/optics/image.hpp"
 
 namespace fs = std::filesystem;
 

@@ -14,8 +14,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
-#include "airr/optics/mesh_gltf.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/formats/mesh_gltf.hpp"
+#include "airr/formats/scene_json.hpp"
 #include "airr/render/prop_hits.hpp"
 #include "airr/render/tracer.hpp"
 

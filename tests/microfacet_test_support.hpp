@@ -9,9 +9,9 @@
 #include <functional>
 #include <utility>
 #include <vector>
-#include "airr/optics/geometry.hpp"
-#include "airr/optics/random.hpp"
-#include "airr/optics/retro_microfacet.hpp"
+#include "airr/core/geometry.hpp"
+#include "airr/core/random.hpp"
+#include "airr/models/retro_microfacet.hpp"
 #include "chi_square.hpp"
 #include "test_helpers.hpp"
 

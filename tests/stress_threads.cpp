@@ -16,9 +16,9 @@
 
 #include <tbb/global_control.h>
 
-#include "airr/optics/assets.hpp"
-#include "airr/optics/image.hpp"
-#include "airr/optics/random.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/core/random.hpp"
+#include "airr/formats/image.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/ui/analysis_worker.hpp"
 #include "airr/ui/fit_job.hpp"

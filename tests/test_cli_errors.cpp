@@ -3,9 +3,9 @@
 
 #include <gtest/gtest.h>
 
-#include "airr/optics/assets.hpp"
-#include "airr/optics/image.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/formats/image.hpp"
+#include "airr/formats/scene_json.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;

@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "airr/core/assets.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/viewing_zone.hpp"
 #include "airr/measure/mtf_routes.hpp"
 #include "airr/measure/viewing_zone_full.hpp"
-#include "airr/optics/assets.hpp"
-#include "airr/optics/scene_json.hpp"
-#include "airr/optics/viewing_zone.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/render/tracer.hpp"
 #include "test_helpers.hpp"

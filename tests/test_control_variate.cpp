@@ -6,9 +6,9 @@
 
 #include <gtest/gtest.h>
 
-#include "airr/optics/assets.hpp"
-#include "airr/optics/scene_json.hpp"
-#include "airr/optics/sheet_models.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/sheet_models.hpp"
 #include "airr/render/tracer.hpp"
 #include "test_helpers.hpp"
 

@@ -8,12 +8,12 @@
 #include <fstream>
 #include <string>
 
+#include "airr/core/assets.hpp"
+#include "airr/formats/gltf_layout.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/layout.hpp"
 #include "airr/measure/mtf_routes.hpp"
 #include "airr/measure/sweep.hpp"
-#include "airr/optics/assets.hpp"
-#include "airr/optics/gltf_layout.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/scene_json.hpp"
 #include "airr/ui/analysis_worker.hpp"
 #include "airr/ui/settings.hpp"
 #include "airr/ui/studio.hpp"

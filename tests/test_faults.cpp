@@ -18,13 +18,13 @@
 #include <random>
 #include <thread>
 
-#include "airr/optics/assets.hpp"
-#include "airr/optics/files.hpp"
-#include "airr/optics/gltf_layout.hpp"
-#include "airr/optics/json_reader.hpp"
-#include "airr/optics/preset.hpp"
-#include "airr/optics/retro_model.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/core/files.hpp"
+#include "airr/core/json_reader.hpp"
+#include "airr/formats/gltf_layout.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/models/preset.hpp"
+#include "airr/models/retro_model.hpp"
 #include "airr/ui/studio.hpp"
 #include "test_helpers.hpp"
 

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "airr/analysis/fit_data.hpp"
-#include "airr/optics/error.hpp"
-#include "airr/optics/files.hpp"
-#include "airr/optics/image.hpp"
+#include "airr/core/error.hpp"
+#include "airr/core/files.hpp"
+#include "airr/formats/image.hpp"
 #include "fuzz/fuzz_targets.hpp"
 #include "test_helpers.hpp"
 

@@ -9,10 +9,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "airr/optics/assets.hpp"
-#include "airr/optics/error.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/mesh_gltf.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/core/error.hpp"
+#include "airr/formats/mesh_gltf.hpp"
+#include "airr/layout/layout.hpp"
 #include "gltf_builder.hpp"
 #include "test_helpers.hpp"
 

@@ -8,11 +8,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
-#include "airr/optics/error.hpp"
-#include "airr/optics/gltf_layout.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/mesh_gltf.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/core/error.hpp"
+#include "airr/formats/gltf_layout.hpp"
+#include "airr/formats/mesh_gltf.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/layout.hpp"
 #include "gltf_builder.hpp"
 #include "test_helpers.hpp"
 

@@ -10,9 +10,10 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "airr/optics/assets.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/formats/scene_json.hpp"
 #include "gltf_builder.hpp"
+#include "label_overlap.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -300,4 +301,39 @@ TEST(Gui, HousingPropShowsInTheLayoutViews) {
   }
   EXPECT_GT(green, 100) << "the sheet, shaded green, seen through the housing";
   EXPECT_GT(curve_pixels(img, view3d, {255, 209, 89}), 10) << "the light paths";
+}
+
+// At 1600 x 1000, the shipped scenes' layout views: no label overprints another label, a part's
+// outline or other text, each stays inside its view (label_overlap.hpp's own measure, on the
+// rectangles the designer drew), and the 3D view has half the layout window.
+TEST(Gui, LayoutLabelsNeverOverprintInTheShippedScenes) {
+  for (const char* name : {"default.json", "two_sheet_kiosk.json"}) {
+    test::temp_dir dir;
+    const std::string shot = dir.file("studio.png");
+    const studio_run run = run_studio(dir, asset_dir() + "/scenes/" + name + " --frames 10 --screenshot " + shot);
+    ASSERT_EQ(run.status, 0) << run.log;
+    const auto j = nlohmann::json::parse(std::ifstream(shot + ".json"));
+    ASSERT_EQ(j.at("width").get<int>(), 1600);
+    for (const char* view : {"side", "top"}) {
+      const auto& v = j.at("layout_views").at(view);
+      std::vector<std::pair<std::string, test::rect4>> labels;
+      for (const auto& l : v.at("labels")) labels.push_back({l.at("text"), l.at("box").get<test::rect4>()});
+      const auto lines = v.at("outlines").get<std::vector<test::segment4>>();
+      const auto marks = v.at("marks").get<std::vector<test::rect4>>();
+      const test::rect4 canvas = j.at("regions").at(std::string("layout_") + view).get<test::rect4>();
+      const test::label_overlaps o = test::measure_label_overlaps(labels, lines, marks, canvas);
+      std::string what;
+      for (const auto& w : o.what) what += "\n  " + w;
+      EXPECT_GE(labels.size(), 5u) << name << " " << view;
+      EXPECT_EQ(o.label_pairs + o.label_lines + o.label_marks + o.outside, 0) << name << " " << view << ":" << what;
+      std::printf("%s, %s view: %zu labels, %zu outline segments, %d overlaps\n", name, view, labels.size(),
+                  lines.size(), o.label_pairs + o.label_lines + o.label_marks + o.outside);
+    }
+    const auto r3 = j.at("regions").at("layout_3d").get<test::rect4>();
+    const auto rs = j.at("regions").at("layout_side").get<test::rect4>();
+    std::printf("%s: 3D view %.0f x %.0f px, side view %.0f x %.0f px\n", name, r3[2] - r3[0], r3[3] - r3[1],
+                rs[2] - rs[0], rs[3] - rs[1]);
+    EXPECT_GE(r3[2] - r3[0], 350.0);
+    EXPECT_GE((r3[2] - r3[0]) * (r3[3] - r3[1]), 1.9 * (rs[2] - rs[0]) * (rs[3] - rs[1]));
+  }
 }

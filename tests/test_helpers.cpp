@@ -3,14 +3,17 @@
 #include <sys/wait.h>
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <random>
 
 #include <gtest/gtest.h>
 
-#include "airr/optics/assets.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/core/geometry.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/layout.hpp"
 
 namespace airr::test {
 
@@ -31,6 +34,39 @@ scene uniform_source_scene(double source_mm, int resolution) {
   s.source.image.clear();
   s.source.width_mm = s.source.height_mm = source_mm;
   s.observer.width = s.observer.height = resolution;
+  return s;
+}
+
+// Pitch and yaw (deg) whose normal is the unit vector n.
+static std::pair<double, double> pitch_yaw_of(const glm::dvec3& n) {
+  return {degrees(std::asin(std::clamp(n.y, -1.0, 1.0))), degrees(std::atan2(n.x, n.z))};
+}
+
+scene posed_layout(double alpha, const glm::dvec3& aerial, double display_tilt, double source_mm) {
+  scene s = uniform_source_scene(source_mm, 96);
+  s.half_mirror.pose.pitch_deg = alpha;
+  s.half_mirror.width_mm = s.half_mirror.height_mm = 500;
+  s.sheet().width_mm = s.sheet().height_mm = 500;
+  s.sheet().pose.center_mm = {0, 0, -200};
+  const part_frame hm = half_mirror_frame(s);
+  const glm::dvec3 c = mirror_point(aerial, hm.center, hm.n);
+  const auto [pitch, yaw] = pitch_yaw_of(reflect(glm::dvec3(0, 0, -1), hm.n));
+  s.source.pose.center_mm = {c.x, c.y, c.z};
+  s.source.pose.pitch_deg = pitch + display_tilt;
+  s.source.pose.yaw_deg = yaw;
+  return s;
+}
+
+scene random_general_layout(pcg32& rng, double source_mm) {
+  const double alpha = 30 + 30 * rng.next_double();
+  const glm::dvec3 aerial(-10 + 20 * rng.next_double(), -10 + 20 * rng.next_double(), 120 + 100 * rng.next_double());
+  scene s = posed_layout(alpha, aerial, -20 + 40 * rng.next_double(), source_mm);
+  s.sheet().pose.center_mm[0] = -20 + 40 * rng.next_double();
+  s.sheet().pose.pitch_deg = -10 + 20 * rng.next_double();
+  // Observer up to 30 deg off axis in any direction.
+  const double off = 30 * std::sqrt(rng.next_double()), dir = 2 * pi * rng.next_double();
+  s.observer.azimuth_deg = off * std::cos(dir);
+  s.observer.elevation_deg = off * std::sin(dir);
   return s;
 }
 

@@ -5,12 +5,13 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
-#include "airr/optics/image.hpp"
-#include "airr/optics/random.hpp"
-#include "airr/optics/retro_model.hpp"
-#include "airr/optics/scene.hpp"
+#include "airr/core/random.hpp"
+#include "airr/formats/image.hpp"
+#include "airr/layout/scene.hpp"
+#include "airr/models/retro_model.hpp"
 #include "airr/render/render_session.hpp"
 #include "error_of.hpp"
 
@@ -36,6 +37,14 @@ struct temp_dir {
 // The default layout with absolute mesh paths, a uniform white source of the given size and a
 // small camera image; valid without any scene file.
 scene uniform_source_scene(double source_mm, int resolution = 96);
+
+// A layout with the half mirror at `alpha`, the aerial image at `aerial`, the display mirrored
+// from it and facing the half mirror, then tilted by `display_tilt`; large mirror and sheet.
+scene posed_layout(double alpha, const glm::dvec3& aerial, double display_tilt, double source_mm);
+// A random general layout as the layout tests draw them: half mirror at 30-60 deg, aerial image
+// within 10 mm of the axis and 120-220 mm out, display tilted up to 20 deg, sheet shifted and
+// pitched, observer up to 30 deg off axis. Not checked: parts may meet.
+scene random_general_layout(pcg32& rng, double source_mm = 4.0);
 
 // Renders to exactly `spp` samples per pixel.
 render_snapshot render_to(const scene& s, std::uint64_t spp, int threads = 0);

@@ -1,8 +1,8 @@
 // Layout geometry against hand-derived positions: the mirror image, the camera, intersections.
 #include <gtest/gtest.h>
 
-#include "airr/optics/error.hpp"
-#include "airr/optics/layout.hpp"
+#include "airr/core/error.hpp"
+#include "airr/layout/layout.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;

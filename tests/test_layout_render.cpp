@@ -6,11 +6,11 @@
 
 #include <gtest/gtest.h>
 
-#include "airr/optics/assets.hpp"
-#include "airr/optics/emission_profile.hpp"
-#include "airr/optics/error.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/core/error.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/models/emission_profile.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -51,28 +51,6 @@ moments window_moments(const render_snapshot& snap, int x0, int y0, int x1, int 
   return m;
 }
 
-// Pitch and yaw (deg) whose normal is the unit vector n.
-std::pair<double, double> pitch_yaw_of(const glm::dvec3& n) {
-  return {degrees(std::asin(std::clamp(n.y, -1.0, 1.0))), degrees(std::atan2(n.x, n.z))};
-}
-
-// A layout with the half mirror at `alpha`, the aerial image at `aerial`, the display mirrored
-// from it and facing the half mirror, then tilted by `display_tilt`; large mirror and sheet.
-scene posed_layout(double alpha, const glm::dvec3& aerial, double display_tilt, double source_mm) {
-  scene s = test::uniform_source_scene(source_mm, 96);
-  s.half_mirror.pose.pitch_deg = alpha;
-  s.half_mirror.width_mm = s.half_mirror.height_mm = 500;
-  s.sheet().width_mm = s.sheet().height_mm = 500;
-  s.sheet().pose.center_mm = {0, 0, -200};
-  const part_frame hm = half_mirror_frame(s);
-  const glm::dvec3 c = mirror_point(aerial, hm.center, hm.n);
-  const auto [pitch, yaw] = pitch_yaw_of(reflect(glm::dvec3(0, 0, -1), hm.n));
-  s.source.pose.center_mm = {c.x, c.y, c.z};
-  s.source.pose.pitch_deg = pitch + display_tilt;
-  s.source.pose.yaw_deg = yaw;
-  return s;
-}
-
 }  // namespace
 
 TEST(GeneralLayout, AerialImageFormsAtTheAnalyticMirrorImage) {
@@ -81,15 +59,8 @@ TEST(GeneralLayout, AerialImageFormsAtTheAnalyticMirrorImage) {
   double worst = 0;
   while (tested < 20 && attempts < 200) {
     ++attempts;
-    const double alpha = 30 + 30 * rng.next_double();
-    const glm::dvec3 aerial(-10 + 20 * rng.next_double(), -10 + 20 * rng.next_double(), 120 + 100 * rng.next_double());
-    scene s = posed_layout(alpha, aerial, -20 + 40 * rng.next_double(), 4.0);
-    s.sheet().pose.center_mm[0] = -20 + 40 * rng.next_double();
-    s.sheet().pose.pitch_deg = -10 + 20 * rng.next_double();
-    // Observer up to 30 deg off axis in any direction.
-    const double off = 30 * std::sqrt(rng.next_double()), dir = 2 * pi * rng.next_double();
-    s.observer.azimuth_deg = off * std::cos(dir);
-    s.observer.elevation_deg = off * std::sin(dir);
+    scene s = test::random_general_layout(rng);
+    const double alpha = s.half_mirror.pose.pitch_deg;
     s.observer.fov_deg = 8;
     s.seed = attempts;
     try {
@@ -187,7 +158,7 @@ TEST(GeneralLayout, EmissionProfileShowsAtTheAngleTheLightLeaves) {
   for (const layout_case& c :
        {layout_case{"observer raised 20 deg", 45, 0, 0, 20}, layout_case{"display tilted 15 deg", 45, 15, 0, 0},
         layout_case{"mirror at 40, display -10, observer 15 deg aside", 40, -10, 15, 5}}) {
-    scene s = posed_layout(c.alpha, {0, 0, 150}, c.display_tilt, 30.0);
+    scene s = test::posed_layout(c.alpha, {0, 0, 150}, c.display_tilt, 30.0);
     s.observer.azimuth_deg = c.azimuth;
     s.observer.elevation_deg = c.elevation;
     s.observer.width = s.observer.height = 48;

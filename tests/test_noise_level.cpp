@@ -5,8 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include "airr/core/error.hpp"
 #include "airr/measure/noise_level.hpp"
-#include "airr/optics/error.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;

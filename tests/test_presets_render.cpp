@@ -1,7 +1,7 @@
 // The shipped presets through the tracer: the aerial image's brightness follows mu(tilt).
 #include <gtest/gtest.h>
 
-#include "airr/optics/preset.hpp"
+#include "airr/models/preset.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;

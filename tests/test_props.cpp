@@ -4,11 +4,11 @@
 
 #include <cmath>
 
+#include "airr/core/assets.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/layout/viewing_zone.hpp"
 #include "airr/measure/viewing_zone_full.hpp"
-#include "airr/optics/assets.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/scene_json.hpp"
-#include "airr/optics/viewing_zone.hpp"
 #include "airr/render/prop_hits.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/render/tracer.hpp"

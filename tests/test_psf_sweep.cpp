@@ -13,13 +13,13 @@
 #include <gtest/gtest.h>
 
 #include "airr/analysis/mtf_metrics.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/layout.hpp"
 #include "airr/measure/mtf_routes.hpp"
 #include "airr/measure/sweep.hpp"
 #include "airr/measure/test_charts.hpp"
-#include "airr/optics/assets.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/preset.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/models/preset.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;

@@ -10,11 +10,11 @@
 #include <gtest/gtest.h>
 
 #include "airr/analysis/psf_mtf.hpp"
-#include "airr/optics/geometry.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/psf.hpp"
-#include "airr/optics/retro_sinc_shift.hpp"
-#include "airr/optics/sheet_models.hpp"
+#include "airr/core/geometry.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/layout/psf.hpp"
+#include "airr/layout/sheet_models.hpp"
+#include "airr/models/retro_sinc_shift.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;

@@ -10,11 +10,11 @@
 #include <fstream>
 #include <functional>
 
-#include "airr/optics/assets.hpp"
-#include "airr/optics/files.hpp"
-#include "airr/optics/json_reader.hpp"
-#include "airr/optics/scene_json.hpp"
-#include "airr/optics/shift_table.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/core/files.hpp"
+#include "airr/core/json_reader.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/models/shift_table.hpp"
 #include "gltf_builder.hpp"
 #include "test_helpers.hpp"
 

@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
-#include "airr/optics/assets.hpp"
-#include "airr/optics/error.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/core/error.hpp"
+#include "airr/formats/scene_json.hpp"
 #include "gltf_builder.hpp"
 #include "test_helpers.hpp"
 

@@ -5,12 +5,12 @@
 
 #include <gtest/gtest.h>
 
-#include "airr/optics/assets.hpp"
-#include "airr/optics/emission_profile.hpp"
-#include "airr/optics/error.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/retro_sinc_shift.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/core/error.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/models/emission_profile.hpp"
+#include "airr/models/retro_sinc_shift.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;

@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "airr/optics/sheet_models.hpp"
+#include "airr/layout/sheet_models.hpp"
 #include "airr/render/model_image.hpp"
 #include "test_helpers.hpp"
 

@@ -9,11 +9,11 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
-#include "airr/optics/assets.hpp"
-#include "airr/optics/corner_cube.hpp"
-#include "airr/optics/error.hpp"
-#include "airr/optics/random.hpp"
-#include "airr/optics/shift_table.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/core/error.hpp"
+#include "airr/core/random.hpp"
+#include "airr/models/corner_cube.hpp"
+#include "airr/models/shift_table.hpp"
 #include "airr/render/shift_table_tracer.hpp"
 #include "test_helpers.hpp"
 

@@ -7,10 +7,10 @@
 
 #include <gtest/gtest.h>
 
-#include "airr/optics/image.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/retro_sinc_shift.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/formats/image.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/models/retro_sinc_shift.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;

@@ -6,14 +6,14 @@
 
 #include <gtest/gtest.h>
 
-#include "airr/optics/assets.hpp"
-#include "airr/optics/error.hpp"
-#include "airr/optics/preset.hpp"
-#include "airr/optics/psf.hpp"
-#include "airr/optics/random.hpp"
-#include "airr/optics/retro_sinc_shift.hpp"
-#include "airr/optics/sheet_models.hpp"
-#include "airr/optics/sinc_lobe.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/core/error.hpp"
+#include "airr/core/random.hpp"
+#include "airr/layout/psf.hpp"
+#include "airr/layout/sheet_models.hpp"
+#include "airr/models/preset.hpp"
+#include "airr/models/retro_sinc_shift.hpp"
+#include "airr/models/sinc_lobe.hpp"
 #include "chi_square.hpp"
 #include "test_helpers.hpp"
 

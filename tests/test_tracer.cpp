@@ -4,7 +4,7 @@
 
 #include <gtest/gtest.h>
 
-#include "airr/optics/layout.hpp"
+#include "airr/layout/layout.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <vector>
 
-#include "airr/optics/error.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/viewing_zone.hpp"
+#include "airr/core/error.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/layout/viewing_zone.hpp"
 
 using namespace airr;
 

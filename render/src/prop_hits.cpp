@@ -4,8 +4,8 @@
 #include <memory>
 #include <mutex>
 
-#include "airr/optics/layout.hpp"
-#include "airr/optics/mesh_gltf.hpp"
+#include "airr/formats/mesh_gltf.hpp"
+#include "airr/layout/layout.hpp"
 #include "airr/render/embree_scene.hpp"
 
 namespace airr {

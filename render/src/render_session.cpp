@@ -8,9 +8,9 @@
 #include <sys/syscall.h>
 #include <unistd.h>
 
-#include "airr/optics/error.hpp"
-#include "airr/optics/scene_json.hpp"
-#include "airr/optics/sheet_models.hpp"
+#include "airr/core/error.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/sheet_models.hpp"
 #include "airr/render/parallel_rows.hpp"
 
 namespace airr {

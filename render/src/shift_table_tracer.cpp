@@ -10,8 +10,8 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 
-#include "airr/optics/error.hpp"
-#include "airr/optics/geometry.hpp"
+#include "airr/core/error.hpp"
+#include "airr/core/geometry.hpp"
 #include "airr/render/embree_scene.hpp"
 
 namespace airr {

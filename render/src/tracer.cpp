@@ -5,10 +5,10 @@
 #include <limits>
 #include <map>
 
-#include "airr/optics/error.hpp"
-#include "airr/optics/low_discrepancy.hpp"
-#include "airr/optics/random.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/core/error.hpp"
+#include "airr/core/low_discrepancy.hpp"
+#include "airr/core/random.hpp"
+#include "airr/formats/scene_json.hpp"
 
 namespace airr {
 

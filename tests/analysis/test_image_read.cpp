@@ -6,7 +6,7 @@
 #include "airr/analysis/edge_file.hpp"
 #include "airr/analysis/image_read.hpp"
 #include "airr/analysis/mtf_metrics.hpp"
-#include "airr/optics/color.hpp"
+#include "airr/core/color.hpp"
 #include "synthetic_edge.hpp"
 #include "test_files.hpp"
 

@@ -8,7 +8,7 @@
 #include "airr/analysis/image_read.hpp"
 #include "airr/analysis/lpips.hpp"
 #include "airr/analysis/onnx_inputs.hpp"
-#include "airr/optics/color.hpp"
+#include "airr/core/color.hpp"
 #include "onnx_builder.hpp"
 #include "test_files.hpp"
 

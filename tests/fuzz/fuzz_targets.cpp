@@ -8,14 +8,14 @@
 
 #include "airr/analysis/fit_data.hpp"
 #include "airr/analysis/onnx_inputs.hpp"
-#include "airr/optics/csv_table.hpp"
-#include "airr/optics/error.hpp"
-#include "airr/optics/gltf_layout.hpp"
-#include "airr/optics/image.hpp"
-#include "airr/optics/mesh_gltf.hpp"
-#include "airr/optics/preset.hpp"
-#include "airr/optics/scene_json.hpp"
-#include "airr/optics/shift_table.hpp"
+#include "airr/core/csv_table.hpp"
+#include "airr/core/error.hpp"
+#include "airr/formats/gltf_layout.hpp"
+#include "airr/formats/image.hpp"
+#include "airr/formats/mesh_gltf.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/models/preset.hpp"
+#include "airr/models/shift_table.hpp"
 
 namespace airr::fuzz {
 

@@ -8,11 +8,11 @@
 #include "airr/analysis/mtf_metrics.hpp"
 #include "airr/analysis/psf_mtf.hpp"
 #include "airr/analysis/slanted_edge_mtf.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/layout/psf.hpp"
+#include "airr/layout/sheet_models.hpp"
 #include "airr/measure/mtf_routes.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/psf.hpp"
-#include "airr/optics/retro_model.hpp"
-#include "airr/optics/sheet_models.hpp"
+#include "airr/models/retro_model.hpp"
 #include "airr/render/prop_hits.hpp"
 
 namespace airr::ui {

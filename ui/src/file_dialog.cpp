@@ -1,6 +1,6 @@
 #include "airr/ui/file_dialog.hpp"
 
-#include "airr/optics/files.hpp"
+#include "airr/core/files.hpp"
 
 #include <algorithm>
 #include <filesystem>

@@ -5,8 +5,8 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
-#include "airr/optics/assets.hpp"
-#include "airr/optics/preset.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/models/preset.hpp"
 #include "airr/ui/studio.hpp"
 
 namespace airr::ui {

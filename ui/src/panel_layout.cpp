@@ -6,9 +6,9 @@
 #include <imgui.h>
 #include <imgui_stdlib.h>
 
-#include "airr/optics/assets.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/retro_model.hpp"
+#include "airr/core/assets.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/models/retro_model.hpp"
 #include "airr/ui/studio.hpp"
 
 namespace airr::ui {

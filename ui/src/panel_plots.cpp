@@ -9,8 +9,8 @@
 
 #include <imgui.h>
 
-#include "airr/optics/layout.hpp"
-#include "airr/optics/viewing_zone.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/layout/viewing_zone.hpp"
 #include "airr/ui/plot_widget.hpp"
 #include "airr/ui/studio.hpp"
 

@@ -6,7 +6,7 @@
 #include <GL/gl.h>
 #include <OpenImageIO/imageio.h>
 
-#include "airr/optics/error.hpp"
+#include "airr/core/error.hpp"
 
 namespace airr::ui {
 

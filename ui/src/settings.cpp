@@ -1,7 +1,7 @@
 #include "airr/ui/settings.hpp"
 
-#include "airr/optics/files.hpp"
-#include "airr/optics/json_reader.hpp"
+#include "airr/core/files.hpp"
+#include "airr/core/json_reader.hpp"
 
 #include <cstdio>
 #include <cstdlib>
@@ -9,7 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "airr/optics/scene_json.hpp"
+#include "airr/formats/scene_json.hpp"
 
 namespace airr::ui {
 

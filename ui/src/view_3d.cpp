@@ -7,7 +7,7 @@
 #include <imgui.h>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "airr/optics/layout.hpp"
+#include "airr/layout/layout.hpp"
 #include "airr/ui/studio.hpp"
 
 namespace airr::ui {

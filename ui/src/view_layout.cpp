@@ -12,36 +12,21 @@
 #include <imgui.h>
 #include <imgui_internal.h>
 
-#include "airr/optics/geometry.hpp"
-#include "airr/optics/layout.hpp"
+#include "airr/core/geometry.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/ui/layout_projection.hpp"
 #include "airr/ui/studio.hpp"
 
 namespace airr::ui {
 
 namespace {
 
-enum class projection { side, top };
-
-// World (mm) to screen for one projection: z runs right; y (side) or x (top) runs up.
-struct view_map {
-  projection proj = projection::side;
-  ImVec2 origin;  // screen position of the world origin
-  float scale;    // pixels per mm
-  glm::dvec2 flat(const glm::dvec3& p) const { return {p.z, proj == projection::side ? p.y : p.x}; }
-  ImVec2 to_screen(const glm::dvec3& p) const {
-    const glm::dvec2 f = flat(p);
-    return ImVec2(origin.x + float(f.x) * scale, origin.y - float(f.y) * scale);
-  }
-  // The mouse position as (horizontal, vertical) world coordinates of the projection.
-  glm::dvec2 to_flat(ImVec2 q) const { return {(q.x - origin.x) / scale, (origin.y - q.y) / scale}; }
-};
-
 double round1(double v) { return std::round(v * 10) / 10; }
 
 // A draggable circle; returns the mouse position (projection coordinates) while dragged.
 std::optional<glm::dvec2> handle(const std::string& id, ImVec2 at, ImU32 colour, const view_map& m,
                                  const std::string& tip, bool& active_any) {
-  const float r = 0.42f * ImGui::GetFontSize();
+  const float r = handle_radius(ImGui::GetFontSize());
   ImGui::SetCursorScreenPos(ImVec2(at.x - r, at.y - r));
   ImGui::InvisibleButton(id.c_str(), ImVec2(2 * r, 2 * r));
   const bool active = ImGui::IsItemActive(), hovered = ImGui::IsItemHovered();
@@ -72,68 +57,24 @@ void rotate(pose& p, const view_map& m, const glm::dvec3& center, const glm::dve
   }
 }
 
-struct part_style {
-  const char* name;
-  ImU32 colour;
-  float width;
-};
-
 void draw_projection(studio& st, projection proj, ImVec2 canvas0, ImVec2 canvas, bool& active_any,
                      std::optional<view_map>& frozen) {
   scene& s = st.doc;
-  const part_frame hm = half_mirror_frame(s), src = source_panel_frame(s), aerial = aerial_image_frame(s);
-  const pinhole_camera cam = make_camera(s);
-  const glm::dvec3 eye = cam.position;
-
-  std::vector<std::pair<part_frame, part_style>> parts = {{hm, {"half mirror", IM_COL32(140, 200, 255, 255), 2}},
-                                                          {src, {"display", IM_COL32(255, 255, 255, 255), 3}}};
-  for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) {
-    parts.push_back({retroreflector_frame(s, i), {"sheet", IM_COL32(120, 230, 140, 255), 3}});
-  }
-
-  // Every visible prop's box: its mesh's bounds, placed.
-  std::vector<std::pair<std::size_t, std::array<glm::dvec3, 8>>> boxes;
-  for (std::size_t i = 0; i < s.props.size() && i < st.prop_bounds.size(); ++i) {
-    const mesh_bounds& b = st.prop_bounds[i];
-    if (!s.props[i].visible || b.lo == b.hi) continue;
-    const glm::dmat4 xf = prop_transform(s.props[i]);
-    std::array<glm::dvec3, 8> k;
-    for (int c = 0; c < 8; ++c) {
-      const glm::dvec3 local(c & 1 ? b.hi.x : b.lo.x, c & 2 ? b.hi.y : b.lo.y, c & 4 ? b.hi.z : b.lo.z);
-      k[std::size_t(c)] = glm::dvec3(xf * glm::dvec4(local, 1.0));
-    }
-    boxes.push_back({i, k});
-  }
-
-  // Fit every part, the props, the aerial image and the observer into the canvas.
-  view_map m;
-  m.proj = proj;
-  glm::dvec2 lo(1e30), hi(-1e30);
-  auto grow = [&](const glm::dvec3& p) {
-    lo = glm::min(lo, m.flat(p));
-    hi = glm::max(hi, m.flat(p));
-  };
-  for (const auto& [f, style] : parts) {
-    for (const auto& c : corners(f)) grow(c);
-  }
-  for (const auto& c : corners(aerial)) grow(c);
-  for (const auto& [i, k] : boxes) {
-    for (const auto& c : k) grow(c);
-  }
-  grow(eye);
-  const float margin = 1.6f * ImGui::GetFontSize();
-  const glm::dvec2 span = glm::max(hi - lo, glm::dvec2(1.0));
-  m.scale = std::min((canvas.x - 2 * margin) / float(span.x), (canvas.y - 2 * margin) / float(span.y));
-  m.origin =
-      ImVec2(canvas0.x + margin - float(lo.x) * m.scale + 0.5f * (canvas.x - 2 * margin - float(span.x) * m.scale),
-             canvas0.y + margin + float(hi.y) * m.scale + 0.5f * (canvas.y - 2 * margin - float(span.y) * m.scale));
-  // While a handle is dragged the view keeps its scale, so the part follows the mouse steadily.
-  if (frozen) m = *frozen;
+  const projection_view v = compute_projection(
+      s, st.prop_bounds, proj, canvas0, canvas, ImGui::GetFontSize(),
+      [](const std::string& t) {
+        const ImVec2 z = ImGui::CalcTextSize(t.c_str());
+        return glm::vec2(z.x, z.y);
+      },
+      {}, frozen);
+  const view_map& m = v.map;
+  const part_frame &hm = v.parts[0].first, &src = v.parts[1].first, &aerial = v.aerial;
+  const glm::dvec3 eye = v.eye;
 
   ImDrawList* dl = ImGui::GetWindowDrawList();
   dl->PushClipRect(canvas0, ImVec2(canvas0.x + canvas.x, canvas0.y + canvas.y), true);
   dl->AddRectFilled(canvas0, ImVec2(canvas0.x + canvas.x, canvas0.y + canvas.y), IM_COL32(24, 26, 30, 255));
-  const float lw = std::max(1.0f, ImGui::GetFontSize() / 7.0f);
+  const float lw = v.line_width;
   auto seg = [&](const glm::dvec3& p, const glm::dvec3& q, ImU32 c, float w) {
     dl->AddLine(m.to_screen(p), m.to_screen(q), c, w);
   };
@@ -148,52 +89,35 @@ void draw_projection(studio& st, projection proj, ImVec2 canvas0, ImVec2 canvas,
   for (std::size_t i = 1; i < path.size(); ++i) seg(path[i - 1], path[i], IM_COL32(255, 210, 90, 220), lw);
 
   const ImU32 prop_colour = IM_COL32(230, 160, 80, 200);
-  for (const auto& [i, k] : boxes) {
+  for (const auto& [i, k] : v.boxes) {
     for (int a = 0; a < 8; ++a) {
       for (int bit : {1, 2, 4}) {
         if (!(a & bit)) seg(k[std::size_t(a)], k[std::size_t(a | bit)], prop_colour, 0.8f * lw);
       }
     }
   }
-  for (const auto& [f, style] : parts) outline(f, style.colour, style.width * lw);
-  outline(source_frame(s), IM_COL32(255, 255, 255, 255), 3 * lw);  // the emitting area inside the bezel
+  for (const auto& [f, style] : v.parts) outline(f, style.colour, style.width * lw);
+  outline(v.emitting, IM_COL32(255, 255, 255, 255), 3 * lw);  // the emitting area inside the bezel
   outline(aerial, IM_COL32(255, 120, 200, 255), 2 * lw);
   const ImVec2 es = m.to_screen(eye);
   dl->AddCircleFilled(es, 4 * lw, IM_COL32(200, 200, 200, 255));
 
+  // Labels where compute_projection placed them; one set away from its point gets a leader line.
   const ImU32 text = IM_COL32(220, 220, 220, 255);
-  // Labels step down a line while they would overlap one already drawn (parts seen edge-on in
-  // one projection often share a spot).
-  std::vector<ImVec4> placed;
-  auto label = [&](const glm::dvec3& p, const char* t) {
-    const ImVec2 q = m.to_screen(p), size = ImGui::CalcTextSize(t);
-    ImVec2 at(q.x + 6, q.y + 4);
-    if (at.x + size.x > canvas0.x + canvas.x) at.x = q.x - 6 - size.x;  // left of the point at the right edge
-    auto overlaps = [&](const ImVec4& r) {
-      return at.x < r.z && r.x < at.x + size.x && at.y < r.w && r.y < at.y + size.y;
-    };
-    for (int tries = 0; tries < 8 && std::any_of(placed.begin(), placed.end(), overlaps); ++tries) at.y += size.y;
-    placed.emplace_back(at.x, at.y, at.x + size.x, at.y + size.y);
-    dl->AddText(at, text, t);
-  };
-  for (std::size_t i = 0; i < parts.size(); ++i) {
-    const std::string name = i >= 2 && s.retroreflectors.size() > 1 ? "sheet " + std::to_string(i - 2)
-                             : i >= 2                               ? std::string("retroreflector")
-                                                                    : std::string(parts[i].second.name);
-    label(parts[i].first.center + 0.5 * parts[i].first.height * parts[i].first.v, name.c_str());
+  for (const view_text& t : v.labels) {
+    const screen_rect& b = t.place.box;
+    if (!t.place.near) {
+      const ImVec2 to(std::clamp(t.anchor.x, b.x0, b.x1), std::clamp(t.anchor.y, b.y0, b.y1));
+      dl->AddLine(ImVec2(t.anchor.x, t.anchor.y), to, IM_COL32(220, 220, 220, 110), 0.7f * lw);
+    }
+    dl->AddText(ImVec2(b.x0, b.y0), text, t.text.c_str());
   }
-  label(aerial.center + 0.5 * aerial.height * aerial.v, "aerial image");
-  for (const auto& [i, k] : boxes) {
-    const std::string& name = s.props[i].name;
-    label(k[7], name.empty() ? "prop" : name.c_str());
-  }
-  label(eye, s.observer.lens == observer_lens::thin_lens ? "observer (lens)" : "observer");
+  st.layout_views[proj == projection::side ? "side" : "top"] = v;
 
   // Scale bar of 50 mm, the axes, and the numbers a designer reads off.
-  const ImVec2 sb(canvas0.x + margin, canvas0.y + 0.6f * margin);
+  const ImVec2 sb(v.scale_bar.x, v.scale_bar.y);
   dl->AddLine(sb, ImVec2(sb.x + 50 * m.scale, sb.y), text, lw);
-  dl->AddText(ImVec2(sb.x + 50 * m.scale + 4, sb.y - ImGui::GetFontSize() / 2), text,
-              proj == projection::side ? "50 mm   side: z right, y up" : "50 mm   top: z right, x up");
+  dl->AddText(ImVec2(sb.x + 50 * m.scale + 4, sb.y - ImGui::GetFontSize() / 2), text, v.scale_text.c_str());
   dl->PopClipRect();
 
   // Handles: the view that is not being dragged keeps its own map.
@@ -204,7 +128,7 @@ void draw_projection(studio& st, projection proj, ImVec2 canvas0, ImVec2 canvas,
     std::snprintf(tip, sizeof tip, "%s centre (%.1f, %.1f, %.1f) mm: drag to move", name, ps.center_mm[0],
                   ps.center_mm[1], ps.center_mm[2]);
     if (auto w = handle(p + id + ":move", m.to_screen(f.center), colour, m, tip, active_any)) move_center(ps, m, *w);
-    const glm::dvec3 edge = proj == projection::side ? f.center + 0.5 * f.height * f.v : f.center + 0.5 * f.width * f.u;
+    const glm::dvec3 edge = turn_handle_point(proj, f);
     std::snprintf(tip, sizeof tip, "%s %s %.1f deg: drag to rotate", name, turn,
                   proj == projection::side ? ps.pitch_deg : ps.yaw_deg);
     if (auto w = handle(p + id + ":turn", m.to_screen(edge), colour, m, tip, active_any)) rotate(ps, m, f.center, *w);
@@ -216,7 +140,7 @@ void draw_projection(studio& st, projection proj, ImVec2 canvas0, ImVec2 canvas,
     pose_handles(name, name.c_str(), s.retroreflectors[i].pose, retroreflector_frame(s, i),
                  IM_COL32(120, 230, 140, 255));
   }
-  for (const auto& [i, k] : boxes) {
+  for (const auto& [i, k] : v.boxes) {
     prop_params& pr = s.props[i];
     std::snprintf(tip, sizeof tip, "prop %s at (%.1f, %.1f, %.1f) mm: drag to move", pr.name.c_str(),
                   pr.pose.center_mm[0], pr.pose.center_mm[1], pr.pose.center_mm[2]);
@@ -273,34 +197,39 @@ void draw_layout_view(studio& st) {
   static std::optional<view_map> frozen_side, frozen_top;
   const ImVec2 canvas0 = ImGui::GetCursorScreenPos();
   const ImVec2 avail = ImGui::GetContentRegionAvail();
-  const ImVec2 canvas(std::max(avail.x, 60.0f), std::max(avail.y, 60.0f));
-  // Side, top and 3D side by side when the window is wide, one above the other when it is tall.
+  // A line at the bottom for the numbers a designer reads off; the views above it.
+  const float info_h = 1.4f * ImGui::GetFontSize();
+  const ImVec2 canvas(std::max(avail.x, 60.0f), std::max(avail.y - info_h, 60.0f));
+  // The 3D view takes half the room; side and top share the other half. In a wide window the
+  // 3D view is on the right and the projections are stacked on the left; in a tall one it is
+  // below them and they stand side by side.
   const bool wide = canvas.x >= canvas.y;
   const float gap = 4.0f;
-  const ImVec2 half = wide ? ImVec2((canvas.x - 2 * gap) / 3, canvas.y) : ImVec2(canvas.x, (canvas.y - 2 * gap) / 3);
+  const ImVec2 big = wide ? ImVec2((canvas.x - gap) / 2, canvas.y) : ImVec2(canvas.x, (canvas.y - gap) / 2);
+  const ImVec2 small = wide ? ImVec2(big.x, (canvas.y - gap) / 2) : ImVec2((canvas.x - gap) / 2, big.y);
   const ImVec2 second =
-      wide ? ImVec2(canvas0.x + half.x + gap, canvas0.y) : ImVec2(canvas0.x, canvas0.y + half.y + gap);
-  const ImVec2 third = wide ? ImVec2(second.x + half.x + gap, canvas0.y) : ImVec2(canvas0.x, second.y + half.y + gap);
+      wide ? ImVec2(canvas0.x, canvas0.y + small.y + gap) : ImVec2(canvas0.x + small.x + gap, canvas0.y);
+  const ImVec2 third = wide ? ImVec2(canvas0.x + big.x + gap, canvas0.y) : ImVec2(canvas0.x, canvas0.y + big.y + gap);
 
   bool side_active = false, top_active = false;
   std::optional<view_map> side_map = frozen_side, top_map = frozen_top;
-  draw_projection(st, projection::side, canvas0, half, side_active, side_map);
-  draw_projection(st, projection::top, second, half, top_active, top_map);
+  draw_projection(st, projection::side, canvas0, small, side_active, side_map);
+  draw_projection(st, projection::top, second, small, top_active, top_map);
   frozen_side = side_active ? side_map : std::nullopt;
   frozen_top = top_active ? top_map : std::nullopt;
-  draw_view_3d(st, third, half);
-  st.regions["layout_side"] = {canvas0.x, canvas0.y, canvas0.x + half.x, canvas0.y + half.y};
-  st.regions["layout_top"] = {second.x, second.y, second.x + half.x, second.y + half.y};
-  st.regions["layout_3d"] = {third.x, third.y, third.x + half.x, third.y + half.y};
+  draw_view_3d(st, third, big);
+  st.regions["layout_side"] = {canvas0.x, canvas0.y, canvas0.x + small.x, canvas0.y + small.y};
+  st.regions["layout_top"] = {second.x, second.y, second.x + small.x, second.y + small.y};
+  st.regions["layout_3d"] = {third.x, third.y, third.x + big.x, third.y + big.y};
 
   char info[200];
   const glm::dvec3 a = aerial_image_center(st.doc);
   std::snprintf(info, sizeof info, "D %.1f mm   aerial image at (%.1f, %.1f, %.1f) mm   %.4f mm/px",
                 floating_distance(st.doc), a.x + 0.0, a.y + 0.0, a.z + 0.0, make_camera(st.doc).mm_per_pixel);
   ImGui::GetWindowDrawList()->AddText(
-      ImVec2(canvas0.x + 0.5f * ImGui::GetFontSize(), canvas0.y + canvas.y - 1.3f * ImGui::GetFontSize()),
+      ImVec2(canvas0.x + 0.5f * ImGui::GetFontSize(), canvas0.y + canvas.y + 0.2f * ImGui::GetFontSize()),
       IM_COL32(220, 220, 220, 255), info);
-  ImGui::SetCursorScreenPos(ImVec2(canvas0.x, canvas0.y + canvas.y));
+  ImGui::SetCursorScreenPos(ImVec2(canvas0.x, canvas0.y + canvas.y + info_h));
   ImGui::End();
 }
 

@@ -5,9 +5,9 @@
 
 #include <imgui.h>
 
-#include "airr/optics/color.hpp"
-#include "airr/optics/image.hpp"
-#include "airr/optics/layout.hpp"
+#include "airr/core/color.hpp"
+#include "airr/formats/image.hpp"
+#include "airr/layout/layout.hpp"
 #include "airr/render/render_metadata.hpp"
 #include "airr/render/tracer.hpp"
 #include "airr/ui/studio.hpp"

@@ -7,11 +7,11 @@
 #include "airr/analysis/mtf_metrics.hpp"
 #include "airr/analysis/psf_mtf.hpp"
 #include "airr/analysis/slanted_edge_mtf.hpp"
-#include "airr/optics/error.hpp"
-#include "airr/optics/geometry.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/retro_model.hpp"
-#include "airr/optics/sheet_models.hpp"
+#include "airr/core/error.hpp"
+#include "airr/core/geometry.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/layout/sheet_models.hpp"
+#include "airr/models/retro_model.hpp"
 
 namespace airr {
 

@@ -6,7 +6,7 @@
 #include <string>
 
 #include "airr/analysis/mtf_metrics.hpp"
-#include "airr/optics/error.hpp"
+#include "airr/core/error.hpp"
 
 namespace airr {
 

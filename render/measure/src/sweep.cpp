@@ -9,11 +9,11 @@
 #include <memory>
 #include <stdexcept>
 
+#include "airr/core/assets.hpp"
+#include "airr/core/error.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/layout.hpp"
 #include "airr/measure/mtf_routes.hpp"
-#include "airr/optics/assets.hpp"
-#include "airr/optics/error.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/scene_json.hpp"
 #include "airr/render/render_session.hpp"
 
 namespace airr {

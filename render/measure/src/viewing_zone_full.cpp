@@ -4,11 +4,11 @@
 #include <cmath>
 #include <limits>
 
+#include "airr/core/color.hpp"
+#include "airr/core/error.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/layout/sheet_models.hpp"
 #include "airr/measure/mtf_routes.hpp"
-#include "airr/optics/color.hpp"
-#include "airr/optics/error.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/sheet_models.hpp"
 #include "airr/render/parallel_rows.hpp"
 #include "airr/render/prop_hits.hpp"
 #include "airr/render/tracer.hpp"

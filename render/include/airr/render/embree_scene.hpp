@@ -10,7 +10,7 @@
 #include <embree3/rtcore.h>
 #include <glm/glm.hpp>
 
-#include "airr/optics/mesh_gltf.hpp"
+#include "airr/formats/mesh_gltf.hpp"
 
 namespace airr {
 

@@ -19,10 +19,10 @@
 
 #include <glm/glm.hpp>
 
-#include "airr/optics/image.hpp"
-#include "airr/optics/psf.hpp"
-#include "airr/optics/retro_model.hpp"
-#include "airr/optics/scene.hpp"
+#include "airr/formats/image.hpp"
+#include "airr/layout/psf.hpp"
+#include "airr/layout/scene.hpp"
+#include "airr/models/retro_model.hpp"
 
 namespace airr {
 

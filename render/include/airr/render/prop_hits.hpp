@@ -1,8 +1,8 @@
 #pragma once
 // The layout's props as blockers of straight lines, for the geometric viewing-zone pass (which
 // lives in the optics library and cannot trace meshes itself).
-#include "airr/optics/scene.hpp"
-#include "airr/optics/viewing_zone.hpp"
+#include "airr/layout/scene.hpp"
+#include "airr/layout/viewing_zone.hpp"
 
 namespace airr {
 

@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <string>
 
-#include "airr/optics/image.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/formats/image.hpp"
+#include "airr/formats/scene_json.hpp"
 #include "airr/render/render_session.hpp"
 
 namespace airr {

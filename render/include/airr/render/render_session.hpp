@@ -11,7 +11,7 @@
 #include <thread>
 #include <vector>
 
-#include "airr/optics/scene.hpp"
+#include "airr/layout/scene.hpp"
 #include "airr/render/embree_scene.hpp"
 #include "airr/render/tracer.hpp"
 

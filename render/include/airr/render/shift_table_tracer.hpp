@@ -4,8 +4,8 @@
 #include <functional>
 #include <vector>
 
-#include "airr/optics/mesh_gltf.hpp"
-#include "airr/optics/shift_table.hpp"
+#include "airr/formats/mesh_gltf.hpp"
+#include "airr/models/shift_table.hpp"
 
 namespace airr {
 

@@ -9,12 +9,12 @@
 
 #include <glm/glm.hpp>
 
-#include "airr/optics/emission_profile.hpp"
-#include "airr/optics/image.hpp"
-#include "airr/optics/layout.hpp"
-#include "airr/optics/retro_model.hpp"
-#include "airr/optics/scene.hpp"
-#include "airr/optics/scene_json.hpp"
+#include "airr/formats/image.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/layout/scene.hpp"
+#include "airr/models/emission_profile.hpp"
+#include "airr/models/retro_model.hpp"
 #include "airr/render/embree_scene.hpp"
 #include "airr/render/model_image.hpp"
 

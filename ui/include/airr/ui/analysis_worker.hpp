@@ -10,9 +10,9 @@
 #include <thread>
 #include <vector>
 
-#include "airr/optics/retro_model.hpp"
-#include "airr/optics/scene.hpp"
-#include "airr/optics/viewing_zone.hpp"
+#include "airr/layout/scene.hpp"
+#include "airr/layout/viewing_zone.hpp"
+#include "airr/models/retro_model.hpp"
 #include "airr/render/render_session.hpp"
 
 namespace airr::ui {

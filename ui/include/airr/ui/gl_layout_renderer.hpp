@@ -8,7 +8,7 @@
 
 #include <glm/glm.hpp>
 
-#include "airr/optics/mesh_gltf.hpp"
+#include "airr/formats/mesh_gltf.hpp"
 
 namespace airr::ui {
 

@@ -12,15 +12,16 @@
 
 #include <imgui.h>
 
-#include "airr/optics/mesh_gltf.hpp"
-#include "airr/optics/preset.hpp"
-#include "airr/optics/scene.hpp"
+#include "airr/formats/mesh_gltf.hpp"
+#include "airr/layout/scene.hpp"
+#include "airr/models/preset.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/ui/analysis_worker.hpp"
 #include "airr/ui/file_dialog.hpp"
 #include "airr/ui/fit_job.hpp"
 #include "airr/ui/gl_layout_renderer.hpp"
 #include "airr/ui/gl_texture.hpp"
+#include "airr/ui/layout_projection.hpp"
 #include "airr/ui/settings.hpp"
 #include "airr/ui/zone_job.hpp"
 
@@ -82,6 +83,9 @@ struct studio {
 
   // Screen rectangles (x0, y0, x1, y1) of what scripted runs check: "render_image", "plot_mtf", ...
   std::map<std::string, std::array<float, 4>> regions;
+  // What the layout view's side and top projections drew last ("side", "top"): their labels, the
+  // parts' outlines, handles and scale bar, for scripted checks that no label overprints.
+  std::map<std::string, projection_view> layout_views;
 
   // The fit window.
   bool show_fit = false;

@@ -9,7 +9,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "airr/optics/scene.hpp"
+#include "airr/layout/scene.hpp"
 
 namespace airr::analysis {
 

@@ -4,8 +4,8 @@
 #include <opencv2/core.hpp>
 
 #include "airr/analysis/psf_mtf.hpp"
-#include "airr/optics/psf.hpp"
-#include "airr/optics/scene.hpp"
+#include "airr/layout/psf.hpp"
+#include "airr/layout/scene.hpp"
 
 namespace airr::analysis {
 

@@ -1,5 +1,5 @@
 #pragma once
-// An image file prepared for measurement: the project's one loader (airr/optics/image.hpp, with
+// An image file prepared for measurement: the project's one loader (airr/formats/image.hpp, with
 // its linearity rule), seen as OpenCV matrices of doubles with the Rec.709 luminance.
 #include <filesystem>
 #include <optional>
@@ -7,7 +7,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "airr/optics/image.hpp"
+#include "airr/formats/image.hpp"
 
 namespace airr::analysis {
 

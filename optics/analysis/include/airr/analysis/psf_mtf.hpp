@@ -3,7 +3,7 @@
 // direction (x: what a near-vertical edge measures), optionally times a square pixel's aperture.
 #include <vector>
 
-#include "airr/optics/psf.hpp"
+#include "airr/layout/psf.hpp"
 
 namespace airr::analysis {
 

@@ -23,8 +23,8 @@
 #include "airr/analysis/fit_data.hpp"
 #include "airr/analysis/fit_report.hpp"
 #include "airr/analysis/fit_simulation.hpp"  // what the fit simulates, for callers synthesising data
-#include "airr/optics/preset.hpp"
-#include "airr/optics/scene.hpp"
+#include "airr/layout/scene.hpp"
+#include "airr/models/preset.hpp"
 
 namespace airr::analysis {
 

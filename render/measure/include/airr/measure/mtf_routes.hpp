@@ -7,9 +7,9 @@
 
 #include <opencv2/core.hpp>
 
-#include "airr/optics/psf.hpp"
-#include "airr/optics/retro_model.hpp"
-#include "airr/optics/scene.hpp"
+#include "airr/layout/psf.hpp"
+#include "airr/layout/scene.hpp"
+#include "airr/models/retro_model.hpp"
 #include "airr/render/render_session.hpp"
 
 namespace airr {

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "airr/optics/image.hpp"
+#include "airr/formats/image.hpp"
 
 namespace airr {
 

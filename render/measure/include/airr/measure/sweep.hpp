@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "airr/optics/scene.hpp"
+#include "airr/layout/scene.hpp"
 
 namespace airr {
 

@@ -1,6 +1,6 @@
 #pragma once
 // The source images shipped in assets/charts, drawn procedurally so they can be regenerated.
-#include "airr/optics/image.hpp"
+#include "airr/formats/image.hpp"
 
 namespace airr {
 

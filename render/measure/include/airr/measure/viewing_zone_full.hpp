@@ -8,8 +8,8 @@
 #include <functional>
 #include <vector>
 
-#include "airr/optics/scene.hpp"
-#include "airr/optics/viewing_zone.hpp"
+#include "airr/layout/scene.hpp"
+#include "airr/layout/viewing_zone.hpp"
 
 namespace airr {
 

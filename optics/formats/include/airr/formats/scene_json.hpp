@@ -1,0 +1,68 @@
+#pragma once
+// Versioned JSON form of the layout: strict loading (unknown keys, wrong types and out-of-range
+// values are errors naming the file and the field), exact round trips, atomic saves.
+#include <memory>
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "airr/core/files.hpp"
+#include "airr/layout/scene.hpp"
+#include "airr/layout/sheet_models.hpp"
+#include "airr/models/retro_model.hpp"
+
+namespace airr {
+
+// A command-line key that is not a field: the floating distance (see set_floating_distance).
+inline constexpr const char* floating_distance_key = "floating_distance_mm";
+// Short for the first sheet's pitch, retroreflectors.0.pose.pitch_deg: the tilt.
+inline constexpr const char* tilt_key = "tilt_deg";
+
+// A command-line override "dotted.key=value", e.g. "retroreflectors.0.pose.pitch_deg=20"
+// (array elements by index), "floating_distance_mm=200" or "tilt_deg=20".
+struct scene_override {
+  std::string key;
+  std::string value;
+};
+scene_override parse_override(const std::string& text);
+
+// The current version's form (version 2).
+nlohmann::json scene_to_json(const scene& s);
+// Reads version 2, or version 1 through migrate_scene_v1. `origin` names the file (or "--set") in
+// error messages.
+scene scene_from_json(const nlohmann::json& j, const std::string& origin);
+// A version 1 document (the canonical bench with D, offsets, tilt and an on-axis camera) in the
+// version 2 form of the same layout; unknown keys are errors, as in version 1.
+nlohmann::json migrate_scene_v1(const nlohmann::json& j, const std::string& origin);
+
+// Applies overrides to the JSON form; the key must name an existing field.
+void apply_overrides(nlohmann::json& j, const std::vector<scene_override>& overrides);
+// The scene with overrides applied, the short keys (floating distance, tilt) included; not
+// validated. `origin` names the overrides in error messages.
+scene with_overrides(scene s, const std::vector<scene_override>& overrides, const std::string& origin);
+
+// Checks every value's range; throws input_error "<origin>: <field>: <problem>".
+void validate_scene(const scene& s, const std::string& origin);
+// Checks that every referenced file exists.
+void validate_scene_files(const scene& s, const std::string& origin);
+
+// All of the above plus the layout, the emission profile and the retroreflector models (presets,
+// tables) resolving; returns the models it built, for the caller to share.
+retro_model_list check_scene(const scene& s, const std::string& origin);
+
+// Reads, overrides, validates (values, files and layout). A .gltf or .glb file is read as a whole
+// layout (gltf_layout_document). Throws input_error.
+scene load_scene(const std::string& path, const std::vector<scene_override>& overrides = {});
+// Parses scene JSON text (base_dir for relative paths), then as load_scene.
+scene parse_scene(const std::string& text, const std::string& origin, const std::string& base_dir,
+                  const std::vector<scene_override>& overrides = {});
+
+// Writes the scene to a temporary file beside `path`, then renames it over `path`.
+void save_scene(const scene& s, const std::string& path);
+
+// The scene with its relative paths rewritten to count from new_dir (for saving it there).
+scene rebase_scene_paths(const scene& s, const std::string& new_dir);
+
+}  // namespace airr

@@ -1,0 +1,258 @@
+#include <unistd.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <mutex>
+#include <system_error>
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imageio.h>
+
+#include "airr/core/color.hpp"
+#include "airr/core/error.hpp"
+#include "airr/core/files.hpp"
+#include "airr/formats/image.hpp"
+#include "image_header_check.hpp"
+
+namespace airr {
+
+namespace fs = std::filesystem;
+using namespace OIIO;
+
+// libpng and libjpeg inside OpenImageIO print their own complaints ("libpng error: ...") to
+// stderr before OpenImageIO reports the error, which the project's one error line then says.
+// While a file is read, stderr goes to a temporary file; afterwards every line of it that is not
+// such a complaint is passed on (another thread's message is delayed, never lost).
+class library_chatter_filter {
+ public:
+  library_chatter_filter() : lock_(mutex()) {
+    std::fflush(stderr);
+    capture_ = std::tmpfile();
+    saved_ = capture_ ? ::dup(2) : -1;
+    if (saved_ < 0 || ::dup2(::fileno(capture_), 2) < 0) release();
+  }
+  ~library_chatter_filter() {
+    if (!capture_) return;
+    std::fflush(stderr);
+    ::dup2(saved_, 2);
+    std::rewind(capture_);
+    char line[1024];
+    while (std::fgets(line, sizeof line, capture_)) {
+      const std::string_view l(line);
+      if (l.rfind("libpng ", 0) == 0 || l.rfind("Corrupt JPEG", 0) == 0 || l.rfind("Premature end of JPEG", 0) == 0)
+        continue;
+      std::fputs(line, stderr);
+    }
+    release();
+  }
+  library_chatter_filter(const library_chatter_filter&) = delete;
+  library_chatter_filter& operator=(const library_chatter_filter&) = delete;
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  void release() {
+    if (saved_ >= 0) ::close(saved_);
+    if (capture_) std::fclose(capture_);
+    saved_ = -1;
+    capture_ = nullptr;
+  }
+  std::lock_guard<std::mutex> lock_;
+  std::FILE* capture_ = nullptr;
+  int saved_ = -1;
+};
+
+static void refuse_damaged_header(const std::string& path,
+                                  std::int64_t pixel_limit = std::numeric_limits<std::int64_t>::max()) {
+  if (const auto problem = image_header_problem(path, pixel_limit)) throw input_error(path + ": " + *problem);
+}
+
+static bool is_float_format(TypeDesc t) {
+  return t.basetype == TypeDesc::FLOAT || t.basetype == TypeDesc::HALF || t.basetype == TypeDesc::DOUBLE;
+}
+
+// The pixel-size attribute, written as a decimal string (or stored as a number).
+static std::optional<double> read_mm_per_pixel(const std::string& path, const ImageSpec& spec) {
+  const ParamValue* p = spec.find_attribute(mm_per_pixel_attribute);
+  if (!p) return std::nullopt;
+  double value = std::nan("");
+  std::string text;
+  if (p->type() == TypeString) {
+    text = p->get_string();
+    const char* begin = text.data();
+    const char* end = begin + text.size();
+    while (begin != end && *begin == ' ') ++begin;
+    while (end != begin && end[-1] == ' ') --end;
+    auto [ptr, ec] = std::from_chars(begin, end, value);
+    if (ec != std::errc{} || ptr != end) value = std::nan("");
+  } else if (p->type().basetype == TypeDesc::FLOAT || p->type().basetype == TypeDesc::DOUBLE ||
+             p->type().basetype == TypeDesc::HALF || p->type().basetype == TypeDesc::INT) {
+    value = p->get_float();
+    text = std::to_string(value);
+  } else {
+    throw input_error(path + ": attribute " + mm_per_pixel_attribute + " has unsupported type " + p->type().c_str());
+  }
+  if (!std::isfinite(value) || value <= 0) {
+    throw input_error(path + ": attribute " + mm_per_pixel_attribute + " is not a positive number ('" + text + "')");
+  }
+  return value;
+}
+
+loaded_image load_image(const std::string& path, image_encoding encoding, std::int64_t pixel_limit) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw input_error(path + ": no such file");
+  if (fs::is_directory(path, ec)) throw input_error(path + ": is a directory, not an image");
+  // OpenImageIO's own size limit would refuse a huge header first, naming its attribute; the
+  // project's limit (checked below, before any pixel is allocated) names ours.
+  static const bool own_limit = OIIO::attribute("limits:imagesize_MB", std::numeric_limits<int>::max());
+  (void)own_limit;
+  refuse_damaged_header(path, pixel_limit);
+  const library_chatter_filter quiet;
+  auto in = ImageInput::open(path);
+  if (!in) {
+    const std::string why = one_line(geterror());
+    // Beyond even that raised limit, OpenImageIO refuses the header itself; say it in our terms.
+    if (why.find("limits:imagesize_MB") != std::string::npos)
+      throw input_error(path + ": image too large (its header declares more than " +
+                        std::to_string(std::numeric_limits<int>::max()) + " MB of pixels; the limit is " +
+                        std::to_string(max_image_pixels) + " pixels)");
+    throw input_error(path + ": cannot read image: " + (why.empty() ? "unknown format" : why));
+  }
+  const ImageSpec spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0) throw input_error(path + ": image has no pixels");
+  if (spec.depth > 1) throw input_error(path + ": volume images are not supported");
+  if (std::int64_t(spec.width) * spec.height > pixel_limit) {
+    throw input_error(path + ": image too large (" + std::to_string(spec.width) + "x" + std::to_string(spec.height) +
+                      "; the limit is " + std::to_string(pixel_limit) + " pixels)");
+  }
+  loaded_image out;
+  out.channels = spec.nchannels;
+  out.format = spec.format.c_str();
+  out.mm_per_pixel = read_mm_per_pixel(path, spec);
+  // Only RGB (or grey) is read: a file's other channels, however many it declares, take no memory.
+  const int nc = spec.nchannels >= 3 ? 3 : 1;
+  std::vector<float> px(std::size_t(spec.width) * spec.height * nc);
+  if (!in->read_image(0, 0, 0, nc, TypeDesc::FLOAT, px.data())) {
+    const std::string why = one_line(in->geterror());
+    throw input_error(path + ": cannot read pixels: " + (why.empty() ? std::string("truncated or corrupt file") : why));
+  }
+  const bool wide = is_float_format(spec.format) || spec.format.size() > 1;
+  const bool tagged_linear = Strutil::iequals(spec.get_string_attribute("oiio:ColorSpace"), "linear");
+  out.srgb_decoded =
+      encoding == image_encoding::srgb || (encoding == image_encoding::automatic && !wide && !tagged_linear);
+
+  image_rgb& img = out.pixels;
+  img.width = spec.width;
+  img.height = spec.height;
+  img.rgb.resize(std::size_t(spec.width) * spec.height * 3);
+  for (std::size_t i = 0; i < std::size_t(spec.width) * spec.height; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const float v = px[i * nc + (nc == 3 ? c : 0)];
+      if (!std::isfinite(v)) {
+        throw input_error(path + ": image contains NaN or infinite values (first at pixel (" +
+                          std::to_string(i % std::size_t(spec.width)) + ", " +
+                          std::to_string(i / std::size_t(spec.width)) + "))");
+      }
+      img.rgb[i * 3 + c] = out.srgb_decoded ? float(srgb_decode(v)) : v;
+    }
+  }
+  return out;
+}
+
+std::shared_ptr<const image_rgb> cached_image_pixels(const std::string& path) {
+  static file_cache<image_rgb> cache;
+  return cache.get(path, path, [&] { return std::make_shared<const image_rgb>(load_image(path).pixels); });
+}
+
+void write_image(const std::string& path, const image_rgb& img, const image_metadata& meta, float exposure,
+                 const std::vector<image_layer>& layers) {
+  const fs::path p(path);
+  std::string ext = p.extension().string();
+  for (auto& c : ext) c = char(std::tolower(c));
+  const bool exr = ext == ".exr";
+  if (!exr && ext != ".png") throw input_error(path + ": output must be .exr or .png");
+  if (!exr && !layers.empty()) throw input_error(path + ": only EXR files take layers");
+  for (const image_layer& l : layers) {
+    if (!l.image || l.image->width != img.width || l.image->height != img.height || l.name.empty()) {
+      throw input_error(path + ": layer '" + l.name + "' is missing or not the image's size");
+    }
+  }
+  const int channels = 3 * (1 + int(layers.size()));
+  ImageSpec spec(img.width, img.height, channels, exr ? TypeDesc::FLOAT : TypeDesc::UINT8);
+  spec.channelnames = {"R", "G", "B"};
+  for (const image_layer& l : layers) {
+    for (const char* c : {"R", "G", "B"}) spec.channelnames.push_back(l.name + "." + c);
+  }
+  for (const auto& [k, v] : meta) spec.attribute(k, v);
+  spec.attribute("oiio:ColorSpace", exr ? "linear" : "sRGB");
+  if (exr) spec.attribute("compression", "zip");
+
+  std::vector<float> out(std::size_t(img.width) * img.height * channels);
+  for (std::size_t px = 0; px < std::size_t(img.width) * img.height; ++px) {
+    float* o = out.data() + px * channels;
+    for (int c = 0; c < 3; ++c) {
+      const float v = img.rgb[3 * px + c];
+      o[c] = exr ? v : float(srgb_encode(std::clamp(v * exposure, 0.0f, 1.0f)));
+    }
+    for (std::size_t l = 0; l < layers.size(); ++l)
+      std::copy_n(layers[l].image->rgb.data() + 3 * px, 3, o + 3 * (l + 1));
+  }
+
+  const fs::path tmp = p.parent_path() / (".tmp." + std::to_string(::getpid()) + "." + p.stem().string() + ext);
+  std::error_code ec;
+  auto o = ImageOutput::create(tmp.string());
+  if (!o || !o->open(tmp.string(), spec)) {
+    fs::remove(tmp, ec);
+    throw input_error(path + ": cannot write image: " + one_line(geterror()));
+  }
+  // Closing flushes: a full disk may only show there.
+  const bool ok = o->write_image(TypeDesc::FLOAT, out.data()) && o->close();
+  if (!ok) {
+    const std::string err = one_line(o->geterror());
+    o.reset();
+    fs::remove(tmp, ec);
+    throw input_error(path + ": cannot write image: " + (err.empty() ? "write failed" : err));
+  }
+  fs::rename(tmp, p, ec);
+  if (ec) {
+    const std::string why = ec.message();
+    fs::remove(tmp, ec);
+    throw input_error(path + ": cannot replace file: " + why);
+  }
+}
+
+std::vector<std::string> read_image_layer_names(const std::string& path) {
+  refuse_damaged_header(path);
+  const library_chatter_filter quiet;
+  auto in = ImageInput::open(path);
+  if (!in) throw input_error(path + ": cannot read image: " + one_line(geterror()));
+  std::vector<std::string> names;
+  for (const std::string& c : in->spec().channelnames) {
+    const auto dot = c.rfind('.');
+    if (dot == std::string::npos) continue;
+    const std::string name = c.substr(0, dot);
+    if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  }
+  return names;
+}
+
+image_metadata read_image_metadata(const std::string& path) {
+  refuse_damaged_header(path);
+  const library_chatter_filter quiet;
+  auto in = ImageInput::open(path);
+  if (!in) throw input_error(path + ": cannot read image: " + one_line(geterror()));
+  image_metadata meta;
+  for (const auto& a : in->spec().extra_attribs) {
+    const std::string name = a.name().string();
+    if (name.rfind("airr:", 0) == 0) meta[name] = a.get_string();
+  }
+  return meta;
+}
+
+}  // namespace airr

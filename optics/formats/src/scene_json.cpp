@@ -1,0 +1,300 @@
+#include "airr/formats/scene_json.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+#include <set>
+
+#include "airr/core/error.hpp"
+#include "airr/core/json_reader.hpp"
+#include "airr/formats/gltf_layout.hpp"
+#include "airr/formats/mesh_gltf.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/models/emission_profile.hpp"
+#include "airr/models/preset.hpp"
+#include "airr/models/retro_model.hpp"
+
+namespace airr {
+
+using nlohmann::json;
+
+scene rebase_scene_paths(const scene& s, const std::string& new_dir) {
+  scene out = s;
+  auto rebase = [&](std::string& p) { p = rebase_path(p, s.base_dir, new_dir); };
+  rebase(out.source.image);
+  rebase(out.source.mesh);
+  rebase(out.source.emission_profile);
+  rebase(out.half_mirror.mesh);
+  for (auto& p : out.props) rebase(p.mesh);
+  for (auto& r : out.retroreflectors) {
+    rebase(r.mesh);
+    const retro_model_kind& kind = find_retro_model_kind(r.model.type);
+    for (auto& [key, value] : r.model.values) {
+      const model_field* f = find_field(kind.fields, key);
+      auto* text = std::get_if<std::string>(&value);
+      if (!f || !text) continue;
+      if (f->kind == field_kind::path || (f->kind == field_kind::preset && is_preset_path(*text))) rebase(*text);
+    }
+  }
+  out.base_dir = new_dir;
+  return out;
+}
+
+// ---------------------------------------------------------------- writing
+
+static json optional_number(const std::optional<double>& v) { return v ? json(*v) : json(nullptr); }
+
+static json pose_to_json(const pose& p) {
+  return {{"center_mm", p.center_mm}, {"yaw_deg", p.yaw_deg}, {"pitch_deg", p.pitch_deg}, {"roll_deg", p.roll_deg}};
+}
+
+static json part_to_json(const part_params& p) {
+  return {{"mesh", p.mesh}, {"width_mm", p.width_mm}, {"height_mm", p.height_mm}, {"pose", pose_to_json(p.pose)}};
+}
+
+static json prop_to_json(const prop_params& p) {
+  return {{"name", p.name},
+          {"mesh", p.mesh},
+          {"node", p.node},
+          {"scale", p.scale},
+          {"pose", pose_to_json(p.pose)},
+          {"surface", prop_surface_names[int(p.surface)]},
+          {"albedo", p.albedo},
+          {"visible", p.visible}};
+}
+
+static const char* placement_name(observer_placement p) { return p == observer_placement::orbit ? "orbit" : "look_at"; }
+static const char* lens_name(observer_lens l) { return l == observer_lens::pinhole ? "pinhole" : "thin_lens"; }
+
+json scene_to_json(const scene& s) {
+  json src = part_to_json(s.source);
+  src["image"] = s.source.image;
+  src["intensity"] = s.source.intensity;
+  src["emission_profile"] = s.source.emission_profile;
+  src["bezel_mm"] = s.source.bezel_mm;
+  json hm = part_to_json(s.half_mirror);
+  hm["reflectance"] = s.half_mirror.reflectance;
+  hm["transmittance"] = s.half_mirror.transmittance;
+  json sheets = json::array();
+  for (const auto& r : s.retroreflectors) {
+    json j = part_to_json(r);
+    j["model"] = model_values_to_json(r.model, find_retro_model_kind(r.model.type).fields);
+    sheets.push_back(j);
+  }
+  const observer_params& o = s.observer;
+  json out = {
+      {"format", "airr-scene"},
+      {"version", s.version},
+      {"seed", s.seed},
+      {"source", src},
+      {"half_mirror", hm},
+      {"retroreflectors", sheets},
+      {"observer",
+       {{"placement", placement_name(o.placement)},
+        {"azimuth_deg", o.azimuth_deg},
+        {"elevation_deg", o.elevation_deg},
+        {"distance_mm", o.distance_mm},
+        {"position_mm", o.position_mm},
+        {"look_at_mm", o.look_at_mm},
+        {"lens", lens_name(o.lens)},
+        {"focal_length_mm", o.focal_length_mm},
+        {"f_number", o.f_number},
+        {"focus_distance_mm", optional_number(o.focus_distance_mm)},
+        {"fov_deg", o.fov_deg},
+        {"width", o.width},
+        {"height", o.height}}},
+      {"render", {{"max_depth", s.render.max_depth}}},
+  };
+  // Written only when there are any, so layouts without props keep their form.
+  if (!s.props.empty()) {
+    json props = json::array();
+    for (const auto& p : s.props) props.push_back(prop_to_json(p));
+    out["props"] = props;
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------- reading
+
+static void read_pose(json_reader r, pose& p) {
+  r.numbers("center_mm", p.center_mm);
+  r.number("yaw_deg", p.yaw_deg);
+  r.number("pitch_deg", p.pitch_deg);
+  r.number("roll_deg", p.roll_deg);
+  r.finish();
+}
+
+// The fields every part has; the caller reads its own and finishes.
+static void read_part(json_reader& r, part_params& p) {
+  r.string("mesh", p.mesh);
+  r.number("width_mm", p.width_mm);
+  r.number("height_mm", p.height_mm);
+  if (r.has("pose")) read_pose(r.child("pose"), p.pose);
+}
+
+// `where` is the model's dotted path, e.g. "retroreflectors[0].model".
+static void read_model(json_reader r, const json& j, const std::string& where, retro_model_params& m) {
+  std::string type = m.type;
+  r.string("type", type);
+  const retro_model_kind* kind = nullptr;
+  try {
+    kind = &find_retro_model_kind(type, where);
+  } catch (const input_error& e) {
+    throw input_error(r.origin() + ": " + e.what());
+  }
+  m = retro_model_params{};
+  m.type = type;
+  for (const auto& [key, value] : j.items()) {
+    if (key == "type") continue;
+    model_value_from_json(m, kind->fields, key, value, r.origin(), where);
+    r.raw(key);
+  }
+  r.finish();
+}
+
+template <class Enum, std::size_t N>
+static void read_enum(json_reader& r, const std::string& key, Enum& out, const std::array<const char*, N>& names) {
+  if (!r.has(key)) return;
+  std::string v;
+  r.string(key, v);
+  std::string list;
+  for (std::size_t i = 0; i < N; ++i) {
+    if (v == names[i]) {
+      out = static_cast<Enum>(i);
+      return;
+    }
+    list += (i ? ", " : "") + std::string(names[i]);
+  }
+  r.fail(r.field(key), "unknown value '" + v + "' (" + list + ")");
+}
+
+static void read_prop(json_reader r, prop_params& p) {
+  r.string("name", p.name);
+  p.mesh = r.string("mesh");
+  r.string("node", p.node);
+  r.number("scale", p.scale);
+  if (r.has("pose")) read_pose(r.child("pose"), p.pose);
+  read_enum(r, "surface", p.surface, std::array{"absorber", "diffuse", "mirror", "material"});
+  r.numbers("albedo", p.albedo);
+  r.boolean("visible", p.visible);
+  r.finish();
+}
+
+static void read_observer(json_reader r, observer_params& o) {
+  read_enum(r, "placement", o.placement, std::array{"orbit", "look_at"});
+  r.number("azimuth_deg", o.azimuth_deg);
+  r.number("elevation_deg", o.elevation_deg);
+  r.number("distance_mm", o.distance_mm);
+  r.numbers("position_mm", o.position_mm);
+  r.numbers("look_at_mm", o.look_at_mm);
+  read_enum(r, "lens", o.lens, std::array{"pinhole", "thin_lens"});
+  r.number("focal_length_mm", o.focal_length_mm);
+  r.number("f_number", o.f_number);
+  r.nullable_number("focus_distance_mm", o.focus_distance_mm);
+  r.number("fov_deg", o.fov_deg);
+  r.integer("width", o.width);
+  r.integer("height", o.height);
+  r.finish();
+}
+
+static scene scene_from_json_v2(json_reader& r) {
+  scene s;
+  if (r.has("seed")) {
+    const auto& v = r.raw("seed");
+    if (!v.is_number_integer() || (v.is_number_integer() && !v.is_number_unsigned() && v.get<std::int64_t>() < 0)) {
+      r.fail("seed", "must be a non-negative integer");
+    }
+    s.seed = v.get<std::uint64_t>();
+  }
+  if (r.has("source")) {
+    auto c = r.child("source");
+    read_part(c, s.source);
+    c.string("image", s.source.image);
+    c.number("intensity", s.source.intensity);
+    c.string("emission_profile", s.source.emission_profile);
+    c.number("bezel_mm", s.source.bezel_mm);
+    c.finish();
+  }
+  if (r.has("half_mirror")) {
+    auto c = r.child("half_mirror");
+    read_part(c, s.half_mirror);
+    c.number("reflectance", s.half_mirror.reflectance);
+    c.number("transmittance", s.half_mirror.transmittance);
+    c.finish();
+  }
+  if (r.has("retroreflectors")) {
+    const json& list = r.raw("retroreflectors");
+    if (!list.is_array() || list.empty() || list.size() > std::size_t(max_retroreflectors)) {
+      r.fail("retroreflectors", "must be an array of 1 to " + std::to_string(max_retroreflectors) + " sheets");
+    }
+    s.retroreflectors.assign(list.size(), retroreflector_params{});
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      const std::string where = "retroreflectors[" + std::to_string(i) + "]";
+      json_reader c(list[i], r.origin(), where);
+      read_part(c, s.retroreflectors[i]);
+      if (c.has("model"))
+        read_model(c.child("model"), list[i].at("model"), where + ".model", s.retroreflectors[i].model);
+      c.finish();
+    }
+  }
+  if (r.has("props")) {
+    const json& list = r.raw("props");
+    if (!list.is_array() || list.size() > std::size_t(max_props)) {
+      r.fail("props", "must be an array of at most " + std::to_string(max_props) + " props");
+    }
+    s.props.assign(list.size(), prop_params{});
+    for (std::size_t i = 0; i < list.size(); ++i)
+      read_prop(json_reader(list[i], r.origin(), "props[" + std::to_string(i) + "]"), s.props[i]);
+  }
+  if (r.has("observer")) read_observer(r.child("observer"), s.observer);
+  if (r.has("render")) {
+    auto c = r.child("render");
+    c.integer("max_depth", s.render.max_depth);
+    c.finish();
+  }
+  r.finish();
+  return s;
+}
+
+scene scene_from_json(const json& j, const std::string& origin) {
+  json_reader r(j, origin, "");
+  std::string format = "airr-scene";
+  r.string("format", format);
+  if (format != "airr-scene") r.fail("format", "expected \"airr-scene\", found \"" + format + "\"");
+  int version = scene_format_version;
+  r.integer("version", version);
+  if (version == 1) return scene_from_json(migrate_scene_v1(j, origin), origin + " (version 1)");
+  if (version != scene_format_version) {
+    r.fail("version", "unsupported version " + std::to_string(version) + " (this build reads 1 and " +
+                          std::to_string(scene_format_version) + ")");
+  }
+  return scene_from_json_v2(r);
+}
+
+// ---------------------------------------------------------------- files
+
+// A scene document (JSON form) read, overridden, given its folder and checked.
+static scene scene_from_document(const json& j, const std::string& origin, const std::string& base_dir,
+                                 const std::vector<scene_override>& overrides) {
+  const std::string where = overrides.empty() ? origin : origin + " (with --set)";
+  scene s = with_overrides(scene_from_json(j, origin), overrides, where);
+  s.base_dir = base_dir;
+  check_scene(s, where);
+  return s;
+}
+
+scene parse_scene(const std::string& text, const std::string& origin, const std::string& base_dir,
+                  const std::vector<scene_override>& overrides) {
+  return scene_from_document(parse_json(text, origin), origin, base_dir, overrides);
+}
+
+scene load_scene(const std::string& path, const std::vector<scene_override>& overrides) {
+  const std::string dir = std::filesystem::absolute(path).parent_path().string();
+  if (is_gltf_path(path)) return scene_from_document(gltf_layout_document(path), path, dir, overrides);
+  return parse_scene(read_text_file(path), path, dir, overrides);
+}
+
+void save_scene(const scene& s, const std::string& path) { write_file_atomic(path, scene_to_json(s).dump(2) + "\n"); }
+
+}  // namespace airr

@@ -1,0 +1,136 @@
+// Command-line overrides (--set key=value) on the JSON form, and the derived keys.
+#include "airr/formats/scene_json.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "airr/core/error.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/models/retro_model.hpp"
+
+namespace airr {
+
+using nlohmann::json;
+
+scene_override parse_override(const std::string& text) {
+  const auto eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    throw input_error("--set " + text + ": expected key=value, e.g. retroreflectors.0.pose.pitch_deg=20");
+  }
+  return {text.substr(0, eq), text.substr(eq + 1)};
+}
+
+static json override_value(const std::string& v) {
+  if (v == "nan" || v == "NaN") return std::numeric_limits<double>::quiet_NaN();
+  if (v == "inf" || v == "-inf") return v[0] == '-' ? -HUGE_VAL : HUGE_VAL;
+  try {
+    return json::parse(v);
+  } catch (const json::exception&) {
+    return v;  // a bare word is a string, e.g. model.type=ideal
+  }
+}
+
+// The model object m switched to `type`: the values the old model set and the new one has carry
+// over, defaults do not (an unknown type is left for the reader to report).
+static bool switch_model_type(json& m, const std::string& type, const std::string& where) {
+  if (!m.is_object() || !m.contains("type") || !m["type"].is_string()) return false;
+  const auto known = [](const std::string& name) {
+    const auto& kinds = retro_model_kinds();
+    return std::any_of(kinds.begin(), kinds.end(), [&](const retro_model_kind* k) { return k->name == name; });
+  };
+  if (!known(m["type"].get<std::string>()) || !known(type)) return false;
+  retro_model_params old{.type = m["type"].get<std::string>(), .values = {}};
+  const retro_model_kind& old_kind = find_retro_model_kind(old.type);
+  for (const auto& [key, value] : m.items()) {
+    if (key != "type") model_value_from_json(old, old_kind.fields, key, value, "--set", where);
+  }
+  m = model_values_to_json(with_model_type(old, type), find_retro_model_kind(type).fields);
+  return true;
+}
+
+void apply_overrides(json& j, const std::vector<scene_override>& overrides) {
+  for (const auto& o : overrides) {
+    json* node = &j;
+    json* parent = nullptr;
+    std::string rest = o.key;
+    std::string walked;
+    while (true) {
+      const auto dot = rest.find('.');
+      const std::string part = rest.substr(0, dot);
+      walked += (walked.empty() ? "" : ".") + part;
+      parent = node;
+      if (node->is_array()) {
+        // Sheets are numbered from 0: retroreflectors.1.pose.pitch_deg.
+        std::size_t index = 0, used = 0;
+        try {
+          index = std::stoul(part, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used != part.size() || part.empty() || index >= node->size()) {
+          throw input_error("--set " + o.key + ": no element '" + walked + "' (" + std::to_string(node->size()) +
+                            " present, numbered from 0)");
+        }
+        node = &(*node)[index];
+      } else {
+        if (!node->is_object() || !node->contains(part))
+          throw input_error("--set " + o.key + ": unknown key '" + walked + "'");
+        node = &(*node)[part];
+      }
+      if (dot == std::string::npos) break;
+      rest = rest.substr(dot + 1);
+    }
+    const json value = override_value(o.value);
+    const bool model_type = walked.size() >= 10 && walked.compare(walked.size() - 10, 10, "model.type") == 0;
+    if (model_type && value.is_string() &&
+        switch_model_type(*parent, value.get<std::string>(), walked.substr(0, walked.size() - 5))) {
+      continue;
+    }
+    if (node->is_number() && value.is_number_float() && !std::isfinite(value.get<double>())) {
+      throw input_error("--set " + o.key + ": must be a finite number (got " + o.value + ")");
+    }
+    if (node->is_object() || (node->is_array() && !value.is_array())) {
+      throw input_error("--set " + o.key + ": names a group, not a value");
+    }
+    *node = value;
+  }
+}
+
+// ---------------------------------------------------------------- files
+
+scene with_overrides(scene s, const std::vector<scene_override>& overrides, const std::string& origin) {
+  // The floating distance is derived from the display's pose; setting it moves the display.
+  std::vector<scene_override> fields;
+  std::optional<std::string> distance;
+  for (const auto& o : overrides) {
+    if (o.key == floating_distance_key) {
+      distance = o.value;
+    } else if (o.key == tilt_key) {
+      fields.push_back({"retroreflectors.0.pose.pitch_deg", o.value});
+    } else {
+      fields.push_back(o);
+    }
+  }
+  if (!fields.empty()) {
+    // Overrides act on the complete form, so they may name fields the file leaves at default.
+    json full = scene_to_json(s);
+    apply_overrides(full, fields);
+    const std::string base_dir = s.base_dir;
+    s = scene_from_json(full, origin);
+    s.base_dir = base_dir;
+  }
+  if (distance) {
+    const json v = override_value(*distance);
+    if (!v.is_number()) throw input_error("--set " + std::string(floating_distance_key) + ": must be a number");
+    try {
+      set_floating_distance(s, v.get<double>());
+    } catch (const input_error& e) {
+      throw input_error("--set " + std::string(e.what()));
+    }
+  }
+  return s;
+}
+
+}  // namespace airr

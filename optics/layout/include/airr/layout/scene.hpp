@@ -1,0 +1,160 @@
+#pragma once
+// The AIRR layout description: plain structs with the defaults of the canonical layout (the
+// paper's measurement bench). Every part has a pose; the floating distance is derived from the
+// display's pose (see layout.hpp).
+#include <array>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "airr/models/model_params.hpp"
+
+namespace airr {
+
+inline constexpr int scene_format_version = 2;
+
+// Largest accepted render size, per side and in total.
+inline constexpr int max_resolution_side = 8192;
+inline constexpr long long max_resolution_pixels = 8192LL * 8192LL / 2;
+// Most retroreflective sheets in one layout.
+inline constexpr int max_retroreflectors = 8;
+// Most props in one layout.
+inline constexpr int max_props = 256;
+// Every position and size stays within 100 m of the origin (Embree traces in float), and a
+// part is at least 0.1 mm across (smaller is a typing slip, not a device).
+inline constexpr double max_distance_mm = 1e5;
+inline constexpr double min_part_size_mm = 0.1;
+
+// Where a part is. Its optical face is its local +z, its width runs along local +x and its height
+// along local +y. The world orientation is R = Ry(yaw) Rx(-pitch) Rz(roll), applied in that order
+// from the right: roll turns the part about its own normal, pitch then raises the normal towards
+// +y, yaw turns the result about the world's y axis from +z towards +x. The normal is therefore
+// (sin yaw cos pitch, sin pitch, cos yaw cos pitch).
+struct pose {
+  std::array<double, 3> center_mm{0, 0, 0};
+  double yaw_deg = 0;
+  double pitch_deg = 0;
+  double roll_deg = 0;
+
+  bool operator==(const pose&) const = default;
+};
+
+// What every part has: a rectangle (or a mesh scaled to it) at a pose.
+struct part_params {
+  std::string mesh;  // glTF file relative to the scene file; empty: the built-in unit panel
+  double width_mm = 300.0;
+  double height_mm = 300.0;
+  airr::pose pose;
+
+  bool operator==(const part_params&) const = default;
+};
+
+// The display. width/height are its active (emitting) area; the bezel is a black border around it.
+struct source_params : part_params {
+  std::string image;             // path relative to the scene file; empty = uniform white
+  double intensity = 10.0;       // radiance = image value x intensity
+  std::string emission_profile;  // CSV of angle (deg) -> relative luminance; empty: Lambertian
+  double bezel_mm = 0.0;
+
+  source_params() {
+    width_mm = height_mm = 50.0;
+    pose.center_mm = {0, -150, 0};
+    pose.pitch_deg = 90;  // facing +y; the image's top lies towards -z
+  }
+  bool operator==(const source_params&) const = default;
+};
+
+struct half_mirror_params : part_params {
+  double reflectance = 0.5;
+  double transmittance = 0.5;
+
+  half_mirror_params() { pose.pitch_deg = 45; }
+  bool operator==(const half_mirror_params&) const = default;
+};
+
+// One retroreflective sheet. In the canonical layout, its tilt is the pose's pitch and its
+// distance behind the half mirror is -center_mm[2]; the roll is the prism azimuth.
+struct retroreflector_params : part_params {
+  retro_model_params model;
+
+  retroreflector_params() { pose.center_mm = {0, 0, -150}; }
+  bool operator==(const retroreflector_params&) const = default;
+};
+
+// What a prop's surface does with light: absorber, nothing (black); diffuse, Lambertian with
+// reflectance `albedo`; mirror, specular with reflectance `albedo`; material, each triangle as
+// its glTF material maps (see prop_surface_of in mesh_gltf.hpp).
+enum class prop_surface { absorber, diffuse, mirror, material };
+inline constexpr const char* prop_surface_names[] = {"absorber", "diffuse", "mirror", "material"};
+
+// A model placed in the layout: a housing, a hood, a baffle, a frame. It blocks and scatters light
+// in the tracer and blocks it in the viewing-zone analysis. The mesh is read in glTF's metres and
+// placed in millimetres, times `scale`, in the frame of its pose (no size: the mesh has its own).
+struct prop_params {
+  std::string name;
+  std::string mesh;  // glTF or GLB file relative to the scene file
+  std::string node;  // a node of the file (its name, or "#index") with its descendants; empty: all
+  double scale = 1.0;
+  airr::pose pose;
+  prop_surface surface = prop_surface::absorber;
+  std::array<double, 3> albedo{0.5, 0.5, 0.5};  // linear RGB, for diffuse and mirror
+  bool visible = true;                          // a hidden prop takes no part in renders or analyses
+
+  bool operator==(const prop_params&) const = default;
+};
+
+enum class observer_placement { orbit, look_at };
+enum class observer_lens { pinhole, thin_lens };
+
+// The camera (or eye) that looks at the layout.
+struct observer_params {
+  observer_placement placement = observer_placement::orbit;
+  // Orbit around the aerial image's centre: azimuth turns from +z towards +x, elevation raises
+  // towards +y; at 0, 0 the observer is on the aerial image's +z side.
+  double azimuth_deg = 0;
+  double elevation_deg = 0;
+  double distance_mm = 300.0;
+  // Position and look-at point (placement look_at).
+  std::array<double, 3> position_mm{0, 0, 450};
+  std::array<double, 3> look_at_mm{0, 0, 150};
+  observer_lens lens = observer_lens::pinhole;
+  double focal_length_mm = 50.0;
+  double f_number = 4.0;
+  std::optional<double> focus_distance_mm;  // default: the distance to the aim point (orbit: the aerial image)
+  double fov_deg = 14.0;                    // vertical field of view
+  int width = 256;
+  int height = 256;
+
+  bool operator==(const observer_params&) const = default;
+};
+
+struct render_params {
+  int max_depth = 8;  // surface interactions per path
+
+  bool operator==(const render_params&) const = default;
+};
+
+struct scene {
+  int version = scene_format_version;
+  std::uint64_t seed = 1;
+  source_params source;
+  half_mirror_params half_mirror;
+  std::vector<retroreflector_params> retroreflectors{retroreflector_params{}};  // at least one
+  std::vector<prop_params> props;
+  observer_params observer;
+  render_params render;
+  std::string base_dir;  // directory relative paths resolve against; not saved
+
+  bool operator==(const scene&) const = default;
+
+  // The first sheet: the one the tilt drag, sweeps, the PSF and the fit act on.
+  retroreflector_params& sheet() { return retroreflectors.front(); }
+  const retroreflector_params& sheet() const { return retroreflectors.front(); }
+};
+
+// Resolves a path from the scene file against the scene's directory.
+std::string resolve_scene_path(const scene& s, const std::string& path);
+
+}  // namespace airr

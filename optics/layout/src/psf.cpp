@@ -1,0 +1,142 @@
+#include "airr/layout/psf.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include <tbb/parallel_for.h>
+
+#include "airr/core/error.hpp"
+#include "airr/core/geometry.hpp"
+#include "airr/core/low_discrepancy.hpp"
+#include "airr/core/random.hpp"
+#include "airr/layout/layout.hpp"
+
+namespace airr {
+
+double psf_samples::brightness() const {
+  double sum = 0;
+  for (double w : weight) sum += w;
+  return launched ? sum / double(launched) : 0.0;
+}
+
+psf_samples sample_psf(const scene& s, const retro_model& model, const psf_params& p) {
+  return sample_psf(s, model, p, aerial_image_center(s));
+}
+
+ideal_return follow_ideal_return(const part_frame& hm, const part_frame& rr, const part_frame& src,
+                                 const glm::dvec3& origin, const glm::dvec3& dir) {
+  ideal_return r;
+  const auto p1 = hit_part(hm, origin, dir);
+  if (!p1) return r.failed = ideal_return::step::half_mirror, r;
+  const auto p2 = hit_part(rr, *p1, dir);
+  if (!p2 || glm::dot(dir, rr.n) >= 0) return r.failed = ideal_return::step::sheet_front, r;
+  r.sheet_point = *p2;
+  r.towards_display = reflect(-dir, hm.n);
+  const auto q1 = hit_part(hm, *p2, -dir);
+  const auto q2 = q1 ? hit_part(src, *q1, r.towards_display, false) : std::nullopt;
+  if (!q2) return r.failed = ideal_return::step::display_plane, r;
+  r.landing = *q2;
+  return r;
+}
+
+psf_chief_ray chief_ray_through(const scene& s, const glm::dvec3& aerial_point) {
+  psf_chief_ray c{half_mirror_frame(s), retroreflector_frame(s), source_frame(s)};
+  const pinhole_camera cam = make_camera(s);
+  const glm::dvec3 d0 = glm::normalize(aerial_point - cam.position);
+  const ideal_return r = follow_ideal_return(c.hm, c.rr, c.src, cam.position, d0);
+  switch (r.failed) {
+    case ideal_return::step::half_mirror:
+      throw input_error("psf: the camera ray through the aerial image misses the half mirror");
+    case ideal_return::step::sheet_front:
+      throw input_error("psf: the camera ray misses the retroreflector's front");
+    case ideal_return::step::display_plane:
+      throw input_error("psf: the retroreflected chief ray misses the source plane");
+    case ideal_return::step::none:
+      break;
+  }
+  c.sheet_point = r.sheet_point;
+  c.ideal = r.landing;
+  c.wi = -to_local(c.rr, d0);
+  c.rr_distance_mm = glm::length(r.sheet_point - aerial_point);
+  return c;
+}
+
+std::optional<glm::dvec3> psf_landing_offset(const psf_chief_ray& c, const retro_sample& rs) {
+  const glm::dvec3 dir = to_world(c.rr, rs.wo);
+  const glm::dvec3 origin = c.sheet_point + rs.shift_mm.x * c.rr.u + rs.shift_mm.y * c.rr.v;
+  const auto at_hm = hit_part(c.hm, origin, dir);
+  if (!at_hm) return std::nullopt;
+  const auto at_source = hit_part(c.src, *at_hm, reflect(dir, c.hm.n), false);
+  if (!at_source) return std::nullopt;
+  return *at_source - c.ideal;
+}
+
+psf_samples sample_psf(const scene& s, const retro_model& model, const psf_params& p, const glm::dvec3& aerial_point) {
+  const psf_chief_ray chief = chief_ray_through(s, aerial_point);
+  const part_frame& src = chief.src;
+  psf_samples out;
+  out.launched = p.samples;
+  out.rr_distance_mm = chief.rr_distance_mm;
+  const glm::dvec3 wi = chief.wi;
+  out.incidence_deg = polar_angle_deg(wi);
+  out.offset_mm.reserve(p.samples);
+  out.weight.reserve(p.samples);
+  const double hm_factor = s.half_mirror.reflectance * s.half_mirror.transmittance;
+
+  std::array<double, 6> rotation;
+  pcg32 rotation_rng = sample_rng(0, 0, p.seed ^ 0x5eedu);
+  for (double& r : rotation) r = rotation_rng.next_double();
+
+  // Blocks of samples run in parallel and are joined in order, so the result does not depend on
+  // the number of threads.
+  constexpr std::uint64_t block = 8192;
+  const std::size_t blocks = std::size_t((p.samples + block - 1) / block);
+  std::vector<psf_samples> parts(blocks);
+  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
+    psf_samples& part = parts[b];
+    const std::uint64_t end = std::min<std::uint64_t>(p.samples, (b + 1) * block);
+    for (std::uint64_t i = b * block; i < end; ++i) {
+      // The lobe and shift samples stratify each other across the PSF's samples (a rotated R6
+      // sequence, as the tracer's pixels use); the rest comes from the per-sample generator.
+      const std::array<double, 6> q = r6_point(i, rotation);
+      pcg32 rng = sample_rng(i, 0, p.seed);
+      retro_samples u;
+      u.lobe = {q[2], q[3]};
+      u.shift = {q[4], q[5]};
+      u.more = rng.split();
+      const retro_sample rs = model.sample(wi, u);
+      if (!(rs.weight > 0)) continue;
+      const auto delta = psf_landing_offset(chief, rs);
+      if (!delta) continue;
+      // The image of a point shows where rays land relative to the ideal point, point-mirrored;
+      // source (u, v) map to aerial (x, y).
+      part.offset_mm.emplace_back(-glm::dot(*delta, src.u), -glm::dot(*delta, src.v));
+      part.weight.push_back(rs.weight * hm_factor);
+    }
+  });
+  for (const psf_samples& part : parts) {
+    out.offset_mm.insert(out.offset_mm.end(), part.offset_mm.begin(), part.offset_mm.end());
+    out.weight.insert(out.weight.end(), part.weight.begin(), part.weight.end());
+  }
+  return out;
+}
+
+double energy_radius(const psf_samples& psf, double fraction) {
+  std::vector<std::pair<double, double>> rw(psf.offset_mm.size());
+  double total = 0;
+  for (std::size_t i = 0; i < rw.size(); ++i) {
+    rw[i] = {glm::length(psf.offset_mm[i]), psf.weight[i]};
+    total += psf.weight[i];
+  }
+  if (total <= 0) return 0;
+  std::sort(rw.begin(), rw.end());
+  double acc = 0;
+  for (const auto& [r, w] : rw) {
+    acc += w;
+    if (acc >= fraction * total) return r;
+  }
+  return rw.back().first;
+}
+
+}  // namespace airr

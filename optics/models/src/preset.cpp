@@ -1,0 +1,108 @@
+#include "airr/models/preset.hpp"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "airr/core/assets.hpp"
+#include "airr/core/error.hpp"
+#include "airr/core/files.hpp"
+#include "airr/core/interpolate.hpp"
+#include "airr/core/json_reader.hpp"
+
+namespace airr {
+
+using nlohmann::json;
+
+bool is_preset_path(const std::string& name_or_path) {
+  return name_or_path.find('/') != std::string::npos || std::filesystem::path(name_or_path).extension() == ".json";
+}
+
+std::string resolve_preset_path(const std::string& name_or_path, const std::string& base_dir) {
+  if (!is_preset_path(name_or_path)) return asset_dir() + "/presets/" + name_or_path + ".json";
+  return resolve_path(name_or_path, base_dir);
+}
+
+// A number or an array of numbers.
+static std::vector<double> read_values(json_reader& r, const std::string& key) {
+  r.require(key);
+  const json& v = r.raw(key);
+  if (v.is_number()) return {r.number(key)};
+  if (!v.is_array() || v.empty()) r.fail(key, "must be a number or a non-empty array of numbers");
+  return r.number_array(key);
+}
+
+sheet_preset preset_from_json(const json& j, const std::string& origin) {
+  json_reader r(j, origin, "");
+  sheet_preset p;
+  std::string format;
+  r.string("format", format);
+  if (format != "airr-preset") r.fail("format", "expected \"airr-preset\"");
+  int version = 0;
+  r.integer("version", version);
+  if (version != 1) r.fail("version", "unsupported version " + std::to_string(version));
+  std::string model = "sinc_shift";
+  r.string("model", model);
+  if (model != "sinc_shift") r.fail("model", "presets hold sinc_shift parameters, not '" + model + "'");
+  r.string("name", p.name);
+  if (r.has("tilt_deg")) p.theta_deg = read_values(r, "tilt_deg");
+  p.a_per_mm = read_values(r, "a_per_mm");
+  p.mu = read_values(r, "mu");
+  p.c_mm = r.number("c_mm");
+  r.number("reference_distance_mm", p.reference_distance_mm);
+  if (r.has("provenance")) p.provenance = r.raw("provenance");
+  r.finish();
+
+  for (std::size_t i = 1; i < p.theta_deg.size(); ++i) {
+    if (!(p.theta_deg[i] > p.theta_deg[i - 1])) r.fail("tilt_deg", "must be strictly ascending");
+  }
+  auto check_size = [&](const std::vector<double>& v, const char* key) {
+    if (v.size() != 1 && v.size() != p.theta_deg.size()) {
+      r.fail(key, "needs one value or one per tilt_deg entry (" + std::to_string(p.theta_deg.size()) + ")");
+    }
+  };
+  check_size(p.a_per_mm, "a_per_mm");
+  check_size(p.mu, "mu");
+  for (double a : p.a_per_mm) {
+    if (a <= 0) r.fail("a_per_mm", "must be positive");
+  }
+  for (double m : p.mu) {
+    if (m < 0 || m > 1) r.fail("mu", "must be in [0, 1]");
+  }
+  if (p.c_mm < 0) r.fail("c_mm", "must not be negative");
+  if (p.reference_distance_mm <= 0) r.fail("reference_distance_mm", "must be positive");
+  return p;
+}
+
+sheet_preset load_preset(const std::string& name_or_path, const std::string& base_dir) {
+  const std::string path = resolve_preset_path(name_or_path, base_dir);
+  // Cached while the file is unchanged, so the designer's frame loop does not re-read it.
+  static file_cache<sheet_preset> cache;
+  return *cache.get(path, path,
+                    [&] { return std::make_shared<const sheet_preset>(preset_from_json(read_json_file(path), path)); });
+}
+
+static json values_to_json(const std::vector<double>& v) { return v.size() == 1 ? json(v[0]) : json(v); }
+
+json preset_to_json(const sheet_preset& p) {
+  json j = {{"format", "airr-preset"},
+            {"version", 1},
+            {"model", "sinc_shift"},
+            {"name", p.name},
+            {"a_per_mm", values_to_json(p.a_per_mm)},
+            {"mu", values_to_json(p.mu)},
+            {"c_mm", p.c_mm},
+            {"reference_distance_mm", p.reference_distance_mm}};
+  if (!p.theta_deg.empty()) j["tilt_deg"] = p.theta_deg;
+  if (!p.provenance.is_null()) j["provenance"] = p.provenance;
+  return j;
+}
+
+void save_preset(const sheet_preset& p, const std::string& path) {
+  write_file_atomic(path, preset_to_json(p).dump(2) + "\n");
+}
+
+double interpolate_by_angle(const std::vector<double>& theta_deg, const std::vector<double>& values, double theta) {
+  return interpolate_linear(theta_deg, values, theta);
+}
+
+}  // namespace airr

@@ -1,0 +1,53 @@
+#include "airr/models/sinc_lobe.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace airr {
+
+static constexpr double half_pi = std::numbers::pi / 2;
+
+double sinc(double x) { return std::abs(x) < 1e-8 ? 1.0 - x * x / 6.0 : std::sin(x) / x; }
+
+sinc_lobe::sinc_lobe() {
+  const int n = sinc_lobe_table_size;
+  cdf_.resize(n);
+  double sum = 0;
+  for (int j = 0; j < n; ++j) {
+    const double delta = half_pi * j / n;
+    const double c = std::cos(delta);
+    const double s = sinc(std::tan(delta));
+    sum += s * s / (c * c);
+    cdf_[j] = sum;
+  }
+  for (double& v : cdf_) v /= sum;
+  guide_.resize(guide_size + 1);
+  for (int b = 0; b <= guide_size; ++b) {
+    guide_[b] = int(std::upper_bound(cdf_.begin(), cdf_.end(), double(b) / guide_size) - cdf_.begin());
+  }
+}
+
+const sinc_lobe& sinc_lobe::instance() {
+  static const sinc_lobe lobe;
+  return lobe;
+}
+
+double sinc_lobe::sample_tan_delta(double k, double u_cell, double u_jitter) const {
+  // The answer lies between guide_[b] and guide_[b + 1] (inclusive) for u_cell in [b, b + 1) / guide_size.
+  const int b = std::clamp(int(u_cell * guide_size), 0, guide_size - 1);
+  const auto first = cdf_.begin() + guide_[b], last = cdf_.begin() + guide_[b + 1];
+  const auto j = std::min<std::size_t>(std::upper_bound(first, last, u_cell) - cdf_.begin(), cdf_.size() - 1);
+  const double delta1 = half_pi * (double(j) + u_jitter) / double(cdf_.size());
+  return std::tan(delta1) / k;
+}
+
+double sinc_lobe::pdf(double delta, double k) {
+  if (delta < 0 || delta >= half_pi) return 0;
+  const double c = std::cos(delta);
+  const double s = sinc(k * std::tan(delta));
+  // Integral of sinc^2(y) over [0, inf) is pi/2; dy = k / cos^2(delta) d(delta).
+  return s * s * k / (c * c) / half_pi;
+}
+
+}  // namespace airr

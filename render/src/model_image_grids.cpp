@@ -1,0 +1,142 @@
+// The display on the model image's grids, and their correlation with a bin's kernel.
+#include "model_image_steps.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
+
+namespace airr::model_image_steps {
+
+cv::Mat display_texels(const scene& s, const image_rgb* display, int max_texels) {
+  cv::Mat m;
+  if (display) {
+    m = cv::Mat(display->height, display->width, CV_32FC3, const_cast<float*>(display->rgb.data()));
+  } else {
+    const part_frame src = source_frame(s);
+    const double longer = std::max(src.width, src.height);
+    m = cv::Mat(std::max(1, int(std::lround(max_texels * src.height / longer))),
+                std::max(1, int(std::lround(max_texels * src.width / longer))), CV_32FC3,
+                cv::Scalar::all(s.source.intensity));
+  }
+  const int longer = std::max(m.cols, m.rows);
+  if (longer > max_texels) {
+    const double f = double(max_texels) / longer;
+    cv::Mat small;
+    cv::resize(m, small, cv::Size(std::max(1, int(std::lround(m.cols * f))), std::max(1, int(std::lround(m.rows * f)))),
+               0, 0, cv::INTER_AREA);
+    m = small;
+  }
+  if (display) {
+    // Into a new matrix: `m` may still be the caller's texture itself.
+    cv::Mat scaled;
+    m.convertTo(scaled, CV_32F, s.source.intensity);
+    return scaled;
+  }
+  return m;
+}
+
+// The texels' bilinear surface (edges clamped, as the tracer reads its texture) sampled `refine`
+// times more densely: nodes at texel coordinates origin + j / refine. With an even `refine` the
+// nodes start half a texel out and include every texel centre, so the refined grid's bilinear
+// surface is the texels' own, exactly.
+static image_rgb refined_grid(const cv::Mat& texels, int refine, double& origin) {
+  origin = refine % 2 == 0 ? -0.5 : 0.0;
+  image_rgb out;
+  out.width = int(std::lround((texels.cols - 1 - 2 * origin) * refine)) + 1;
+  out.height = int(std::lround((texels.rows - 1 - 2 * origin) * refine)) + 1;
+  out.rgb.resize(std::size_t(out.width) * out.height * 3);
+  auto texel = [&](int x, int y) {
+    const cv::Vec3f& v = texels.at<cv::Vec3f>(std::clamp(y, 0, texels.rows - 1), std::clamp(x, 0, texels.cols - 1));
+    return glm::vec3(v[0], v[1], v[2]);
+  };
+  for (int j = 0; j < out.height; ++j) {
+    const double ty = origin + double(j) / refine;
+    const int y0 = int(std::floor(ty));
+    const float fy = float(ty - y0);
+    for (int i = 0; i < out.width; ++i) {
+      const double tx = origin + double(i) / refine;
+      const int x0 = int(std::floor(tx));
+      const float fx = float(tx - x0);
+      const glm::vec3 v = glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx),
+                                   glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
+      std::copy_n(&v.x, 3, out.at(i, j));
+    }
+  }
+  return out;
+}
+
+static image_rgb pad(const image_rgb& img, int radius) {
+  image_rgb out;
+  out.width = img.width + 2 * radius;
+  out.height = img.height + 2 * radius;
+  out.rgb.assign(std::size_t(out.width) * out.height * 3, 0.0f);
+  for (int y = 0; y < img.height; ++y) std::copy_n(img.at(0, y), 3 * img.width, out.at(radius, y + radius));
+  return out;
+}
+
+static bool is_grey(const image_rgb& img) {
+  for (std::size_t i = 0; i < img.rgb.size(); i += 3) {
+    if (img.rgb[i] != img.rgb[i + 1] || img.rgb[i] != img.rgb[i + 2]) return false;
+  }
+  return true;
+}
+
+grid_spectrum spectrum_of(const image_rgb& padded) {
+  grid_spectrum out;
+  out.width = padded.width;
+  out.height = padded.height;
+  const cv::Mat src(padded.height, padded.width, CV_32FC3, const_cast<float*>(padded.rgb.data()));
+  const int n = is_grey(padded) ? 1 : 3;
+  const cv::Size size(cv::getOptimalDFTSize(padded.width), cv::getOptimalDFTSize(padded.height));
+  for (int c = 0; c < n; ++c) {
+    cv::Mat channel = cv::Mat::zeros(size, CV_32F);
+    cv::extractChannel(src, channel(cv::Rect(0, 0, padded.width, padded.height)), c);
+    cv::Mat spectrum;
+    cv::dft(channel, spectrum, 0, padded.height);
+    out.channels.push_back(std::move(spectrum));
+  }
+  return out;
+}
+
+correlated_grid correlate(const grid_spectrum& grid, const cv::Mat& kernel) {
+  const cv::Size size = grid.channels.front().size();
+  const int r = kernel.rows / 2;
+  cv::Mat kernel_spectrum;
+  {
+    // The kernel with offset o at index o modulo the DFT's size.
+    cv::Mat wrapped = cv::Mat::zeros(size, CV_32F);
+    for (int y = -r; y <= r; ++y) {
+      const float* row = kernel.ptr<float>(y + r);
+      float* dst = wrapped.ptr<float>((y + size.height) % size.height);
+      for (int x = -r; x <= r; ++x) dst[(x + size.width) % size.width] = row[x + r];
+    }
+    cv::dft(wrapped, kernel_spectrum);
+  }
+  correlated_grid out;
+  for (const cv::Mat& channel : grid.channels) {
+    cv::Mat product, values;
+    cv::mulSpectrums(channel, kernel_spectrum, product, 0, true);
+    cv::dft(product, values, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT, grid.height);
+    out.channels.push_back(values(cv::Rect(0, 0, grid.width, grid.height)));
+  }
+  return out;
+}
+
+grid_mapping make_grid(model_grid& grid, const cv::Mat& texels, int refine, double reach_mm, const part_frame& src) {
+  grid_mapping map;
+  const image_rgb nodes = refined_grid(texels, refine, map.origin);
+  grid.node_w = src.width / texels.cols / refine;
+  grid.node_h = src.height / texels.rows / refine;
+  grid.radius = std::clamp(int(std::ceil(reach_mm / std::min(grid.node_w, grid.node_h))) + 1, 2, 2048);
+  grid.padded = pad(nodes, grid.radius);
+  map.cols = texels.cols;
+  map.rows = texels.rows;
+  map.width = src.width;
+  map.height = src.height;
+  map.refine = refine;
+  map.radius = grid.radius;
+  return map;
+}
+
+}  // namespace airr::model_image_steps

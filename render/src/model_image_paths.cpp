@@ -1,0 +1,88 @@
+// The pixels' ideal paths: camera, half mirror, first sheet straight back, display.
+#include "model_image_steps.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "airr/core/geometry.hpp"
+#include "airr/render/parallel_rows.hpp"
+
+namespace airr::model_image_steps {
+
+std::optional<ideal_path> trace_ideal(const ideal_parts& parts, double px, double py) {
+  const glm::dvec3 d = camera_direction(parts.cam, px, py);
+  const ideal_return r = follow_ideal_return(parts.hm, parts.rr, parts.src, parts.cam.position, d);
+  if (r.failed != ideal_return::step::none) return std::nullopt;
+  if (glm::dot(r.towards_display, parts.src.n) >= 0) return std::nullopt;  // the display's back
+  const auto p = hit_part(parts.aerial, parts.cam.position, d, false);
+  if (!p) return std::nullopt;
+  const glm::dvec3 wi = -to_local(parts.rr, d);
+  return ideal_path{part_local(parts.src, r.landing), *p, r.towards_display, wi, polar_angle_deg(wi)};
+}
+
+static pixel_path pixel_ideal(const ideal_parts& parts, const emission_profile* emission, double x, double y) {
+  const auto path = trace_ideal(parts, x, y);
+  if (!path) return {};
+  pixel_path out{true, path->display, path->wi, 1.0};
+  if (emission) {
+    out.profile = emission->at(degrees(std::acos(std::min(1.0, -glm::dot(path->towards_display, parts.src.n)))));
+  }
+  return out;
+}
+
+std::vector<pixel_path> pixel_paths(const ideal_parts& parts, const emission_profile* emission,
+                                    const model_image_params& p, const std::atomic<bool>* cancel) {
+  const int w = parts.cam.width, h = parts.cam.height, n = p.path_stride;
+  auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
+  std::vector<pixel_path> out(std::size_t(w) * h);
+  if (n <= 1) {
+    detail::parallel_rows(h, p.threads, [&](int y0, int y1) {
+      for (int y = y0; y < y1 && !cancelled(); ++y) {
+        for (int x = 0; x < w; ++x) out[std::size_t(y) * w + x] = pixel_ideal(parts, emission, x + 0.5, y + 0.5);
+      }
+    });
+    return cancelled() ? std::vector<pixel_path>{} : out;
+  }
+  // Lattice node i sits on pixel min(i n, size - 1).
+  const int lw = (w - 1 + n - 1) / n + 1, lh = (h - 1 + n - 1) / n + 1;
+  auto at = [n](int i, int size) { return std::min(i * n, size - 1); };
+  std::vector<pixel_path> lattice(std::size_t(lw) * lh);
+  detail::parallel_rows(lh, p.threads, [&](int j0, int j1) {
+    for (int j = j0; j < j1; ++j) {
+      for (int i = 0; i < lw; ++i) {
+        lattice[std::size_t(j) * lw + i] = pixel_ideal(parts, emission, at(i, w) + 0.5, at(j, h) + 0.5);
+      }
+    }
+  });
+  detail::parallel_rows(h, p.threads, [&](int y0, int y1) {
+    for (int y = y0; y < y1 && !cancelled(); ++y) {
+      const int j = std::min(y / n, std::max(0, lh - 2)), ya = at(j, h), yb = at(j + 1, h);
+      const double fy = yb > ya ? double(y - ya) / (yb - ya) : 0.0;
+      for (int x = 0; x < w; ++x) {
+        const int i = std::min(x / n, std::max(0, lw - 2)), xa = at(i, w), xb = at(i + 1, w);
+        const double fx = xb > xa ? double(x - xa) / (xb - xa) : 0.0;
+        const int i1 = std::min(i + 1, lw - 1), j1 = std::min(j + 1, lh - 1);
+        const pixel_path* c[4] = {&lattice[std::size_t(j) * lw + i], &lattice[std::size_t(j) * lw + i1],
+                                  &lattice[std::size_t(j1) * lw + i], &lattice[std::size_t(j1) * lw + i1]};
+        pixel_path& px = out[std::size_t(y) * w + x];
+        if (!(c[0]->ok && c[1]->ok && c[2]->ok && c[3]->ok)) {
+          px = pixel_ideal(parts, emission, x + 0.5, y + 0.5);
+          continue;
+        }
+        const double cw[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+        px.ok = true;
+        px.display = glm::dvec2(0);
+        px.wi = glm::dvec3(0);
+        px.profile = 0;
+        for (int k = 0; k < 4; ++k) {
+          px.display += cw[k] * c[k]->display;
+          px.wi += cw[k] * c[k]->wi;
+          px.profile += cw[k] * c[k]->profile;
+        }
+      }
+    }
+  });
+  return cancelled() ? std::vector<pixel_path>{} : out;
+}
+
+}  // namespace airr::model_image_steps

@@ -1,0 +1,110 @@
+#pragma once
+// The steps of computing a model image (model_image.cpp): the pixels' ideal paths
+// (model_image_paths.cpp), the display's grids and their correlation with a kernel
+// (model_image_grids.cpp), and the bins' kernels from the model's samples (model_image_samples.cpp).
+#include <array>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <opencv2/core.hpp>
+
+#include "airr/layout/layout.hpp"
+#include "airr/models/emission_profile.hpp"
+#include "airr/render/model_image.hpp"
+
+namespace airr::model_image_steps {
+
+// The parts an ideal path meets, built once per image.
+struct ideal_parts {
+  part_frame hm, rr, src, aerial;
+  pinhole_camera cam;
+  explicit ideal_parts(const scene& s)
+      : hm(half_mirror_frame(s)),
+        rr(retroreflector_frame(s)),
+        src(source_frame(s)),
+        aerial(aerial_image_frame(s)),
+        cam(make_camera(s)) {}
+};
+
+struct ideal_path {
+  glm::dvec2 display{0};  // display-local mm
+  glm::dvec3 aerial{0};   // where the camera ray crosses the aerial-image plane
+  glm::dvec3 towards_display{0};
+  glm::dvec3 wi{0, 0, 1};  // incidence on the sheet, sheet-local
+  double theta_deg = 0;
+};
+
+std::optional<ideal_path> trace_ideal(const ideal_parts& parts, double px, double py);
+
+// What a pixel needs of its ideal path.
+struct pixel_path {
+  bool ok = false;
+  glm::dvec2 display{0};   // display-local mm
+  glm::dvec3 wi{0, 0, 1};  // incidence on the sheet (its polar angle is not smooth at 0: not interpolated)
+  double profile = 1;      // the display's relative luminance towards the half mirror
+};
+
+// Every pixel's ideal path (empty when cancelled). With a stride, paths are traced on a lattice of
+// pixels and interpolated inside each cell whose four corners all have one; other cells are traced
+// pixel by pixel.
+std::vector<pixel_path> pixel_paths(const ideal_parts& parts, const emission_profile* emission,
+                                    const model_image_params& p, const std::atomic<bool>* cancel);
+
+// The display's radiance on a grid of at most max_texels on its longer side (area-averaged down
+// from the texture; uniform: a grid of that size).
+cv::Mat display_texels(const scene& s, const image_rgb* display, int max_texels);
+
+// A padded grid's spectrum, computed once and correlated with every bin's kernel. The grid's
+// margins are black and as wide as the kernels reach, so a DFT the grid's own size suffices:
+// what wraps around lands on black.
+struct grid_spectrum {
+  int width = 0, height = 0;      // the padded grid's
+  std::vector<cv::Mat> channels;  // one spectrum per distinct channel (one for a grey display)
+};
+
+grid_spectrum spectrum_of(const image_rgb& padded);
+
+// out(x) = sum over offsets o of kernel(o) grid(x + o), the kernel's centre at offset 0 (the
+// prediction's sum, for every node at once); one matrix per distinct channel, as the spectrum.
+struct correlated_grid {
+  std::vector<cv::Mat> channels;
+  glm::vec3 at(const glm::dvec2& t) const {
+    const cv::Mat& first = channels.front();
+    const int x0 = int(std::floor(t.x)), y0 = int(std::floor(t.y));
+    if (x0 < 0 || y0 < 0 || x0 + 1 >= first.cols || y0 + 1 >= first.rows) return glm::vec3(0.0f);
+    const float fx = float(t.x - x0), fy = float(t.y - y0);
+    glm::vec3 v(0.0f);
+    for (std::size_t c = 0; c < channels.size(); ++c) {
+      const float* r0 = channels[c].ptr<float>(y0);
+      const float* r1 = channels[c].ptr<float>(y0 + 1);
+      v[int(c)] = (r0[x0] * (1 - fx) + r0[x0 + 1] * fx) * (1 - fy) + (r1[x0] * (1 - fx) + r1[x0 + 1] * fx) * fy;
+    }
+    return channels.size() == 1 ? glm::vec3(v[0]) : v;
+  }
+};
+
+correlated_grid correlate(const grid_spectrum& grid, const cv::Mat& kernel);
+
+// One grid over the display's texels (`refine` nodes per texel) and where display-local points
+// fall on it.
+struct grid_mapping {
+  double cols = 1, rows = 1, width = 1, height = 1, origin = 0, refine = 1, radius = 0;
+  glm::dvec2 node(const glm::dvec2& local) const {
+    const glm::dvec2 texel((local.x / width + 0.5) * cols - 0.5, (0.5 - local.y / height) * rows - 0.5);
+    return (texel - origin) * refine + radius;
+  }
+};
+
+grid_mapping make_grid(model_grid& grid, const cv::Mat& texels, int refine, double reach_mm, const part_frame& src);
+
+// The bin's kernels from its samples (a rotated R6 sequence for jitter, lobe and shift, as the
+// tracer's pixels use); blocks run in parallel and are summed in order, so the result does not
+// depend on the number of threads.
+std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std::size_t bin, std::uint64_t samples,
+                                   std::uint64_t seed, int threads, const std::atomic<bool>* cancel);
+
+}  // namespace airr::model_image_steps
