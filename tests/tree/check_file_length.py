@@ -4,12 +4,12 @@
 Files are those git tracks (or, outside a git work tree, every file under the given root); binary
 files (images, models, fuzz inputs) are skipped.
 """
-import contextlib
-import io
 import pathlib
 import subprocess
 import sys
 import tempfile
+
+import tree_check
 
 LIMIT = 500
 
@@ -42,11 +42,6 @@ def check(root: pathlib.Path) -> int:
 
 
 def self_test() -> None:
-    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
-        run_self_test()
-
-
-def run_self_test() -> None:
     """The check must catch a file of 501 lines, pass one of 500, and leave third_party alone."""
     with tempfile.TemporaryDirectory() as tmp:
         root = pathlib.Path(tmp)
@@ -60,10 +55,5 @@ def run_self_test() -> None:
             sys.exit("file length self-test: a file over the limit passed")
 
 
-def main() -> int:
-    self_test()
-    return check(pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else "."))
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(tree_check.run(check, self_test))

@@ -6,12 +6,12 @@ own library and of those the table allows, and private headers of its own folder
 one docs/architecture.md draws: core -> models -> layout -> formats -> analysis | render ->
 measure -> ui -> app.
 """
-import contextlib
-import io
 import pathlib
 import re
 import sys
 import tempfile
+
+import tree_check
 
 # Library folder, its include name, and the include names it may use besides its own.
 LIBRARIES = [
@@ -61,11 +61,6 @@ def check(root: pathlib.Path) -> int:
 
 
 def self_test() -> None:
-    with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
-        run_self_test()
-
-
-def run_self_test() -> None:
     """The check must catch an upward include and pass a downward one."""
     with tempfile.TemporaryDirectory() as tmp:
         root = pathlib.Path(tmp)
@@ -79,10 +74,5 @@ def run_self_test() -> None:
             sys.exit("layering self-test: an upward include passed")
 
 
-def main() -> int:
-    self_test()
-    return check(pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else "."))
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    sys.exit(tree_check.run(check, self_test))
