@@ -8,7 +8,7 @@ namespace airr::ui {
 
 projection_view compute_projection(const scene& s, const std::vector<mesh_bounds>& prop_bounds, projection proj,
                                    ImVec2 canvas0, ImVec2 canvas, float font_size, const text_size_fn& text_size,
-                                   const std::vector<screen_rect>& reserved, const std::optional<view_map>& frozen) {
+                                   const std::optional<view_map>& frozen) {
   projection_view v;
   v.aerial = aerial_image_frame(s);
   v.emitting = source_frame(s);
@@ -122,8 +122,7 @@ projection_view compute_projection(const scene& s, const std::vector<mesh_bounds
 
   std::vector<label_request> requests;
   for (const view_text& t : v.labels) requests.push_back({t.anchor, text_size(t.text)});
-  std::vector<screen_rect> taken = reserved;
-  taken.push_back(v.scale_box);
+  std::vector<screen_rect> taken = {v.scale_box};
   taken.insert(taken.end(), v.handles.begin(), v.handles.end());
   const std::vector<placed_label> placed =
       place_labels(requests, v.outlines, taken, {canvas0.x, canvas0.y, canvas0.x + canvas.x, canvas0.y + canvas.y},

@@ -66,7 +66,7 @@ void draw_projection(studio& st, projection proj, ImVec2 canvas0, ImVec2 canvas,
         const ImVec2 z = ImGui::CalcTextSize(t.c_str());
         return glm::vec2(z.x, z.y);
       },
-      {}, frozen);
+      frozen);
   const view_map& m = v.map;
   const part_frame &hm = v.parts[0].first, &src = v.parts[1].first, &aerial = v.aerial;
   const glm::dvec3 eye = v.eye;

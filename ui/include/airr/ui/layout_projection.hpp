@@ -1,8 +1,8 @@
 #pragma once
 // What the layout view's side and top projections show, worked out apart from drawing so that a
-// test can measure it: the map that fits the device into a canvas, the parts' outlines on
-// screen, and where each label goes (clear of the other labels, of the outlines and of the
-// scale bar's text).
+// test can measure it: the map that fits the device into a canvas, the parts' outlines and drag
+// handles on screen, and where each label goes (clear of the other labels, the outlines, the
+// handles and the scale bar).
 #include <array>
 #include <functional>
 #include <optional>
@@ -72,11 +72,9 @@ struct projection_view {
 
 using text_size_fn = std::function<glm::vec2(const std::string&)>;
 
-// `frozen`: the map a drag keeps (the view then does not refit). `reserved`: other text drawn over
-// the canvas, which labels avoid.
+// `frozen`: the map a drag keeps (the view then does not refit).
 projection_view compute_projection(const scene& s, const std::vector<mesh_bounds>& prop_bounds, projection proj,
                                    ImVec2 canvas0, ImVec2 canvas, float font_size, const text_size_fn& text_size,
-                                   const std::vector<screen_rect>& reserved = {},
                                    const std::optional<view_map>& frozen = std::nullopt);
 
 }  // namespace airr::ui
