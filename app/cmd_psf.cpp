@@ -29,6 +29,31 @@ std::string psf_csv(const airr::analysis::psf_mtf_curve& c) {
   return out;
 }
 
+// What each sheet adds: its model, its path and chief ray, its brightness (or why it adds none).
+void print_sheets(const airr::scene& s, const airr::psf_samples& psf) {
+  for (const airr::psf_sheet_share& share : psf.sheets) {
+    const airr::retro_model_params& model = s.retroreflectors[share.sheet].model;
+    if (!share.missed.empty()) {
+      std::printf("sheet %zu: %s, not reached: %s\n", share.sheet, model.type.c_str(), share.missed.c_str());
+      continue;
+    }
+    std::printf(
+        "sheet %zu: %s, %s the half mirror, %.6g mm from the aerial image, chief-ray incidence %.4g deg, "
+        "brightness %.6g\n",
+        share.sheet, model.type.c_str(), share.by_reflection ? "by reflection in" : "through", share.rr_distance_mm,
+        share.incidence_deg, share.brightness);
+    if (airr::find_field(airr::find_retro_model_kind(model.type).fields, "lookup")) {
+      const std::string lookup = airr::read_model_values(model).text("lookup");
+      if (lookup == "per_render") {
+        std::printf("  angle lookup: per_render, at the sheet's chief-ray incidence %.4g deg\n",
+                    airr::sheet_chief_incidence_deg(s, share.sheet));
+      } else {
+        std::printf("  angle lookup: %s\n", lookup.c_str());
+      }
+    }
+  }
+}
+
 }  // namespace
 
 void add_psf_command(CLI::App& app) {
@@ -72,18 +97,7 @@ void add_psf_command(CLI::App& app) {
     const double r50 = airr::energy_radius(psf);
     const double t_summary = seconds_since(t2);
 
-    std::printf("retroreflector: %s, %.6g mm from the aerial image, chief-ray incidence %.4g deg\n",
-                s.sheet().model.type.c_str(), psf.rr_distance_mm, psf.incidence_deg);
-    const airr::retro_model_params& model = s.sheet().model;
-    if (airr::find_field(airr::find_retro_model_kind(model.type).fields, "lookup")) {
-      const std::string lookup = airr::read_model_values(model).text("lookup");
-      if (lookup == "per_render") {
-        std::printf("angle lookup: per_render, at the sheet's chief-ray incidence %.4g deg\n",
-                    airr::sheet_chief_incidence_deg(s));
-      } else {
-        std::printf("angle lookup: %s\n", lookup.c_str());
-      }
-    }
+    print_sheets(s, psf);
     std::printf("50%%-energy radius: %.4f mm\n", r50);
     if (pixel_mm > 0)
       std::printf("pixel aperture: %.6g mm on the aerial-image plane (included; --no-pixel for the optics alone)\n",
@@ -95,7 +109,8 @@ void add_psf_command(CLI::App& app) {
       std::printf("MTF50: %.5g lp/mm\n", *m.mtf50_lp_per_mm);
     else
       std::printf("MTF50: not reached (MTF stays above 0.5 up to %g lp/mm)\n", pixel_mm > 0 ? 1.0 / pixel_mm : 4.0);
-    std::printf("brightness: %.6g (aerial radiance per unit source radiance)\n", psf.brightness());
+    std::printf("brightness: %.6g (aerial radiance per unit source radiance%s)\n", psf.brightness(),
+                psf.sheets.size() > 1 ? "; the sum of the sheets'" : "");
     std::printf("samples: %llu launched, %zu reach the source plane\n", static_cast<unsigned long long>(psf.launched),
                 psf.offset_mm.size());
     std::printf("time: %.3f s (sampling %.3f s, %d-point MTF curve %.3f s, mean MTF, MTF50 and radius %.3f s)\n",

@@ -83,7 +83,7 @@ void add_sweep_command(CLI::App& app) {
     p.threads = opt->threads;
     std::vector<airr::scene_override> overrides;
     for (const auto& s : opt->sets) overrides.push_back(airr::parse_override(s));
-    const airr::scene s = airr::load_scene(opt->scene_path, overrides);
+    const airr::scene s = load_scene_noting(opt->scene_path, overrides);
 
     progress_bar bar("sweep");
     const auto r = airr::run_sweep(s, p, [&](double f, const std::string& detail) {
@@ -96,11 +96,15 @@ void add_sweep_command(CLI::App& app) {
     std::printf("route: %s; pixel %.6g mm on the aerial-image plane (its aperture is included)\n",
                 p.psf_route ? "model PSF" : ("slanted-edge render, " + std::to_string(p.spp) + " spp").c_str(),
                 r.mm_per_pixel);
-    std::printf("%8s %8s %12s %12s %10s\n", "D_mm", "tilt_deg", "mean_mtf_0_1", "mtf50_lp/mm", "r50_mm");
+    std::printf("%8s %8s %12s %12s %10s %11s  %s\n", "D_mm", "tilt_deg", "mean_mtf_0_1", "mtf50_lp/mm", "r50_mm",
+                "brightness", "by sheet");
     for (const auto& pt : r.points) {
       char m50[32] = "not reached";
       if (pt.mtf50_lp_per_mm) std::snprintf(m50, sizeof m50, "%.4f", *pt.mtf50_lp_per_mm);
-      std::printf("%8g %8g %12.5f %12s %10.4f\n", pt.floating_distance_mm, pt.tilt_deg, pt.mean_mtf, m50, pt.r50_mm);
+      std::string shares;
+      for (double b : pt.sheet_brightness) shares += (shares.empty() ? "" : " + ") + std::to_string(b);
+      std::printf("%8g %8g %12.5f %12s %10.4f %11.6f  %s\n", pt.floating_distance_mm, pt.tilt_deg, pt.mean_mtf, m50,
+                  pt.r50_mm, pt.brightness, shares.c_str());
     }
     for (const auto& sl : r.slopes)
       std::printf("slope d of mean MTF against D at tilt %g deg: %.6g per mm (%.4g per 100 mm)\n", sl.tilt_deg,

@@ -8,7 +8,7 @@
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/sheet_models.hpp"
 #include "airr/measure/noise_level.hpp"
-#include "airr/render/model_image.hpp"
+#include "airr/render/layout_model_image.hpp"
 #include "airr/render/render_session.hpp"
 
 namespace {
@@ -42,16 +42,16 @@ void run_model_error_bench(const model_error_options& o) {
                                           {"retroreflectors.0.model.type", "\"sinc_shift\""},
                                           {"retroreflectors.0.model.preset", "\"" + preset + "\""},
                                           {"retroreflectors.0.pose.pitch_deg", std::to_string(tilt)}});
-      const auto model = airr::make_sheet_models(s).front();
+      const auto models = airr::make_sheet_models(s);
       const std::string texture_path = airr::resolve_scene_path(s, s.source.image);
       airr::image_rgb texture;
       if (!texture_path.empty()) texture = airr::load_image(texture_path).pixels;
       const airr::image_rgb* display = texture_path.empty() ? nullptr : &texture;
       const auto t0 = std::chrono::steady_clock::now();
-      const auto full = airr::compute_model_image(
-          s, model, display, airr::model_image_params::for_image(s.observer.width, s.observer.height));
+      const auto full = airr::compute_layout_model_image(
+          s, models, display, airr::model_image_params::for_image(s.observer.width, s.observer.height));
       const double model_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-      const airr::image_rgb first = airr::model_image_first_look(s, model, display);
+      const airr::image_rgb first = airr::model_image_first_look(s, models, display);
 
       airr::render_session session(s, {.threads = o.threads, .target_spp = o.spp, .preview_stride = 1});
       const airr::render_snapshot traced = session.wait_for(0, o.spp);

@@ -106,7 +106,7 @@ bool session_worker_and_reloads(int edits, const fs::path& dir) {
       std::lock_guard lock(scene_mutex);
       latest = s;
     }
-    if (i % 50 == 0) worker.submit_scene(s, gen, nullptr);
+    if (i % 50 == 0) worker.submit_scene(s, gen, {});
     last = s;
     const double r = rng.next_double();
     if (r < 0.02)

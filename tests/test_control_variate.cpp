@@ -179,7 +179,7 @@ TEST(ModelImage, FirstLookIsTheModelImageCoarser) {
   u.retroreflectors[0].model.type = "ideal";
   u.retroreflectors[0].model.values = {{"mu", 0.8}};
   const double expected = u.half_mirror.reflectance * u.half_mirror.transmittance * 0.8 * u.source.intensity;
-  const image_rgb flat = model_image_first_look(u, make_sheet_models(u).front(), nullptr);
+  const image_rgb flat = model_image_first_look(u, make_sheet_models(u), nullptr);
   ASSERT_EQ(flat.width, 64);
   ASSERT_EQ(flat.height, 64);
   EXPECT_NEAR(flat.at(32, 32)[1], expected, 1e-4 * expected);
@@ -192,7 +192,7 @@ TEST(ModelImage, FirstLookIsTheModelImageCoarser) {
   build_tracer_scene(ts, device, s);
   update_model_image(ts);
   ASSERT_TRUE(ts.model);
-  const image_rgb first = model_image_first_look(s, ts.retro.front(), ts.texture.get());
+  const image_rgb first = model_image_first_look(s, ts.retro, ts.texture.get());
   ASSERT_EQ(first.rgb.size(), ts.model->image.rgb.size());
   double diff2 = 0, sig2 = 0;
   for (std::size_t i = 0; i < first.rgb.size(); ++i) {

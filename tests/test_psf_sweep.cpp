@@ -149,7 +149,8 @@ TEST(Sweep, SlopeIsNegativeForThePresetsAndTheCsvHasOneRowPerPoint) {
 
     const auto rows = lines_of(read_file(csv));
     ASSERT_EQ(rows.size(), 4u) << read_file(csv);
-    EXPECT_EQ(rows[0], "floating_distance_mm,tilt_deg,mean_mtf_0_1,mtf50_lp_per_mm,r50_mm");
+    EXPECT_EQ(rows[0],
+              "floating_distance_mm,tilt_deg,mean_mtf_0_1,mtf50_lp_per_mm,r50_mm,brightness,brightness_sheet_0");
     double previous_r50 = 0;
     for (std::size_t i = 1; i < rows.size(); ++i) {
       double d = 0, tilt = 0, mean = 0, m50 = 0, r50 = 0;

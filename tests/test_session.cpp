@@ -6,7 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "airr/layout/sheet_models.hpp"
-#include "airr/render/model_image.hpp"
+#include "airr/render/layout_model_image.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -130,7 +130,7 @@ TEST(Session, ModelImageFirstLookComesFirstThenTheTracer) {
   EXPECT_TRUE(first.preview);
   EXPECT_EQ(first.spp, 0u);
   EXPECT_GT(first.edit_seconds, 0.0);
-  const image_rgb expected = model_image_first_look(b, make_sheet_models(b).front(), nullptr);
+  const image_rgb expected = model_image_first_look(b, make_sheet_models(b), nullptr);
   EXPECT_TRUE(*first.rgb == expected.rgb);
   // Resumed, traced samples replace it.
   session.set_paused(false);

@@ -52,17 +52,21 @@ model_image_params model_image_params::first_look() {
   return p;
 }
 
-std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shared_ptr<const retro_model> model,
-                                                       const image_rgb* display, const model_image_params& p,
-                                                       const std::atomic<bool>* cancel) {
+void check_model_image_params(const model_image_params& p) {
   if (p.angle_bins < 1 || p.angle_bins > 64 || p.psf_samples < 1000 || p.max_texels < 16 || p.max_texels > 4096 ||
       p.texel_refine < 1 || p.texel_refine > 4 || !(p.core_radius_mm > 0) || p.tail_texels < 4 ||
       !(p.kernel_radius_mm >= p.core_radius_mm) || p.path_stride < 1 || p.path_stride > 64 || p.threads < 0) {
     throw input_error("model image: parameters out of range");
   }
-  if (s.retroreflectors.empty() || !model) return nullptr;
+}
+
+std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shared_ptr<const retro_model> model,
+                                                       const image_rgb* display, const model_image_params& p,
+                                                       const std::atomic<bool>* cancel, std::size_t sheet) {
+  check_model_image_params(p);
+  if (sheet >= s.retroreflectors.size() || !model) return nullptr;
   const auto t0 = std::chrono::steady_clock::now();
-  const ideal_parts parts(s);
+  const ideal_parts parts(s, sheet);
   const int w = parts.cam.width, h = parts.cam.height;
   std::shared_ptr<const emission_profile> emission;
   if (!s.source.emission_profile.empty()) {
@@ -71,6 +75,7 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
 
   auto m = std::make_shared<model_image>();
   m->model = std::move(model);
+  m->sheet = sheet;
   m->hm_factor = s.half_mirror.reflectance * s.half_mirror.transmittance;
   // The grids' kernels stay within about 384 (fine) and 320 (tail) nodes of reach, however small
   // the display: no finer grid than that pays.
@@ -129,7 +134,7 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
     const auto down = trace_ideal(parts, bx, by + 0.5), up = trace_ideal(parts, bx, by - 0.5);
     model_bin b;
     b.theta_deg = centre->theta_deg;
-    b.chief = chief_ray_through(s, centre->aerial);
+    b.chief = chief_ray_through(s, centre->aerial, sheet);
     b.sampler = m->model->at_incidence(b.chief.wi);
     if (right && left && down && up) {
       b.jitter_mm = glm::dmat2(right->display - left->display, down->display - up->display);
@@ -170,27 +175,6 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
   for (std::size_t i = 0; i < m->image.rgb.size(); ++i) m->image.rgb[i] += shares[1].rgb[i];
   m->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return m;
-}
-
-image_rgb model_image_first_look(const scene& s, std::shared_ptr<const retro_model> model, const image_rgb* display,
-                                 const std::atomic<bool>* cancel) {
-  const int w = s.observer.width, h = s.observer.height;
-  int f = 4;
-  while (f > 1 && (w % f != 0 || h % f != 0 || std::min(w, h) / f < 128)) f /= 2;
-  scene small = s;
-  small.observer.width = w / f;
-  small.observer.height = h / f;
-  const auto m = compute_model_image(small, std::move(model), display, model_image_params::first_look(), cancel);
-  if (!m) return {};
-  if (f == 1) return m->image;
-  image_rgb out;
-  out.width = w;
-  out.height = h;
-  out.rgb.resize(std::size_t(w) * h * 3);
-  const cv::Mat src(m->image.height, m->image.width, CV_32FC3, const_cast<float*>(m->image.rgb.data()));
-  cv::Mat dst(h, w, CV_32FC3, out.rgb.data());  // resized straight into the result
-  cv::resize(src, dst, dst.size(), 0, 0, cv::INTER_LINEAR);
-  return out;
 }
 
 }  // namespace airr

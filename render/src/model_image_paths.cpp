@@ -1,4 +1,4 @@
-// The pixels' ideal paths: camera, half mirror, first sheet straight back, display.
+// The pixels' ideal paths: camera, half mirror, a sheet straight back, display.
 #include "model_image_steps.hpp"
 
 #include <algorithm>
@@ -11,12 +11,12 @@ namespace airr::model_image_steps {
 
 std::optional<ideal_path> trace_ideal(const ideal_parts& parts, double px, double py) {
   const glm::dvec3 d = camera_direction(parts.cam, px, py);
-  const ideal_return r = follow_ideal_return(parts.hm, parts.rr, parts.src, parts.cam.position, d);
+  const ideal_return r = follow_ideal_return(parts.hm, parts.rr, parts.src, parts.cam.position, d, parts.by_reflection);
   if (r.failed != ideal_return::step::none) return std::nullopt;
   if (glm::dot(r.towards_display, parts.src.n) >= 0) return std::nullopt;  // the display's back
   const auto p = hit_part(parts.aerial, parts.cam.position, d, false);
   if (!p) return std::nullopt;
-  const glm::dvec3 wi = -to_local(parts.rr, d);
+  const glm::dvec3 wi = -to_local(parts.rr, r.towards_sheet);
   return ideal_path{part_local(parts.src, r.landing), *p, r.towards_display, wi, polar_angle_deg(wi)};
 }
 

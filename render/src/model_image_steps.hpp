@@ -18,16 +18,18 @@
 
 namespace airr::model_image_steps {
 
-// The parts an ideal path meets, built once per image.
+// The parts an ideal path to one sheet meets, built once per image.
 struct ideal_parts {
   part_frame hm, rr, src, aerial;
   pinhole_camera cam;
-  explicit ideal_parts(const scene& s)
+  bool by_reflection;  // the sheet is reached by reflection in the half mirror
+  ideal_parts(const scene& s, std::size_t sheet)
       : hm(half_mirror_frame(s)),
-        rr(retroreflector_frame(s)),
+        rr(retroreflector_frame(s, sheet)),
         src(source_frame(s)),
         aerial(aerial_image_frame(s)),
-        cam(make_camera(s)) {}
+        cam(make_camera(s)),
+        by_reflection(sheet_seen_by_reflection(s, sheet)) {}
 };
 
 struct ideal_path {

@@ -84,7 +84,7 @@ std::uint64_t render_session::edit(const scene& s, retro_model_list models) {
   ++generation_;
   edit_time_ = std::chrono::steady_clock::now();
   if (params_.first_look) {
-    first_look_ = first_look_request{s, models.empty() ? nullptr : models.front(), generation_};
+    first_look_ = first_look_request{s, models, generation_};
     first_look_cancel_ = true;  // the one in progress, if any, is stale
   }
   pending_ = s;
@@ -112,9 +112,8 @@ void render_session::run_first_look() {
       const scene& s = request.layout;
       const std::string path = resolve_scene_path(s, s.source.image);
       const std::shared_ptr<const image_rgb> texture = path.empty() ? nullptr : cached_image_pixels(path);
-      std::shared_ptr<const retro_model> model = request.model;
-      if (!model && !s.retroreflectors.empty()) model = make_sheet_models(s).front();
-      if (model) image = model_image_first_look(s, model, texture.get(), &first_look_cancel_);
+      const retro_model_list models = request.models.empty() ? make_sheet_models(s) : request.models;
+      image = model_image_first_look(s, models, texture.get(), &first_look_cancel_);
     } catch (const std::exception&) {
       // The tracer's worker reports what is wrong with the edit; its coarse preview serves.
     }

@@ -74,12 +74,9 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
 void update_model_image(tracer_scene& ts, const std::atomic<bool>* cancel, bool quick) {
   ts.model.reset();
   if (!ts.use_model_image || ts.retro.empty()) return;
-  try {
-    ts.model = compute_model_image(ts.layout, ts.retro.front(), ts.texture.get(),
-                                   model_image_params::for_image(ts.camera.width, ts.camera.height, quick), cancel);
-  } catch (const input_error&) {
-    // A chief ray grazing a part's edge: the plain estimator serves.
-  }
+  ts.model =
+      compute_layout_model_image(ts.layout, ts.retro, ts.texture.get(),
+                                 model_image_params::for_image(ts.camera.width, ts.camera.height, quick), cancel);
 }
 
 // Bilinear lookup; local (x, y) in mm from the source centre, image top towards +v. The bezel
@@ -118,6 +115,9 @@ struct path_state {
   int retroreflections = 0;
   int mirror_reflections = 0;
   int prop_scatterings = 0;
+  // Each branch split off before any retroreflection takes the sample's first-retroreflection
+  // numbers at its first sheet, as the control variate predicts every sheet with them.
+  bool first_retro_used = false;
 };
 
 image_component component_of(const path_state& p) {
@@ -228,7 +228,6 @@ static bool scatter_at_prop(const tracer_scene::prop& prop, const RTCRayHit& rh,
 static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, const camera_ray& first,
                                      const RTCRayHit* first_hit, std::uint64_t& rays) {
   pcg32& rng = n.rng;
-  bool first_retro = true;
   const auto& hm = ts.layout.half_mirror;
   const double hm_total = hm.reflectance + hm.transmittance;
 
@@ -292,8 +291,8 @@ static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, c
       if (cos_n >= 0) break;
       const glm::dvec3 wi = -to_local(f, p.dir);
       retro_samples u = n.first_retro;
-      if (first_retro) {
-        first_retro = false;
+      if (!p.first_retro_used) {
+        p.first_retro_used = true;
       } else {
         u.lobe = {rng.next_double(), rng.next_double()};
         u.shift = {rng.next_double(), rng.next_double()};

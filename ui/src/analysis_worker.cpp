@@ -23,14 +23,14 @@ static double ms_since(clock_type::time_point t0) {
 }
 
 predicted_plots compute_predicted(const scene& s, std::uint64_t generation, const predicted_params& p,
-                                  std::shared_ptr<const retro_model> model) {
+                                  retro_model_list models) {
   predicted_plots out;
   out.generation = generation;
   try {
     const auto t0 = clock_type::now();
-    if (!model) model = make_sheet_model(s);
+    if (models.empty()) models = make_sheet_models(s);
     const double pixel_mm = make_camera(s).mm_per_pixel;
-    const psf_samples psf = scene_psf(s, *model, p.psf_samples);
+    const psf_samples psf = scene_psf(s, models, p.psf_samples);
     const auto curve = analysis::psf_mtf(psf, {.max_lp_per_mm = 2.0, .points = 41, .pixel_mm = pixel_mm});
     out.lp_per_mm = curve.lp_per_mm;
     out.mtf = curve.mtf;
@@ -62,7 +62,7 @@ predicted_plots compute_predicted(const scene& s, std::uint64_t generation, cons
       set_floating_distance(sd, d);
       try {
         // Built again at each D: a per-render lookup follows the sheet's chief ray there.
-        const psf_samples pd = scene_psf(sd, *make_sheet_model(sd), p.sweep_psf_samples);
+        const psf_samples pd = scene_psf(sd, make_sheet_models(sd), p.sweep_psf_samples);
         out.sweep_mean_mtf.push_back(psf_route_mtf(pd, make_camera(sd).mm_per_pixel).mean_mtf);
         out.sweep_d_mm.push_back(d);
       } catch (const std::exception&) {
@@ -149,9 +149,9 @@ analysis_worker::~analysis_worker() {
   worker_.join();
 }
 
-void analysis_worker::submit_scene(const scene& s, std::uint64_t generation, std::shared_ptr<const retro_model> model) {
+void analysis_worker::submit_scene(const scene& s, std::uint64_t generation, retro_model_list models) {
   std::lock_guard lock(mutex_);
-  pending_scene_ = scene_request{s, generation, std::move(model)};
+  pending_scene_ = scene_request{s, generation, std::move(models)};
   changed_.notify_all();
 }
 
@@ -189,7 +189,7 @@ void analysis_worker::run() {
       pending_scene_.reset();
       lock.unlock();
       auto result = std::make_shared<const predicted_plots>(
-          compute_predicted(request.layout, request.generation, {}, std::move(request.model)));
+          compute_predicted(request.layout, request.generation, {}, std::move(request.models)));
       lock.lock();
       predicted_ = std::move(result);
     } else {

@@ -61,7 +61,7 @@ void studio_start(studio& st, const scene& s, const std::string& path) {
   } else {
     st.generation = st.session->edit(s);
   }
-  st.analysis.submit_scene(s, st.generation, nullptr);
+  st.analysis.submit_scene(s, st.generation, {});
   st.view.uploaded_generation = ~0ull;
   if (!st.doc_path.empty()) add_recent_file(st.settings, st.doc_path);
 }
@@ -77,7 +77,7 @@ void studio_apply_edits(studio& st, double now) {
     keep_prop_meshes(st, st.doc);
     st.doc_error.clear();
     st.generation = st.session->edit(st.doc, models);
-    st.analysis.submit_scene(st.doc, st.generation, models.front());
+    st.analysis.submit_scene(st.doc, st.generation, models);
     st.edit_time = now;
   } catch (const std::exception& e) {
     st.doc_error = e.what();

@@ -120,8 +120,7 @@ class sheet_fitter {
 
   psf_samples psf(double tilt, double distance, double a, double c) {
     const scene s = fit_scene(d_.setup, tilt, distance, a, c, 1.0);
-    const auto model = make_sheet_model(s);
-    psf_samples out = sample_psf(s, *model, {.samples = p_.psf_samples, .seed = p_.seed});
+    psf_samples out = sample_psf(s, make_sheet_models(s), {.samples = p_.psf_samples, .seed = p_.seed});
     ++simulations_;
     meter_.add(1);
     return out;
@@ -214,16 +213,19 @@ scene fit_scene(const scene& setup, double tilt_deg, double floating_distance_mm
   scene s = setup;
   s.sheet().pose.pitch_deg = tilt_deg;
   airr::set_floating_distance(s, floating_distance_mm);
-  auto& m = s.sheet().model;
-  m = {.type = "sinc_shift", .values = {}};
-  // The setup's angle lookup carries over (at the image centre, where the fit's PSF is taken, both
-  // lookups see the chief ray's angle).
-  if (setup.sheet().model.type == "sinc_shift")
-    set_model_value(m, "lookup", read_model_values(setup.sheet().model).text("lookup"));
-  set_model_value(m, "reference_distance_mm", reference_distance(setup));
-  set_model_value(m, "a_per_mm", a_per_mm);
-  set_model_value(m, "c_mm", c_mm);
-  set_model_value(m, "mu", mu);
+  const double r_mm = reference_distance(setup);
+  for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) {
+    auto& m = s.retroreflectors[i].model;
+    m = {.type = "sinc_shift", .values = {}};
+    // The setup's angle lookup carries over (at the image centre, where the fit's PSF is taken,
+    // both lookups see the chief ray's angle).
+    const retro_model_params& was = setup.retroreflectors[i].model;
+    if (was.type == "sinc_shift") set_model_value(m, "lookup", read_model_values(was).text("lookup"));
+    set_model_value(m, "reference_distance_mm", r_mm);
+    set_model_value(m, "a_per_mm", a_per_mm);
+    set_model_value(m, "c_mm", c_mm);
+    set_model_value(m, "mu", mu);
+  }
   return s;
 }
 

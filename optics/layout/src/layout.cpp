@@ -99,11 +99,15 @@ part_frame aerial_image_frame(const scene& s) {
 
 glm::dvec3 aerial_image_center(const scene& s) { return aerial_image_frame(s).center; }
 
-double sheet_chief_incidence_deg(const scene& s, std::size_t sheet) {
+bool sheet_seen_by_reflection(const scene& s, std::size_t sheet) {
   const part_frame hm = half_mirror_frame(s), rr = retroreflector_frame(s, sheet);
   const glm::dvec3 display = source_frame(s).center;
-  const bool display_side = glm::dot(rr.center - hm.center, hm.n) * glm::dot(display - hm.center, hm.n) > 0;
-  const glm::dvec3 from = display_side ? aerial_image_center(s) : display;
+  return glm::dot(rr.center - hm.center, hm.n) * glm::dot(display - hm.center, hm.n) <= 0;
+}
+
+double sheet_chief_incidence_deg(const scene& s, std::size_t sheet) {
+  const part_frame rr = retroreflector_frame(s, sheet);
+  const glm::dvec3 from = sheet_seen_by_reflection(s, sheet) ? source_frame(s).center : aerial_image_center(s);
   return polar_angle_deg(to_local(rr, glm::normalize(from - rr.center)));
 }
 

@@ -20,45 +20,50 @@ double psf_samples::brightness() const {
   return launched ? sum / double(launched) : 0.0;
 }
 
-psf_samples sample_psf(const scene& s, const retro_model& model, const psf_params& p) {
-  return sample_psf(s, model, p, aerial_image_center(s));
-}
-
 ideal_return follow_ideal_return(const part_frame& hm, const part_frame& rr, const part_frame& src,
-                                 const glm::dvec3& origin, const glm::dvec3& dir) {
+                                 const glm::dvec3& origin, const glm::dvec3& dir, bool by_reflection) {
   ideal_return r;
   const auto p1 = hit_part(hm, origin, dir);
   if (!p1) return r.failed = ideal_return::step::half_mirror, r;
-  const auto p2 = hit_part(rr, *p1, dir);
-  if (!p2 || glm::dot(dir, rr.n) >= 0) return r.failed = ideal_return::step::sheet_front, r;
+  r.towards_sheet = by_reflection ? reflect(dir, hm.n) : dir;
+  const auto p2 = hit_part(rr, *p1, r.towards_sheet);
+  if (!p2 || glm::dot(r.towards_sheet, rr.n) >= 0) return r.failed = ideal_return::step::sheet_front, r;
   r.sheet_point = *p2;
+  // Either way the returning ray leaves the half mirror as the camera ray's mirror image: the
+  // display is the aerial image's.
   r.towards_display = reflect(-dir, hm.n);
-  const auto q1 = hit_part(hm, *p2, -dir);
+  const auto q1 = hit_part(hm, *p2, -r.towards_sheet);
   const auto q2 = q1 ? hit_part(src, *q1, r.towards_display, false) : std::nullopt;
   if (!q2) return r.failed = ideal_return::step::display_plane, r;
   r.landing = *q2;
   return r;
 }
 
-psf_chief_ray chief_ray_through(const scene& s, const glm::dvec3& aerial_point) {
-  psf_chief_ray c{half_mirror_frame(s), retroreflector_frame(s), source_frame(s)};
+psf_chief_ray chief_ray_through(const scene& s, const glm::dvec3& aerial_point, std::size_t sheet) {
+  psf_chief_ray c{half_mirror_frame(s), retroreflector_frame(s, sheet), source_frame(s)};
+  c.sheet = sheet;
+  c.by_reflection = sheet_seen_by_reflection(s, sheet);
   const pinhole_camera cam = make_camera(s);
   const glm::dvec3 d0 = glm::normalize(aerial_point - cam.position);
-  const ideal_return r = follow_ideal_return(c.hm, c.rr, c.src, cam.position, d0);
+  const ideal_return r = follow_ideal_return(c.hm, c.rr, c.src, cam.position, d0, c.by_reflection);
+  const std::string where = "psf: retroreflectors[" + std::to_string(sheet) + "]: ";
   switch (r.failed) {
     case ideal_return::step::half_mirror:
-      throw input_error("psf: the camera ray through the aerial image misses the half mirror");
+      throw input_error(where + "the camera ray through the aerial image misses the half mirror");
     case ideal_return::step::sheet_front:
-      throw input_error("psf: the camera ray misses the retroreflector's front");
+      throw input_error(where + std::string("the camera ray ") + (c.by_reflection ? "mirrored by" : "through") +
+                        " the half mirror misses the sheet's front");
     case ideal_return::step::display_plane:
-      throw input_error("psf: the retroreflected chief ray misses the source plane");
+      throw input_error(where + "the retroreflected chief ray misses the source plane");
     case ideal_return::step::none:
       break;
   }
   c.sheet_point = r.sheet_point;
   c.ideal = r.landing;
-  c.wi = -to_local(c.rr, d0);
-  c.rr_distance_mm = glm::length(r.sheet_point - aerial_point);
+  c.wi = -to_local(c.rr, r.towards_sheet);
+  // Along the path: straight on through the half mirror, or folded at it.
+  const glm::dvec3 fold = c.by_reflection ? *hit_part(c.hm, cam.position, d0) : aerial_point;
+  c.rr_distance_mm = glm::length(r.sheet_point - fold) + glm::length(fold - aerial_point);
   return c;
 }
 
@@ -67,23 +72,17 @@ std::optional<glm::dvec3> psf_landing_offset(const psf_chief_ray& c, const retro
   const glm::dvec3 origin = c.sheet_point + rs.shift_mm.x * c.rr.u + rs.shift_mm.y * c.rr.v;
   const auto at_hm = hit_part(c.hm, origin, dir);
   if (!at_hm) return std::nullopt;
-  const auto at_source = hit_part(c.src, *at_hm, reflect(dir, c.hm.n), false);
+  const auto at_source = hit_part(c.src, *at_hm, c.by_reflection ? dir : reflect(dir, c.hm.n), false);
   if (!at_source) return std::nullopt;
   return *at_source - c.ideal;
 }
 
-psf_samples sample_psf(const scene& s, const retro_model& model, const psf_params& p, const glm::dvec3& aerial_point) {
-  const psf_chief_ray chief = chief_ray_through(s, aerial_point);
+// Samples one sheet through its chief ray into `out` (which keeps what it holds); returns the
+// sheet's brightness.
+static double add_sheet_samples(const psf_chief_ray& chief, const retro_model& model, const psf_params& p,
+                                double hm_factor, psf_samples& out) {
   const part_frame& src = chief.src;
-  psf_samples out;
-  out.launched = p.samples;
-  out.rr_distance_mm = chief.rr_distance_mm;
   const glm::dvec3 wi = chief.wi;
-  out.incidence_deg = polar_angle_deg(wi);
-  out.offset_mm.reserve(p.samples);
-  out.weight.reserve(p.samples);
-  const double hm_factor = s.half_mirror.reflectance * s.half_mirror.transmittance;
-
   std::array<double, 6> rotation;
   pcg32 rotation_rng = sample_rng(0, 0, p.seed ^ 0x5eedu);
   for (double& r : rotation) r = rotation_rng.next_double();
@@ -115,11 +114,81 @@ psf_samples sample_psf(const scene& s, const retro_model& model, const psf_param
       part.weight.push_back(rs.weight * hm_factor);
     }
   });
+  double sum = 0;
   for (const psf_samples& part : parts) {
     out.offset_mm.insert(out.offset_mm.end(), part.offset_mm.begin(), part.offset_mm.end());
     out.weight.insert(out.weight.end(), part.weight.begin(), part.weight.end());
+    for (double w : part.weight) sum += w;
   }
+  return p.samples ? sum / double(p.samples) : 0.0;
+}
+
+static psf_sheet_share share_of(const psf_chief_ray& c, double brightness) {
+  return {.sheet = c.sheet,
+          .brightness = brightness,
+          .by_reflection = c.by_reflection,
+          .rr_distance_mm = c.rr_distance_mm,
+          .incidence_deg = polar_angle_deg(c.wi),
+          .missed = {}};
+}
+
+psf_samples sample_sheet_psf(const scene& s, std::size_t sheet, const retro_model& model, const psf_params& p,
+                             const glm::dvec3& aerial_point) {
+  const psf_chief_ray chief = chief_ray_through(s, aerial_point, sheet);
+  psf_samples out;
+  out.launched = p.samples;
+  out.rr_distance_mm = chief.rr_distance_mm;
+  out.incidence_deg = polar_angle_deg(chief.wi);
+  out.offset_mm.reserve(p.samples);
+  out.weight.reserve(p.samples);
+  const double brightness =
+      add_sheet_samples(chief, model, p, s.half_mirror.reflectance * s.half_mirror.transmittance, out);
+  out.sheets.push_back(share_of(chief, brightness));
   return out;
+}
+
+psf_samples sample_psf(const scene& s, const retro_model_list& models, const psf_params& p,
+                       const glm::dvec3& aerial_point) {
+  if (models.size() != s.retroreflectors.size() || s.retroreflectors.empty()) {
+    throw input_error("psf: " + std::to_string(models.size()) + " models for " +
+                      std::to_string(s.retroreflectors.size()) + " sheets");
+  }
+  psf_samples out;
+  out.launched = p.samples;
+  std::string first_error;
+  bool reached = false;
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    std::optional<psf_chief_ray> chief;
+    try {
+      chief = chief_ray_through(s, aerial_point, i);
+    } catch (const input_error& e) {
+      if (first_error.empty()) first_error = e.what();
+      out.sheets.push_back({.sheet = i, .missed = e.what()});
+      continue;
+    }
+    if (!reached) {
+      out.rr_distance_mm = chief->rr_distance_mm;
+      out.incidence_deg = polar_angle_deg(chief->wi);
+      reached = true;
+    }
+    const double brightness =
+        add_sheet_samples(*chief, *models[i], p, s.half_mirror.reflectance * s.half_mirror.transmittance, out);
+    out.sheets.push_back(share_of(*chief, brightness));
+  }
+  if (!reached) throw input_error(first_error);
+  return out;
+}
+
+psf_samples sample_psf(const scene& s, const retro_model_list& models, const psf_params& p) {
+  return sample_psf(s, models, p, aerial_image_center(s));
+}
+
+psf_samples sample_psf(const scene& s, const retro_model& model, const psf_params& p, const glm::dvec3& aerial_point) {
+  return sample_sheet_psf(s, 0, model, p, aerial_point);
+}
+
+psf_samples sample_psf(const scene& s, const retro_model& model, const psf_params& p) {
+  return sample_sheet_psf(s, 0, model, p, aerial_image_center(s));
 }
 
 double energy_radius(const psf_samples& psf, double fraction) {

@@ -15,10 +15,10 @@
 
 namespace airr {
 
-psf_samples scene_psf(const scene& s, std::uint64_t samples) { return scene_psf(s, *make_sheet_model(s), samples); }
+psf_samples scene_psf(const scene& s, std::uint64_t samples) { return scene_psf(s, make_sheet_models(s), samples); }
 
-psf_samples scene_psf(const scene& s, const retro_model& model, std::uint64_t samples) {
-  return sample_psf(s, model, {.samples = samples, .seed = s.seed});
+psf_samples scene_psf(const scene& s, const retro_model_list& models, std::uint64_t samples) {
+  return sample_psf(s, models, {.samples = samples, .seed = s.seed});
 }
 
 mtf_summary psf_route_mtf(const psf_samples& psf, double pixel_mm) {

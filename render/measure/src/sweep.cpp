@@ -126,6 +126,8 @@ sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_pro
 
     const psf_samples psf = scene_psf(s, p.psf_samples);
     pt.r50_mm = energy_radius(psf);
+    pt.brightness = psf.brightness();
+    for (const psf_sheet_share& share : psf.sheets) pt.sheet_brightness.push_back(share.brightness);
     mtf_summary m;
     if (p.psf_route) {
       m = psf_route_mtf(psf, make_camera(s).mm_per_pixel);
@@ -173,10 +175,16 @@ sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_pro
 }
 
 std::string sweep_csv(const sweep_result& r) {
-  std::string out = "floating_distance_mm,tilt_deg,mean_mtf_0_1,mtf50_lp_per_mm,r50_mm\n";
+  const std::size_t sheets = r.points.empty() ? 0 : r.points.front().sheet_brightness.size();
+  std::string out = "floating_distance_mm,tilt_deg,mean_mtf_0_1,mtf50_lp_per_mm,r50_mm,brightness";
+  for (std::size_t i = 0; i < sheets; ++i) out += ",brightness_sheet_" + std::to_string(i);
+  out += "\n";
   for (const auto& pt : r.points) {
     out += number(pt.floating_distance_mm) + "," + number(pt.tilt_deg) + "," + number(pt.mean_mtf) + "," +
-           (pt.mtf50_lp_per_mm ? number(*pt.mtf50_lp_per_mm) : "") + "," + number(pt.r50_mm) + "\n";
+           (pt.mtf50_lp_per_mm ? number(*pt.mtf50_lp_per_mm) : "") + "," + number(pt.r50_mm) + "," +
+           number(pt.brightness);
+    for (std::size_t i = 0; i < sheets; ++i) out += "," + number(pt.sheet_brightness.at(i));
+    out += "\n";
   }
   return out;
 }

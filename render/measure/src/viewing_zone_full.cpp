@@ -117,7 +117,6 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
   out.stray_ratio.assign(n, nan);
   out.direct.assign(n, nan);
   const viewing_parts parts(s, scene_prop_hits(s));
-  const std::shared_ptr<const retro_model> model = make_sheet_model(s);
   embree_device device;
   tracer_scene ts;
   ts.use_model_image = false;  // a few spp per eye: the model image would cost more than it saves
@@ -144,7 +143,7 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
       out.stray_ratio[e] = r.aerial > 0 ? r.stray / r.aerial : nan;
       best = std::max(best, r.aerial);
       try {
-        out.mean_mtf[e] = psf_route_mtf(scene_psf(eye, *model, p.psf_samples), 0.0).mean_mtf;
+        out.mean_mtf[e] = psf_route_mtf(scene_psf(eye, ts.retro, p.psf_samples), 0.0).mean_mtf;
       } catch (const input_error&) {
         // The chief ray through the aerial image's centre misses a part from here.
       }

@@ -1,8 +1,9 @@
 #pragma once
 // The noise-free model image (spec section 8) and its use as the tracer's control variate.
 //
-// Where no aperture cuts the light, the aerial image is the mirrored display seen through the
-// first sheet's PSF at the incidence angle of each image point. The PSF is sampled at a few
+// Where no aperture cuts the light, one sheet's share of the aerial image is the mirrored display
+// seen through that sheet's PSF at the incidence angle of each image point (layout_model_image.hpp
+// adds the sheets up). The PSF is sampled at a few
 // incidence angles across the image (angle bins) as offsets on the display's texel grid (the pixel's
 // own extent included), the display's radiance is convolved with each, and every pixel mixes the
 // two bins around its own angle.
@@ -13,6 +14,7 @@
 // from the scene's seed), so the tracer estimates only the difference between each true path and
 // its prediction, which is small wherever the model holds.
 #include <atomic>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -70,7 +72,7 @@ struct model_bin {
   glm::dmat2 jitter_mm{0.0};  // display-plane offset (u, v) per unit of pixel jitter (columns: x, y)
 };
 
-// A pixel's ideal path: camera -> half mirror -> first sheet -> straight back -> display.
+// A pixel's ideal path: camera -> half mirror -> the sheet -> straight back -> display.
 struct model_pixel {
   bool ok = false;       // false: the ideal path misses a part; the model predicts nothing here
   glm::dvec2 node[2]{};  // where it lands, in each padded grid's node coordinates
@@ -87,22 +89,22 @@ struct model_image {
   model_grid grids[2];
   double hm_factor = 0;  // R x T of the half mirror, once each way
   std::shared_ptr<const retro_model> model;
+  std::size_t sheet = 0;     // the scene's sheet this is the share of
   double seconds = 0;        // to compute
   double paths_seconds = 0;  // of which: the pixels' ideal paths
 };
 
-// Null when the layout has no ideal path at all (no sheet, or no pixel sees one), or when `cancel`
-// is set while it runs. `display` is the display's texture (null: uniform); the scene's intensity
-// is applied here. Throws input_error for parameters out of range.
+// Throws input_error when a parameter is out of range.
+void check_model_image_params(const model_image_params& p);
+
+// Sheet `sheet`'s model image (`model` is that sheet's). Null when no pixel has an ideal path to
+// the sheet (or there is no such sheet), or when `cancel` is set while it runs. `display` is the
+// display's texture (null: uniform); the scene's intensity is applied here. Throws input_error for
+// parameters out of range, or when a bin's chief ray grazes a part's edge.
 std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shared_ptr<const retro_model> model,
                                                        const image_rgb* display, const model_image_params& p = {},
-                                                       const std::atomic<bool>* cancel = nullptr);
-
-// The designer's first look after an edit: the model image at first_look() settings, computed on
-// a camera with up to 4 times fewer pixels a side, but at least 128 (its display grid is coarser
-// than that anyway), and scaled up to the scene's size. Empty when there is no model image or `cancel` was set.
-image_rgb model_image_first_look(const scene& s, std::shared_ptr<const retro_model> model, const image_rgb* display,
-                                 const std::atomic<bool>* cancel = nullptr);
+                                                       const std::atomic<bool>* cancel = nullptr,
+                                                       std::size_t sheet = 0);
 
 // The model's prediction for one tracer sample of pixel (px, py), from its pixel jitter in
 // [0, 1)^2 and its first retroreflection's samples: the same numbers sent through both of the

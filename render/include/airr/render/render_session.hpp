@@ -121,7 +121,7 @@ class render_session {
   std::chrono::steady_clock::time_point edit_time_ = std::chrono::steady_clock::now();
   struct first_look_request {
     scene layout;
-    std::shared_ptr<const retro_model> model;
+    retro_model_list models;
     std::uint64_t generation;
   };
   std::optional<first_look_request> first_look_;  // the latest edit's, not yet taken

@@ -16,7 +16,7 @@
 #include "airr/models/emission_profile.hpp"
 #include "airr/models/retro_model.hpp"
 #include "airr/render/embree_scene.hpp"
-#include "airr/render/model_image.hpp"
+#include "airr/render/layout_model_image.hpp"
 
 namespace airr {
 
@@ -41,7 +41,7 @@ struct tracer_scene {
   // The model image, the control variate of every pixel's estimate (null: none, the plain
   // estimator); see update_model_image.
   bool use_model_image = true;
-  std::shared_ptr<const model_image> model;
+  std::shared_ptr<const layout_model_image> model;
 };
 
 // Builds (or, given the previous state, updates in place: meshes and textures are reused when
@@ -49,8 +49,8 @@ struct tracer_scene {
 // given, are the sheets' retroreflector models already built; otherwise they are built here.
 void build_tracer_scene(tracer_scene& ts, const embree_device& device, const scene& s, retro_model_list models = {});
 
-// Computes the model image for the built layout (or leaves none when use_model_image is off or
-// no pixel sees the first sheet, or `cancel` is set while it runs), at
+// Computes the model image of every sheet of the built layout (or leaves none when
+// use_model_image is off or no pixel sees a sheet, or `cancel` is set while it runs), at
 // model_image_params::for_image(width, height, quick). Building clears it: it takes longer than
 // the rest (about 4 s at 512 x 512, 1.4 s quick), so the session shows its previews first.
 void update_model_image(tracer_scene& ts, const std::atomic<bool>* cancel = nullptr, bool quick = false);

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "airr/layout/scene.hpp"
+#include "airr/layout/sheet_models.hpp"
 #include "airr/layout/viewing_zone.hpp"
 #include "airr/models/retro_model.hpp"
 #include "airr/render/render_session.hpp"
@@ -65,8 +66,8 @@ class analysis_worker {
   analysis_worker(const analysis_worker&) = delete;
   analysis_worker& operator=(const analysis_worker&) = delete;
 
-  // `model` is the scene's retroreflector model when the caller has built it (else built here).
-  void submit_scene(const scene& s, std::uint64_t generation, std::shared_ptr<const retro_model> model);
+  // `models` are the scene's sheets' models when the caller has built them (else built here).
+  void submit_scene(const scene& s, std::uint64_t generation, retro_model_list models);
   void submit_render(const render_snapshot& snap, const scene& s);
   std::shared_ptr<const predicted_plots> predicted() const;
   std::shared_ptr<const measured_plots> measured() const;
@@ -81,7 +82,7 @@ class analysis_worker {
   struct scene_request {
     scene layout;
     std::uint64_t generation = 0;
-    std::shared_ptr<const retro_model> model;
+    retro_model_list models;
   };
   std::optional<scene_request> pending_scene_;
   std::optional<std::pair<render_snapshot, scene>> pending_render_;
@@ -95,7 +96,7 @@ class analysis_worker {
 // Computes the predicted plots synchronously (what the worker does for one scene), with the
 // measurement library's functions, so the numbers equal those of `airr psf` and `airr sweep --psf`.
 predicted_plots compute_predicted(const scene& s, std::uint64_t generation, const predicted_params& p = {},
-                                  std::shared_ptr<const retro_model> model = nullptr);
+                                  retro_model_list models = {});
 // Measures the slanted-edge MTF in the render, trying the source's regions in turn.
 measured_plots measure_render_mtf(const render_snapshot& snap, const scene& s);
 

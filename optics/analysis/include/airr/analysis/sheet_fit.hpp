@@ -49,8 +49,10 @@ using fit_progress_callback = std::function<bool(const fit_progress&)>;
 // `progress` may be empty. Throws input_error for data the model cannot simulate, fit_cancelled.
 fit_result fit_sheet(const fit_data& data, const fit_params& p, const fit_progress_callback& progress);
 
-// The scene a measurement is simulated in: the setup at `tilt_deg` and `floating_distance_mm`
-// with the sinc-shift model set to scalar a, c, mu (the setup's shift table and R are kept).
+// The scene a measurement is simulated in: the setup at `tilt_deg` (the first sheet's) and
+// `floating_distance_mm` with every sheet's model set to the sinc-shift model of scalar a, c, mu:
+// a device's sheets are cut from the one material being fitted, each reached by its own path (the
+// setup's shift table, R and each sheet's angle lookup are kept).
 scene fit_scene(const scene& setup, double tilt_deg, double floating_distance_mm, double a_per_mm, double c_mm,
                 double mu);
 

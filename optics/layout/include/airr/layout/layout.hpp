@@ -33,6 +33,11 @@ part_frame retroreflector_frame(const scene& s, std::size_t sheet = 0);
 part_frame aerial_image_frame(const scene& s);
 glm::dvec3 aerial_image_center(const scene& s);
 
+// Whether the observer's ideal path reaches sheet i by reflection in the half mirror: the sheet
+// is across the half mirror from the display, so the display's light reaches it through the
+// mirror (and comes back to the aerial image by reflection). Otherwise the path passes through.
+bool sheet_seen_by_reflection(const scene& s, std::size_t sheet = 0);
+
 // The incidence angle (degrees) at sheet i's centre of the light from the display's centre: from
 // the aerial image's centre (the display's mirror image) when the sheet is on the display's side of
 // the half mirror (light reaches it by reflection), from the display's centre when it is on the

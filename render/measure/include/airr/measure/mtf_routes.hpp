@@ -9,6 +9,7 @@
 
 #include "airr/layout/psf.hpp"
 #include "airr/layout/scene.hpp"
+#include "airr/layout/sheet_models.hpp"
 #include "airr/models/retro_model.hpp"
 #include "airr/render/render_session.hpp"
 
@@ -20,10 +21,10 @@ struct mtf_summary {
   double mm_per_pixel = 0;                // the pixel whose aperture is included; 0: none
 };
 
-// The model PSF of the scene's retroreflector at the aerial-image centre (seeded by the scene);
-// the second form takes the model already built for the scene.
+// The model PSF of every sheet of the scene at the aerial-image centre (seeded by the scene; see
+// sample_psf); the second form takes the sheets' models already built for the scene.
 psf_samples scene_psf(const scene& s, std::uint64_t samples);
-psf_samples scene_psf(const scene& s, const retro_model& model, std::uint64_t samples);
+psf_samples scene_psf(const scene& s, const retro_model_list& models, std::uint64_t samples);
 
 // MTF of a sampled PSF times a square pixel's aperture (pixel_mm = 0: the optics alone).
 mtf_summary psf_route_mtf(const psf_samples& psf, double pixel_mm);

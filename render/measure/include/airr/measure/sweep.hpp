@@ -39,6 +39,8 @@ struct sweep_point {
   double mean_mtf = 0;                    // over (0, 1] lp/mm, with the camera pixel's aperture
   std::optional<double> mtf50_lp_per_mm;  // empty when not reached
   double r50_mm = 0;                      // 50%-energy radius of the model PSF (optics alone)
+  double brightness = 0;                  // the model PSF's, every sheet together
+  std::vector<double> sheet_brightness;   // each sheet's share (0 where its chief ray misses it)
 };
 
 // Least-squares slope of mean MTF against D, per mm, at one tilt.

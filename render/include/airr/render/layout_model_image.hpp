@@ -1,0 +1,42 @@
+#pragma once
+// The model image of the whole layout: every sheet's model image (model_image.hpp), each sheet
+// reached by its own path, and their sum. The tracer's control variate predicts a sample with every
+// sheet's prediction for the same numbers, as its paths give each sheet's branch the first
+// retroreflection's numbers.
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "airr/layout/sheet_models.hpp"
+#include "airr/render/model_image.hpp"
+
+namespace airr {
+
+struct layout_model_image {
+  image_rgb image;                                         // the sum of the sheets' images
+  std::vector<std::shared_ptr<const model_image>> sheets;  // the sheets that have one
+  // The sheets without one and why ("retroreflectors[i]: ..."); their light is left to the tracer.
+  std::vector<std::string> left_out;
+  double seconds = 0;
+};
+
+// Null when no sheet has a model image, or when `cancel` is set while it runs. `models` are the
+// scene's sheets' models, in order. Throws input_error for parameters out of range.
+std::shared_ptr<const layout_model_image> compute_layout_model_image(const scene& s, const retro_model_list& models,
+                                                                     const image_rgb* display,
+                                                                     const model_image_params& p = {},
+                                                                     const std::atomic<bool>* cancel = nullptr);
+
+// The sum of the sheets' predictions for one tracer sample (see model_prediction).
+glm::vec3 model_prediction(const layout_model_image& m, int px, int py, const glm::dvec2& jitter,
+                           const retro_samples& u);
+
+// The designer's first look after an edit: the layout's model image at first_look() settings,
+// computed on a camera with up to 4 times fewer pixels a side, but at least 128 (its display grid
+// is coarser than that anyway), and scaled up to the scene's size. Empty when there is no model
+// image or `cancel` was set.
+image_rgb model_image_first_look(const scene& s, const retro_model_list& models, const image_rgb* display,
+                                 const std::atomic<bool>* cancel = nullptr);
+
+}  // namespace airr

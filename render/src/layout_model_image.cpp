@@ -1,0 +1,73 @@
+#include "airr/render/layout_model_image.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include <opencv2/imgproc.hpp>
+
+#include "airr/core/error.hpp"
+
+namespace airr {
+
+std::shared_ptr<const layout_model_image> compute_layout_model_image(const scene& s, const retro_model_list& models,
+                                                                     const image_rgb* display,
+                                                                     const model_image_params& p,
+                                                                     const std::atomic<bool>* cancel) {
+  check_model_image_params(p);
+  const auto t0 = std::chrono::steady_clock::now();
+  auto out = std::make_shared<layout_model_image>();
+  for (std::size_t i = 0; i < models.size() && i < s.retroreflectors.size(); ++i) {
+    const std::string sheet = "retroreflectors[" + std::to_string(i) + "]: ";
+    std::shared_ptr<const model_image> m;
+    try {
+      m = compute_model_image(s, models[i], display, p, cancel, i);
+    } catch (const input_error& e) {
+      out->left_out.push_back(sheet + e.what());  // a chief ray grazing a part's edge
+      continue;
+    }
+    if (cancel && cancel->load(std::memory_order_relaxed)) return nullptr;
+    if (!m) {
+      out->left_out.push_back(sheet + "no pixel has an ideal path to it");
+      continue;
+    }
+    if (out->image.rgb.empty()) {
+      out->image = m->image;
+    } else {
+      for (std::size_t k = 0; k < out->image.rgb.size(); ++k) out->image.rgb[k] += m->image.rgb[k];
+    }
+    out->sheets.push_back(std::move(m));
+  }
+  if (out->sheets.empty()) return nullptr;
+  out->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+glm::vec3 model_prediction(const layout_model_image& m, int px, int py, const glm::dvec2& jitter,
+                           const retro_samples& u) {
+  glm::vec3 sum(0.0f);
+  for (const auto& sheet : m.sheets) sum += model_prediction(*sheet, px, py, jitter, u);
+  return sum;
+}
+
+image_rgb model_image_first_look(const scene& s, const retro_model_list& models, const image_rgb* display,
+                                 const std::atomic<bool>* cancel) {
+  const int w = s.observer.width, h = s.observer.height;
+  int f = 4;
+  while (f > 1 && (w % f != 0 || h % f != 0 || std::min(w, h) / f < 128)) f /= 2;
+  scene small = s;
+  small.observer.width = w / f;
+  small.observer.height = h / f;
+  const auto m = compute_layout_model_image(small, models, display, model_image_params::first_look(), cancel);
+  if (!m) return {};
+  if (f == 1) return m->image;
+  image_rgb out;
+  out.width = w;
+  out.height = h;
+  out.rgb.resize(std::size_t(w) * h * 3);
+  const cv::Mat src(m->image.height, m->image.width, CV_32FC3, const_cast<float*>(m->image.rgb.data()));
+  cv::Mat dst(h, w, CV_32FC3, out.rgb.data());  // resized straight into the result
+  cv::resize(src, dst, dst.size(), 0, 0, cv::INTER_LINEAR);
+  return out;
+}
+
+}  // namespace airr
