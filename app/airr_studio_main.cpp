@@ -110,7 +110,9 @@ int main(int argc, char** argv) {
   try {
     std::vector<airr::scene_override> overrides;
     for (const auto& v : opt.sets) overrides.push_back(airr::parse_override(v));
-    s = airr::load_scene(path, overrides);
+    std::vector<std::string> notes;
+    s = airr::load_scene(path, overrides, notes);
+    for (const auto& line : notes) std::fprintf(stderr, "%s\n", line.c_str());
     as_saved = overrides.empty() ? s : airr::load_scene(path);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

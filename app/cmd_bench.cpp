@@ -132,7 +132,7 @@ void add_bench_command(CLI::App& app) {
       run_noise_bench(opt->noise_options);
       return;
     }
-    const airr::scene s = airr::load_scene(opt->scene_path);
+    const airr::scene s = load_scene_noting(opt->scene_path);
     airr::embree_device device;
     airr::tracer_scene ts;
     airr::build_tracer_scene(ts, device, s);

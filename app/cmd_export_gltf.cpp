@@ -23,7 +23,7 @@ void add_export_gltf_command(CLI::App& app) {
   cmd->callback([opt] {
     std::vector<airr::scene_override> overrides;
     for (const auto& s : opt->sets) overrides.push_back(airr::parse_override(s));
-    const airr::scene s = airr::load_scene(opt->scene_path, overrides);
+    const airr::scene s = load_scene_noting(opt->scene_path, overrides);
     airr::export_gltf_layout(s, opt->out);
     std::printf("wrote %s: display, half mirror, %zu retroreflector%s, %zu prop%s, observer\n", opt->out.c_str(),
                 s.retroreflectors.size(), s.retroreflectors.size() == 1 ? "" : "s", s.props.size(),

@@ -82,7 +82,7 @@ void add_psf_command(CLI::App& app) {
   cmd->callback([opt] {
     std::vector<airr::scene_override> overrides;
     for (const auto& s : opt->sets) overrides.push_back(airr::parse_override(s));
-    const airr::scene s = airr::load_scene(opt->scene_path, overrides);
+    const airr::scene s = load_scene_noting(opt->scene_path, overrides);
     const double pixel_mm = opt->no_pixel ? 0.0 : airr::make_camera(s).mm_per_pixel;
 
     const auto t0 = std::chrono::steady_clock::now();

@@ -43,7 +43,7 @@ void add_render_command(CLI::App& app) {
   cmd->callback([opt] {
     std::vector<airr::scene_override> overrides;
     for (const auto& s : opt->sets) overrides.push_back(airr::parse_override(s));
-    airr::scene s = airr::load_scene(opt->scene_path, overrides);
+    airr::scene s = load_scene_noting(opt->scene_path, overrides);
     if (opt->seed) s.seed = *opt->seed;
     const bool split = opt->components || !opt->component.empty();
     if (opt->components && !opt->out.ends_with(".exr")) {
@@ -80,9 +80,10 @@ void add_render_command(CLI::App& app) {
     const glm::dvec3 aerial = airr::aerial_image_center(s);
     const airr::pinhole_camera cam = airr::make_camera(s);
     std::fprintf(stderr,
-                 "floating distance D %.6g mm; aerial image centred at (%.6g, %.6g, %.6g) mm; observer at (%.6g, %.6g, "
-                 "%.6g) mm, %s\n",
-                 airr::floating_distance(s), tidy(aerial.x), tidy(aerial.y), tidy(aerial.z), tidy(cam.position.x),
+                 "floating distance D %.6g mm; aerial image centred at (%.6g, %.6g, %.6g) mm; observer (%s) at (%.6g, "
+                 "%.6g, %.6g) mm, %s\n",
+                 airr::floating_distance(s), tidy(aerial.x), tidy(aerial.y), tidy(aerial.z),
+                 s.observer.placement == airr::observer_placement::orbit ? "orbit" : "look_at", tidy(cam.position.x),
                  tidy(cam.position.y), tidy(cam.position.z), cam.aperture_mm > 0 ? "thin lens" : "pinhole");
   });
 }

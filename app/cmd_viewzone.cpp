@@ -98,7 +98,7 @@ void add_viewzone_command(CLI::App& app) {
   cmd->callback([opt] {
     std::vector<airr::scene_override> overrides;
     for (const auto& s : opt->sets) overrides.push_back(airr::parse_override(s));
-    const airr::scene s = airr::load_scene(opt->scene_path, overrides);
+    const airr::scene s = load_scene_noting(opt->scene_path, overrides);
     airr::eye_grid g;
     g.kind = opt->sphere ? airr::eye_grid::shape::sphere : airr::eye_grid::shape::plane;
     g.distance_mm = opt->distance;

@@ -1,8 +1,13 @@
 #pragma once
 // The subcommands of the `airr` command line; each registers itself on the app.
+#include <cstdio>
+#include <string>
+#include <vector>
+
 #include <CLI/CLI.hpp>
 
 #include "airr/formats/image.hpp"
+#include "airr/formats/scene_json.hpp"
 
 void add_render_command(CLI::App& app);
 void add_bench_command(CLI::App& app);
@@ -26,4 +31,13 @@ inline void add_image_encoding_flags(CLI::App* cmd, airr::image_encoding& encodi
       "--srgb-input", [&encoding] { encoding = airr::image_encoding::srgb; },
       "Decode every file's code values with the sRGB curve (e.g. a 16-bit sRGB-encoded PNG)");
   linear->excludes(srgb);
+}
+
+// load_scene for a command: what reading the scene noted (a glTF layout's notes and warnings, e.g.
+// which observer it used) goes to stderr, one "note: ..." or "warning: ..." line each.
+inline airr::scene load_scene_noting(const std::string& path, const std::vector<airr::scene_override>& overrides = {}) {
+  std::vector<std::string> notes;
+  airr::scene s = airr::load_scene(path, overrides, notes);
+  for (const auto& line : notes) std::fprintf(stderr, "%s\n", line.c_str());
+  return s;
 }

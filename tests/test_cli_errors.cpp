@@ -132,3 +132,18 @@ TEST(CliErrors, ViewzoneWritesItsMapAndNamesBadGrids) {
   expect_one_line_error(test::run_cli("viewzone " + path + " --x 10 -10 -o " + dir.file("z.csv")),
                         {"viewing zone", "low to high"});
 }
+
+// A glTF layout's notes reach stderr: the render says which observer it used.
+TEST(CliRender, GltfLayoutSaysWhichObserverItUsed) {
+  test::temp_dir dir;
+  const std::string layout = dir.file("layout.glb");
+  const auto exported = test::run_cli("export-gltf " + scene_file(dir, [](nlohmann::json&) {}) + " -o " + layout);
+  ASSERT_EQ(exported.exit_code, 0) << exported.out;
+  const auto r = test::run_cli("render " + layout + " -o " + dir.file("o.png") +
+                               " --spp 1 --set observer.width=16 --set observer.height=16");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("note: " + layout + ": observer: the scene extras' airr.observer, where the node 'Observer'"),
+            std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("observer (orbit) at (0, 0, 450) mm"), std::string::npos) << r.out;
+}

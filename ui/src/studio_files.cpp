@@ -16,10 +16,12 @@ namespace fs = std::filesystem;
 
 void studio_open(studio& st, const std::string& path) {
   try {
-    const scene s = load_scene(path);
+    std::vector<std::string> notes;  // a glTF layout's: which observer, a doubtful scale
+    const scene s = load_scene(path, {}, notes);
     studio_start(st, s, path);
     st.settings.last_dir = fs::path(path).parent_path().string();
     st.status = "opened " + path;
+    for (const auto& n : notes) st.status += "; " + n;
   } catch (const std::exception& e) {
     st.status = std::string("cannot open: ") + e.what();
   }

@@ -1,11 +1,12 @@
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 
 #include "airr/core/error.hpp"
-#include "airr/core/json_reader.hpp"
 #include "airr/formats/gltf_layout.hpp"
 #include "airr/layout/layout.hpp"
+#include "gltf_layout_notes.hpp"
 #include "gltf_read.hpp"
 
 namespace airr {
@@ -90,7 +91,8 @@ json fields_of(const gltf::file& f, int node) {
   a.erase("role");
   for (const char* key : {"width_mm", "height_mm", "pose", "mesh", "node"}) {
     if (a.contains(key)) {
-      throw input_error(where(f, node) + ": extras airr." + key + ": the geometry comes from the node's mesh");
+      throw input_error(where(f, node) + ": " + gltf::airr_extras_name(f, node) + "." + key +
+                        ": the geometry comes from the node's mesh");
     }
   }
   return a;
@@ -117,11 +119,15 @@ std::string node_ref(const gltf::file& f, int node) {
 
 struct collected {
   std::vector<int> display, half_mirror, sheets, observer, props;
+  std::vector<int> both_extras;  // nodes with airr extras of their own and on their mesh
 };
 
 void collect(const gltf::file& f, int node, bool inside_prop, collected& c, int depth) {
   if (depth > 256) throw input_error(where(f, node) + ": nodes nested too deep");
   const std::string role = gltf::node_role(f, node);
+  if (!gltf::node_airr_extras(f, node).is_null() && !gltf::mesh_airr_extras(f, node).is_null()) {
+    c.both_extras.push_back(node);
+  }
   if (role == "display") c.display.push_back(node);
   if (role == "half_mirror") c.half_mirror.push_back(node);
   if (role == "retroreflector") c.sheets.push_back(node);
@@ -140,6 +146,35 @@ std::string labels(const gltf::file& f, const std::vector<int>& nodes) {
   return out;
 }
 
+// The default scene's airr extras (an object, or a string holding one), their keys checked.
+json scene_airr(const gltf::file& f) {
+  if (f.model.scenes.empty()) return json::object();
+  const int sc =
+      f.model.defaultScene >= 0 && std::size_t(f.model.defaultScene) < f.model.scenes.size() ? f.model.defaultScene : 0;
+  json a = gltf::airr_in_extras(f.model.scenes[std::size_t(sc)].extras_json_string,
+                                f.path + ": scene " + std::to_string(sc) + ": extras");
+  if (a.is_null()) return json::object();
+  for (const auto& [key, value] : a.items()) {
+    if (key != "format" && key != "version" && key != "seed" && key != "observer" && key != "render" &&
+        key != "observer_source") {
+      throw input_error(f.path + ": scene extras airr." + key +
+                        ": unknown key (seed, observer, observer_source, render)");
+    }
+  }
+  const json source = a.value("observer_source", json("camera"));
+  if (source != "camera" && source != "extras") {
+    throw input_error(f.path + ": scene extras airr.observer_source: must be \"camera\" or \"extras\"");
+  }
+  return a;
+}
+
+void note_both_extras(const gltf::file& f, const std::vector<int>& nodes, std::vector<std::string>& notes) {
+  for (int k : nodes) {
+    notes.push_back("note: " + f.path + ": " + gltf::node_label(f, k) +
+                    ": airr extras on both the node and its mesh: the node's are used, the mesh's ignored");
+  }
+}
+
 }  // namespace
 
 bool gltf_has_layout_roles(const std::string& path) {
@@ -150,7 +185,7 @@ bool gltf_has_layout_roles(const std::string& path) {
   return false;
 }
 
-json gltf_layout_document(const std::string& path) {
+gltf_layout read_gltf_layout(const std::string& path) {
   const gltf::file f = gltf::read(path);
   collected c;
   for (int root : gltf::scene_roots(f)) collect(f, root, false, c, 0);
@@ -170,36 +205,24 @@ json gltf_layout_document(const std::string& path) {
   }
   if (c.observer.size() > 1) throw input_error(path + ": more than one observer: " + labels(f, c.observer));
 
-  json doc = {{"format", "airr-scene"}, {"version", 2}};
-  // Seed, observer and render from the default scene's extras.
-  if (!f.model.scenes.empty()) {
-    const int sc = f.model.defaultScene >= 0 && std::size_t(f.model.defaultScene) < f.model.scenes.size()
-                       ? f.model.defaultScene
-                       : 0;
-    const std::string& text = f.model.scenes[std::size_t(sc)].extras_json_string;
-    if (!text.empty()) {
-      const json extras = parse_json(text, path + ": scene " + std::to_string(sc) + ": extras");
-      if (extras.is_object() && extras.contains("airr")) {
-        if (!extras["airr"].is_object()) throw input_error(path + ": scene extras airr must be a JSON object");
-        for (const auto& [key, value] : extras["airr"].items()) {
-          if (key == "format" || key == "version") continue;  // this reader's own
-          if (key != "seed" && key != "observer" && key != "render") {
-            throw input_error(path + ": scene extras airr." + key + ": unknown key (seed, observer, render)");
-          }
-          doc[key] = value;
-        }
-      }
-    }
+  gltf_layout out;
+  out.path = path;
+  json& doc = out.document;
+  doc = {{"format", "airr-scene"}, {"version", 2}};
+  const json extras = scene_airr(f);
+  for (const char* key : {"seed", "observer", "render"}) {
+    if (extras.contains(key)) doc[key] = extras[key];
   }
-  auto part = [&](int node, const char* role) {
+  auto part = [&](int node, const char* role, const std::string& field) {
     const flat_part fp = flat_part_of(f, node, role);
     json j = fields_of(f, node);
     j["width_mm"] = fp.width;
     j["height_mm"] = fp.height;
     j["pose"] = pose_json(fp.p);
+    out.part_nodes.emplace_back(field, gltf::node_label(f, node));
     return j;
   };
-  json display = part(c.display.front(), "display");
+  json display = part(c.display.front(), "display", "source");
   if (display.contains("bezel_mm") && display["bezel_mm"].is_number()) {
     // The mesh is the whole panel; the scene's size is its emitting area.
     const double b = 2 * display["bezel_mm"].get<double>();
@@ -211,9 +234,11 @@ json gltf_layout_document(const std::string& path) {
     display["height_mm"] = h;
   }
   doc["source"] = display;
-  doc["half_mirror"] = part(c.half_mirror.front(), "half_mirror");
+  doc["half_mirror"] = part(c.half_mirror.front(), "half_mirror", "half_mirror");
   doc["retroreflectors"] = json::array();
-  for (int k : c.sheets) doc["retroreflectors"].push_back(part(k, "retroreflector"));
+  for (std::size_t i = 0; i < c.sheets.size(); ++i) {
+    doc["retroreflectors"].push_back(part(c.sheets[i], "retroreflector", "retroreflectors[" + std::to_string(i) + "]"));
+  }
   const std::string file_name = std::filesystem::path(path).filename().string();
   if (!c.props.empty()) {
     doc["props"] = json::array();
@@ -224,20 +249,35 @@ json gltf_layout_document(const std::string& path) {
       p["mesh"] = file_name;
       p["node"] = node_ref(f, k);
       p["pose"] = pose_json(gltf::node_rigid_pose(f, k));
+      out.part_nodes.emplace_back("props[" + std::to_string(doc["props"].size()) + "]", gltf::node_label(f, k));
       doc["props"].push_back(p);
     }
   }
-  if (!doc.contains("observer") && !c.observer.empty()) {
-    const int k = c.observer.front();
-    const glm::dmat4& w = f.world[std::size_t(k)];
-    const glm::dvec3 at = gltf::mm_per_metre * glm::dvec3(w[3]);
-    const glm::dvec3 back = glm::dvec3(w[2]);
-    if (!(glm::length(back) > 0)) throw input_error(where(f, k) + ": degenerate transform");
-    const glm::dvec3 target = at - 300.0 * glm::normalize(back);
-    doc["observer"] = {
-        {"placement", "look_at"}, {"position_mm", {at.x, at.y, at.z}}, {"look_at_mm", {target.x, target.y, target.z}}};
+  note_both_extras(f, c.both_extras, out.notes);
+  gltf::place_observer(f, c.observer.empty() ? -1 : c.observer.front(), extras.value("observer_source", "camera"), out);
+  out.scale_warning = gltf::scale_warning(doc);
+  if (!out.scale_warning.empty()) out.notes.push_back("warning: " + path + ": " + out.scale_warning);
+  return out;
+}
+
+json gltf_layout_document(const std::string& path) { return read_gltf_layout(path).document; }
+
+std::string gltf_layout_error(const gltf_layout& layout, const std::string& message) {
+  const std::string head = layout.path + ": ";
+  std::string out = message;
+  if (message.rfind(head, 0) == 0) {
+    const std::string rest = message.substr(head.size());
+    for (const auto& [field, node] : layout.part_nodes) {
+      // The whole field name: "source" then "." or ":", never a longer name.
+      const char next = rest.size() > field.size() ? rest[field.size()] : '\0';
+      if (rest.rfind(field, 0) == 0 && !std::isalnum(static_cast<unsigned char>(next)) && next != '_') {
+        out = head + node + ": " + rest;
+        break;
+      }
+    }
   }
-  return doc;
+  if (!layout.scale_warning.empty()) out += "; " + layout.scale_warning;
+  return out;
 }
 
 }  // namespace airr

@@ -407,14 +407,41 @@ void append_subtree(const file& f, int node, const glm::dmat4& xf, triangle_mesh
   }
 }
 
-nlohmann::json airr_extras(const file& f, int node) {
-  const std::string& text = f.model.nodes[std::size_t(node)].extras_json_string;
-  if (text.empty()) return nullptr;
-  const nlohmann::json extras = parse_json(text, f.path + ": " + node_label(f, node) + ": extras");
+nlohmann::json airr_in_extras(const std::string& extras_json, const std::string& what) {
+  if (extras_json.empty()) return nullptr;
+  const nlohmann::json extras = parse_json(extras_json, what);
   if (!extras.is_object() || !extras.contains("airr")) return nullptr;
-  if (!extras["airr"].is_object())
-    throw input_error(f.path + ": " + node_label(f, node) + ": extras airr must be a JSON object");
-  return extras["airr"];
+  nlohmann::json a = extras["airr"];
+  if (a.is_string()) a = parse_json(a.get<std::string>(), what + " airr (a JSON string)");
+  if (!a.is_object()) throw input_error(what + " airr must be a JSON object (or a string holding one)");
+  return a;
+}
+
+static std::string mesh_label(const file& f, int mesh) {
+  const std::string& name = f.model.meshes[std::size_t(mesh)].name;
+  return "mesh " + (name.empty() ? std::string() : "'" + name + "' ") + "(#" + std::to_string(mesh) + ")";
+}
+
+nlohmann::json node_airr_extras(const file& f, int node) {
+  return airr_in_extras(f.model.nodes[std::size_t(node)].extras_json_string,
+                        f.path + ": " + node_label(f, node) + ": extras");
+}
+
+nlohmann::json mesh_airr_extras(const file& f, int node) {
+  const int mesh = f.model.nodes[std::size_t(node)].mesh;
+  if (mesh < 0 || std::size_t(mesh) >= f.model.meshes.size()) return nullptr;
+  return airr_in_extras(f.model.meshes[std::size_t(mesh)].extras_json_string,
+                        f.path + ": " + node_label(f, node) + ": " + mesh_label(f, mesh) + ": extras");
+}
+
+nlohmann::json airr_extras(const file& f, int node) {
+  nlohmann::json a = node_airr_extras(f, node);
+  return a.is_null() ? mesh_airr_extras(f, node) : a;
+}
+
+std::string airr_extras_name(const file& f, int node) {
+  if (!node_airr_extras(f, node).is_null() || mesh_airr_extras(f, node).is_null()) return "extras airr";
+  return mesh_label(f, f.model.nodes[std::size_t(node)].mesh) + ": extras airr";
 }
 
 bool is_part_role(const std::string& role) {
@@ -426,8 +453,8 @@ std::string node_role(const file& f, int node) {
   if (a.is_object() && a.contains("role")) {
     const nlohmann::json& r = a["role"];
     if (!r.is_string() || !(is_part_role(r.get<std::string>()) || r.get<std::string>() == "prop")) {
-      throw input_error(f.path + ": " + node_label(f, node) +
-                        ": extras airr.role must be display, half_mirror, retroreflector, observer or prop");
+      throw input_error(f.path + ": " + node_label(f, node) + ": " + airr_extras_name(f, node) +
+                        ".role must be display, half_mirror, retroreflector, observer or prop");
     }
     return r.get<std::string>();
   }

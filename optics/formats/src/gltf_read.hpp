@@ -37,9 +37,18 @@ int find_node(const file& f, const std::string& ref);
 // The nodes of the default scene's roots (or, without scenes, every node without a parent).
 std::vector<int> scene_roots(const file& f);
 
-// The node's "airr" object from its extras (null when it has none). Throws input_error for extras
-// that are not JSON objects.
+// The "airr" object in an extras text (null without one): a JSON object, or a string holding one
+// (Blender's custom-property panel makes only strings). Throws input_error "<what>: ..." for
+// malformed JSON or anything but an object.
+nlohmann::json airr_in_extras(const std::string& extras_json, const std::string& what);
+// The "airr" object of the node's own extras, and of its mesh's (null when there is none).
+nlohmann::json node_airr_extras(const file& f, int node);
+nlohmann::json mesh_airr_extras(const file& f, int node);
+// The node's "airr" object: its own, else its mesh's (Blender writes a property of the mesh data
+// there). Throws input_error naming the file and the node.
 nlohmann::json airr_extras(const file& f, int node);
+// "extras airr", or "mesh 'Plane' (#2): extras airr" when the node's airr object is its mesh's.
+std::string airr_extras_name(const file& f, int node);
 // The node's role in a layout: from extras airr.role ("display", "half_mirror", "retroreflector",
 // "observer", "prop"), else by name (lower-cased, beginning "airr_display", "airr_half_mirror",
 // "airr_retroreflector" or "airr_observer"), else "" (a prop when it has geometry).

@@ -289,10 +289,22 @@ scene parse_scene(const std::string& text, const std::string& origin, const std:
   return scene_from_document(parse_json(text, origin), origin, base_dir, overrides);
 }
 
-scene load_scene(const std::string& path, const std::vector<scene_override>& overrides) {
+scene load_scene(const std::string& path, const std::vector<scene_override>& overrides,
+                 std::vector<std::string>& notes) {
   const std::string dir = std::filesystem::absolute(path).parent_path().string();
-  if (is_gltf_path(path)) return scene_from_document(gltf_layout_document(path), path, dir, overrides);
-  return parse_scene(read_text_file(path), path, dir, overrides);
+  if (!is_gltf_path(path)) return parse_scene(read_text_file(path), path, dir, overrides);
+  const gltf_layout layout = read_gltf_layout(path);
+  notes.insert(notes.end(), layout.notes.begin(), layout.notes.end());
+  try {
+    return scene_from_document(layout.document, path, dir, overrides);
+  } catch (const input_error& e) {
+    throw input_error(gltf_layout_error(layout, e.what()));
+  }
+}
+
+scene load_scene(const std::string& path, const std::vector<scene_override>& overrides) {
+  std::vector<std::string> unread;
+  return load_scene(path, overrides, unread);
 }
 
 void save_scene(const scene& s, const std::string& path) { write_file_atomic(path, scene_to_json(s).dump(2) + "\n"); }

@@ -4,7 +4,23 @@
 // "airr_retroreflector...", "airr_observer"), everything else with geometry is a prop. glTF's
 // metres become millimetres. The exporter writes the same form, so a layout survives a round trip
 // through Blender or any glTF tool.
+//
+// As Blender 3.4 writes it:
+// - the "airr" extras may be a JSON object or a string holding one (Blender's custom-property
+//   panel makes only strings, numbers and booleans): {"airr": "{\"role\": \"half_mirror\"}"};
+// - they may sit on the node (the object's properties) or on its mesh (the mesh data's,
+//   meshes[i].extras); when both have them the node's are used and a note says so;
+// - a file drawn in millimetres (Blender 3.4 exports no unit scale) reads a thousand times too
+//   large: a warning names the factor to scale it by (gltf_layout::scale_warning);
+// - the observer: a node with the observer role (the camera the exporter writes) wins over the
+//   scene extras' observer, unless the scene extras say "observer_source": "extras". An unmoved
+//   camera (within 0.01 mm and 1e-5 rad of the extras' observer) keeps the extras' observer as it
+//   is (an orbit stays an orbit); a moved one places a look-at observer with the extras' other
+//   fields (lens, field of view, size), aiming as far ahead as the extras' observer aimed
+//   (300 mm without one). A note says which was used.
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -26,10 +42,37 @@ bool is_gltf_path(const std::string& path);
 // - props: every topmost node outside the parts whose subtree has triangles, by node name (or
 //   "#index"), with its rigid pose; surface, albedo, visible and name from extras, else the glTF
 //   material;
-// - seed, observer and render from the default scene's extras ({"airr": {...}}); without an
-//   observer there, a node with the observer role places a look-at observer (looking along its -z).
+// - seed, render, observer and observer_source ("camera", the default, or "extras") from the default
+//   scene's extras ({"airr": {...}}); the observer as the top of this header says (a look-at
+//   observer from the observer node alone looks along the node's -z).
 // Throws input_error naming the file and the node.
 nlohmann::json gltf_layout_document(const std::string& path);
+
+// A glTF layout read: its scene document (as gltf_layout_document), what reading it noted for the
+// user (each line "note: <file>: ..." or "warning: <file>: ...", for the caller to print), and the
+// node each part came from (for naming it in errors).
+struct gltf_layout {
+  std::string path;
+  nlohmann::json document;
+  std::vector<std::string> notes;
+  // The scale warning (without "warning: <file>: "), empty when the size is plausible: the largest
+  // side of the optical parts between 2 mm and 2 m. Outside, it names the power of ten that brings
+  // that side nearest 300 mm (the default half mirror's width), e.g. 0.001 for a file drawn in
+  // millimetres.
+  std::string scale_warning;
+  // Scene field -> the node it came from: {"half_mirror", "node 'Beam splitter' (#1)"}; also
+  // "source", "retroreflectors[i]", "props[i]" and, when the camera node placed the observer,
+  // "observer.position_mm", "observer.look_at_mm" and "observer:" (the layout check's errors).
+  std::vector<std::pair<std::string, std::string>> part_nodes;
+};
+gltf_layout read_gltf_layout(const std::string& path);
+
+// An error from checking a layout's document ("<path>: <field>: <problem>", as scene_from_json and
+// check_scene write them) naming the node the field came from: "<path>: node 'Beam splitter' (#1):
+// half_mirror.reflectance: <problem>". Messages about no part's field (e.g. "<path> (with --set):
+// ...", a value the command line set) keep their text. The scale warning, when there is one, is
+// appended to every message: a file drawn in millimetres usually fails the checks.
+std::string gltf_layout_error(const gltf_layout& layout, const std::string& message);
 
 // Whether any node of the file has a part's role (a layout, rather than a model to place as a prop).
 bool gltf_has_layout_roles(const std::string& path);

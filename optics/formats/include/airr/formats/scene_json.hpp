@@ -53,7 +53,11 @@ void validate_scene_files(const scene& s, const std::string& origin);
 retro_model_list check_scene(const scene& s, const std::string& origin);
 
 // Reads, overrides, validates (values, files and layout). A .gltf or .glb file is read as a whole
-// layout (gltf_layout_document). Throws input_error.
+// layout (read_gltf_layout): its notes and warnings are appended to `notes` (lines "note: ..." or
+// "warning: ...", for the caller to show), and its errors name the node a field came from.
+// Throws input_error.
+scene load_scene(const std::string& path, const std::vector<scene_override>& overrides,
+                 std::vector<std::string>& notes);
 scene load_scene(const std::string& path, const std::vector<scene_override>& overrides = {});
 // Parses scene JSON text (base_dir for relative paths), then as load_scene.
 scene parse_scene(const std::string& text, const std::string& origin, const std::string& base_dir,
