@@ -16,6 +16,7 @@
 
 #include "airr/formats/mesh_gltf.hpp"
 #include "airr/formats/scene_json.hpp"
+#include "airr/layout/viewing_zone.hpp"
 #include "airr/render/prop_hits.hpp"
 #include "airr/render/tracer.hpp"
 
@@ -99,6 +100,36 @@ throughput measure(const airr::scene& s, std::uint64_t spp) {
   return out;
 }
 
+// The designer's geometric viewing zone after an edit (its 25 x 25 eyes within +-60 deg, 32 rows
+// each), timed with the props' scene it needs, and how many props' scenes the edit built.
+struct zone_edits {
+  double prop_moved_s = 0, observer_moved_s = 0, sheet_moved_s = 0;
+  std::uint64_t prop_moved_builds = 0, observer_moved_builds = 0, sheet_moved_builds = 0;
+};
+
+zone_edits time_zone_edits(airr::scene s) {
+  airr::eye_grid g;
+  g.kind = airr::eye_grid::shape::sphere;
+  g.nx = g.ny = 25;
+  g.x_min = g.y_min = -60;
+  g.x_max = g.y_max = 60;
+  auto edit = [&](double& seconds, std::uint64_t& builds) {
+    const std::uint64_t before = airr::prop_scene_builds();
+    const auto t0 = clock_type::now();
+    airr::geometric_viewing_zone(s, g, airr::scene_prop_hits(s), 32);
+    seconds = since(t0);
+    builds = airr::prop_scene_builds() - before;
+  };
+  zone_edits z;
+  s.props.front().pose.center_mm[0] += 10;
+  edit(z.prop_moved_s, z.prop_moved_builds);
+  s.observer.azimuth_deg += 5;
+  edit(z.observer_moved_s, z.observer_moved_builds);
+  s.sheet().pose.pitch_deg += 2;
+  edit(z.sheet_moved_s, z.sheet_moved_builds);
+  return z;
+}
+
 }  // namespace
 
 void run_prop_bench(const std::string& scene_path, std::uint64_t triangles, std::uint64_t spp) {
@@ -130,6 +161,7 @@ void run_prop_bench(const std::string& scene_path, std::uint64_t triangles, std:
   t0 = clock_type::now();
   const airr::prop_hit_function moved = airr::scene_prop_hits(boxed);
   const double sight_moved_s = since(t0);
+  const zone_edits zone = time_zone_edits(boxed);
   std::filesystem::remove_all(dir);
 
   std::printf("prop: housing of %zu triangles, %zu vertices, %.1f MB GLB (written in %.2f s)\n",
@@ -142,4 +174,10 @@ void run_prop_bench(const std::string& scene_path, std::uint64_t triangles, std:
               b.camera_rate, a.camera_rate, b.camera_rate / a.camera_rate);
   std::printf("sight lines:   %.1f ms to build the props' scene, %.2f ms after an edit that moves the prop\n",
               1e3 * sight_first_s, 1e3 * sight_moved_s);
+  std::printf("viewing zone:  %.1f ms after an edit that moves the prop (props' scene rebuilt: %s)\n",
+              1e3 * zone.prop_moved_s, zone.prop_moved_builds ? "yes" : "no");
+  std::printf("viewing zone:  %.1f ms after an edit that moves the observer (props' scene rebuilt: %s)\n",
+              1e3 * zone.observer_moved_s, zone.observer_moved_builds ? "yes" : "no");
+  std::printf("viewing zone:  %.1f ms after an edit that tilts the sheet (props' scene rebuilt: %s)\n",
+              1e3 * zone.sheet_moved_s, zone.sheet_moved_builds ? "yes" : "no");
 }

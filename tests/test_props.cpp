@@ -208,6 +208,29 @@ TEST(Props, PlateInFrontHidesTheProjectedPartOfTheAerialImage) {
   EXPECT_NEAR(visible_fraction(none, eye_position(s, g, 30, 0)), 1.0, 1e-9);
 }
 
+// An edit that leaves the props alone (the observer or a sheet moved) answers with the props'
+// scene built before; one that moves a prop builds a new one.
+TEST(Props, EditsThatLeaveThePropsAloneReuseTheirScene) {
+  test::temp_dir dir;
+  write_plate(plate(2, 200, -50, 50, -50, 50), dir.file("plate.glb"));
+  scene s;
+  s.props.push_back(absorber_prop(dir.file("plate.glb")));
+  check_scene(s, "plate");
+  const prop_hit_function first = scene_prop_hits(s);
+  const std::uint64_t builds = prop_scene_builds();
+  s.observer.azimuth_deg += 10;
+  s.sheet().pose.pitch_deg += 5;
+  const prop_hit_function same = scene_prop_hits(s);
+  EXPECT_EQ(prop_scene_builds(), builds);
+  EXPECT_NEAR(same({0, 0, 400}, {0, 0, -1}, 1e9), 200, 1e-3);
+  s.props.front().pose.center_mm = {200, 0, 0};
+  const prop_hit_function moved = scene_prop_hits(s);
+  EXPECT_EQ(prop_scene_builds(), builds + 1);
+  EXPECT_NEAR(moved({200, 0, 400}, {0, 0, -1}, 1e9), 200, 1e-3);
+  EXPECT_TRUE(std::isinf(moved({0, 0, 400}, {0, 0, -1}, 1e9)));
+  EXPECT_NEAR(first({0, 0, 400}, {0, 0, -1}, 1e9), 200, 1e-3);  // the earlier layout's answer stands
+}
+
 // An edit that moves a prop shares the mesh's acceleration structure with the layout before it:
 // each function still answers for its own layout, even after the next one is built.
 TEST(Props, HitsOfAMovedPropFollowItAndEarlierOnesKeepTheirLayout) {

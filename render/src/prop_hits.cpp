@@ -1,5 +1,6 @@
 #include "airr/render/prop_hits.hpp"
 
+#include <cstdint>
 #include <limits>
 #include <memory>
 #include <mutex>
@@ -15,6 +16,7 @@ struct prop_scene {
   std::shared_ptr<const embree_device> device;  // outlives the scene
   // Held so that no other mesh takes a key's address while this scene may share its prototype.
   std::vector<instance_mesh> meshes;
+  std::vector<glm::dmat4> transforms;
   std::unique_ptr<embree_layout_scene> embree;
 };
 
@@ -25,12 +27,29 @@ struct last_prop_scene {
   std::mutex mutex;
   std::shared_ptr<const embree_device> device;
   std::shared_ptr<const prop_scene> scene;
+  std::uint64_t builds = 0;
 };
 last_prop_scene& last_built() {
   static last_prop_scene last;
   return last;
 }
+// Whether a built scene holds exactly these meshes (by key: file, node and contents) at these
+// places.
+bool same_props(const prop_scene& built, const std::vector<instance_mesh>& meshes,
+                const std::vector<glm::dmat4>& transforms) {
+  if (built.meshes.size() != meshes.size() || built.transforms != transforms) return false;
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    if (built.meshes[i].key != meshes[i].key || built.meshes[i].mesh != meshes[i].mesh) return false;
+  }
+  return true;
+}
 }  // namespace
+
+std::uint64_t prop_scene_builds() {
+  last_prop_scene& last = last_built();
+  std::lock_guard<std::mutex> lock(last.mutex);
+  return last.builds;
+}
 
 prop_hit_function scene_prop_hits(const scene& s) {
   std::vector<instance_mesh> meshes;
@@ -44,19 +63,26 @@ prop_hit_function scene_prop_hits(const scene& s) {
   }
   if (meshes.empty()) return {};
 
-  auto props = std::make_shared<prop_scene>();
+  std::shared_ptr<const prop_scene> props;
   {
     last_prop_scene& last = last_built();
     std::lock_guard<std::mutex> lock(last.mutex);
-    if (!last.device) last.device = std::make_shared<const embree_device>();
-    props->device = last.device;
-    props->meshes = meshes;
-    props->embree =
-        std::make_unique<embree_layout_scene>(*props->device, meshes, last.scene ? last.scene->embree.get() : nullptr);
-    props->embree->set_transforms(transforms);
-    last.scene = props;
+    if (last.scene && same_props(*last.scene, meshes, transforms)) {
+      props = last.scene;  // an edit that left the props alone: nothing to build
+    } else {
+      if (!last.device) last.device = std::make_shared<const embree_device>();
+      auto built = std::make_shared<prop_scene>();
+      built->device = last.device;
+      built->meshes = meshes;
+      built->transforms = transforms;
+      built->embree = std::make_unique<embree_layout_scene>(*built->device, meshes,
+                                                            last.scene ? last.scene->embree.get() : nullptr);
+      built->embree->set_transforms(transforms);
+      ++last.builds;
+      last.scene = props = built;
+    }
   }
-  return [props = std::shared_ptr<const prop_scene>(props)](const glm::dvec3& o, const glm::dvec3& d, double t_max) {
+  return [props](const glm::dvec3& o, const glm::dvec3& d, double t_max) {
     RTCRayHit rh = make_ray_hit(o, d, 1e-6f);
     rh.ray.tfar = float(std::min(t_max, double(std::numeric_limits<float>::max())));
     intersect(props->embree->get(), rh);

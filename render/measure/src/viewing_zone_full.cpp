@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <memory>
+#include <mutex>
 
 #include "airr/core/color.hpp"
 #include "airr/core/error.hpp"
@@ -51,10 +53,8 @@ eye_render render_from(tracer_scene& ts, const embree_device& device, const scen
   const int w = cam.width, h = cam.height;
   std::vector<double> sums(std::size_t(w) * h * 3, 0.0), components(component_count * sums.size(), 0.0);
   const std::atomic<bool> never{false};
-  detail::parallel_rows(h, 0, [&](int y0, int y1) {
-    std::uint64_t rays = 0;
-    trace_rows(ts, y0, y1, 0, p.render_spp, sums, cancel ? *cancel : never, rays, nullptr, &components);
-  });
+  std::uint64_t rays = 0;
+  trace_rows(ts, 0, h, 0, p.render_spp, sums, cancel ? *cancel : never, rays, nullptr, &components);
   eye_render out;
   int inside = 0;
   for (int y = 0; y < h; ++y) {
@@ -117,14 +117,15 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
   out.stray_ratio.assign(n, nan);
   out.direct.assign(n, nan);
   const viewing_parts parts(s, scene_prop_hits(s));
-  embree_device device;
-  tracer_scene ts;
-  ts.use_model_image = false;  // a few spp per eye: the model image would cost more than it saves
-  ts.retro = make_sheet_models(s);
+  const retro_model_list models = make_sheet_models(s);
+  const embree_device device;
   const part_frame aerial = aerial_image_frame(s);
-  double best = 0;
-  for (std::size_t e = 0; e < n; ++e) {
-    if (cancel && cancel->load(std::memory_order_relaxed)) return {};
+  // Eyes run in parallel, each on a tracer scene of its worker's own (taken from a pool and
+  // rebuilt in place for the eye), rendering its rows on that worker alone.
+  std::mutex mutex;
+  std::vector<std::unique_ptr<tracer_scene>> pool;
+  int done = 0;
+  auto one_eye = [&](std::size_t e, tracer_scene& ts) {
     const int i = int(e % std::size_t(g.nx)), j = int(e / std::size_t(g.nx));
     scene eye = s;
     place_observer(eye, g, g.x_at(i), g.y_at(j));
@@ -141,14 +142,37 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
     if (out.visible[e] > 0) {
       out.brightness[e] = r.aerial;
       out.stray_ratio[e] = r.aerial > 0 ? r.stray / r.aerial : nan;
-      best = std::max(best, r.aerial);
       try {
-        out.mean_mtf[e] = psf_route_mtf(scene_psf(eye, ts.retro, p.psf_samples), 0.0).mean_mtf;
+        out.mean_mtf[e] = psf_route_mtf(scene_psf(eye, models, p.psf_samples), 0.0).mean_mtf;
       } catch (const input_error&) {
-        // The chief ray through the aerial image's centre misses a part from here.
+        // The chief ray through the aerial image's centre misses every sheet from here.
       }
     }
-    if (progress) progress(int(e) + 1, int(n));
+  };
+  detail::parallel_rows(int(n), 0, [&](int e0, int e1) {
+    std::unique_ptr<tracer_scene> ts;
+    {
+      std::lock_guard lock(mutex);
+      if (!pool.empty()) ts = std::move(pool.back()), pool.pop_back();
+    }
+    if (!ts) {
+      ts = std::make_unique<tracer_scene>();
+      ts->use_model_image = false;  // a few spp per eye: the model image would cost more than it saves
+      ts->retro = models;
+    }
+    for (int e = e0; e < e1 && !(cancel && cancel->load(std::memory_order_relaxed)); ++e) {
+      one_eye(std::size_t(e), *ts);
+      std::lock_guard lock(mutex);
+      ++done;
+      if (progress) progress(done, int(n));
+    }
+    std::lock_guard lock(mutex);
+    pool.push_back(std::move(ts));
+  });
+  if (cancel && cancel->load(std::memory_order_relaxed)) return {};
+  double best = 0;
+  for (double b : out.brightness) {
+    if (std::isfinite(b)) best = std::max(best, b);
   }
   for (double& b : out.brightness) {
     if (std::isfinite(b)) b = best > 0 ? b / best : nan;

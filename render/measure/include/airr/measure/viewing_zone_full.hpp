@@ -31,8 +31,9 @@ struct full_zone_map {
   double seconds = 0;
 };
 
-// Rows of eyes run one after the other (each eye's render uses all cores); `progress(done, total)`
-// after every eye. Empty maps when `cancel` was set.
+// Eyes run in parallel (each eye's render on one core; the maps do not depend on the number of
+// cores); `progress(done, total)` after every eye, from one worker at a time. Empty maps when
+// `cancel` was set.
 full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zone_params& p = {},
                                 const std::function<void(int, int)>& progress = {},
                                 const std::atomic<bool>* cancel = nullptr);
