@@ -1,5 +1,5 @@
 // airr fit --data DIR -o preset.json [--samples N] [--seed S]
-// airr fit --synthesise DIR [--preset rf-ay] [--samples N] [--seed S]
+// airr fit --synthesise DIR [--preset rf-ay] [--setup device.json] [--samples N] [--seed S]
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -19,6 +19,8 @@
 #include "airr/formats/image.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
+#include "airr/layout/psf.hpp"
+#include "airr/layout/sheet_models.hpp"
 #include "airr/models/preset.hpp"
 #include "airr/models/retro_model.hpp"
 #include "commands.hpp"
@@ -30,7 +32,7 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 
 struct options {
-  std::string data, output, synthesise, preset = "rf-ay";
+  std::string data, output, synthesise, preset = "rf-ay", setup;
   std::optional<std::uint64_t> samples, seed;  // unset: the mode's default
 };
 
@@ -104,11 +106,19 @@ void run_synthesise(const options& opt) {
   const airr::sheet_preset truth = airr::load_preset(opt.preset, fs::current_path().string());
   const std::uint64_t samples = opt.samples.value_or(1000000), seed = opt.seed.value_or(7);
 
-  // The setup: the default layout; a 40 x 40 camera of 0.4 mm pixels frames a 10 mm white square.
-  // The MTF curves are measured as with 0.25 mm pixels (their aperture is in the curves).
+  // The setup: the default layout, or the device's (--setup; its other sheets the first's mirror
+  // images); a 40 x 40 camera of 0.4 mm pixels frames a 10 mm white square. The MTF curves are
+  // measured as with 0.25 mm pixels (their aperture is in the curves).
   airr::scene setup;
+  if (!opt.setup.empty()) {
+    setup = airr::load_scene(opt.setup);
+    airr::analysis::check_fit_sheets(setup, opt.setup);
+    setup.props.clear();  // the model PSF does not see them
+    setup.source.emission_profile.clear();
+  }
   const std::string panel = fs::relative(fs::path(airr::asset_dir()) / "models/panel.gltf", fs::absolute(dir)).string();
-  setup.source.mesh = setup.half_mirror.mesh = setup.sheet().mesh = panel;
+  setup.source.mesh = setup.half_mirror.mesh = panel;
+  for (auto& sheet : setup.retroreflectors) sheet.mesh = panel;
   setup.source.image.clear();
   const int camera_pixels = 40;
   const double camera_mm = 0.4, pixel_mm = 0.25, square_mm = 10.0;
@@ -119,13 +129,12 @@ void run_synthesise(const options& opt) {
 
   const std::string preset_path = airr::resolve_preset_path(opt.preset, fs::current_path().string());
   auto truth_psf = [&](double tilt, double d, airr::scene& s) {
-    s = setup;
-    s.sheet().pose.pitch_deg = tilt;
-    airr::set_floating_distance(s, d);
-    s.sheet().model = {.type = "sinc_shift", .values = {}};
-    airr::set_model_value(s.sheet().model, "preset", fs::absolute(preset_path).string());
-    const auto model = airr::make_sheet_model(s);
-    return airr::sample_psf(s, *model, {.samples = samples, .seed = seed});
+    s = airr::analysis::measurement_layout(setup, tilt, d);
+    for (auto& sheet : s.retroreflectors) {
+      sheet.model = {.type = "sinc_shift", .values = {}};
+      airr::set_model_value(sheet.model, "preset", fs::absolute(preset_path).string());
+    }
+    return airr::sample_psf(s, airr::make_sheet_models(s), {.samples = samples, .seed = seed});
   };
   auto write_csv = [&](const airr::psf_samples& psf, const std::string& name) {
     const auto c =
@@ -194,6 +203,9 @@ void add_fit_command(CLI::App& app) {
       cmd->add_option("--synthesise", opt->synthesise,
                       "Instead of fitting, write a data directory synthesised from --preset by the model PSF");
   cmd->add_option("--preset", opt->preset, "With --synthesise: the preset to synthesise from (default rf-ay)");
+  cmd->add_option("--setup", opt->setup,
+                  "With --synthesise: the device measured (a scene; its sheets after the first are the first's "
+                  "mirror images in the half mirror); default the default layout");
   cmd->add_option("--samples", opt->samples,
                   "PSF samples per simulation (fit default 200000; --synthesise default 1000000)")
       ->check(CLI::Range(std::uint64_t(100), std::uint64_t(100000000)));

@@ -35,10 +35,11 @@ std::string resolve_file(json_reader& r, const std::string& dir, const std::stri
 
 // The scene a measurement was taken in: the setup at the entry's tilt and floating distance.
 void check_entry_layout(const scene& setup, double tilt_deg, double d_mm, const std::string& origin) {
-  scene s = setup;
-  s.sheet().pose.pitch_deg = tilt_deg;
-  airr::set_floating_distance(s, d_mm);
-  check_layout(s, origin);
+  check_layout(measurement_layout(setup, tilt_deg, d_mm), origin);
+}
+
+std::string vector_text(const glm::dvec3& v) {
+  return "(" + number_text(v.x, 4) + ", " + number_text(v.y, 4) + ", " + number_text(v.z, 4) + ")";
 }
 
 double tilt_of(json_reader& r, const std::string& key = "tilt_deg") {
@@ -250,6 +251,29 @@ std::vector<std::string> fit_data::files() const {
   return out;
 }
 
+scene measurement_layout(const scene& setup, double tilt_deg, double floating_distance_mm) {
+  scene s = setup;
+  s.sheet().pose.pitch_deg = tilt_deg;
+  airr::set_floating_distance(s, floating_distance_mm);
+  const pose mirrored = mirrored_in_half_mirror(s, retroreflector_frame(s, 0));
+  for (std::size_t i = 1; i < s.retroreflectors.size(); ++i) s.retroreflectors[i].pose = mirrored;
+  return s;
+}
+
+void check_fit_sheets(const scene& setup, const std::string& origin) {
+  const part_frame mirrored = pose_frame(mirrored_in_half_mirror(setup, retroreflector_frame(setup, 0)), 1, 1);
+  for (std::size_t i = 1; i < setup.retroreflectors.size(); ++i) {
+    const part_frame f = retroreflector_frame(setup, i);
+    if (glm::length(f.center - mirrored.center) > 1e-3 || glm::dot(f.n, mirrored.n) < 1 - 1e-9) {
+      throw input_error(origin + ": retroreflectors[" + std::to_string(i) +
+                        "]: the fit simulates every sheet with the first sheet's a and mu at each tilt, so a "
+                        "device's other sheets must be the first sheet's mirror image in the half mirror (centre " +
+                        vector_text(mirrored.center) + " mm, facing " + vector_text(mirrored.n) +
+                        "); measure the sheet on a one-sheet bench, or mirror it");
+    }
+  }
+}
+
 fit_data load_fit_data(const std::string& dir_text) {
   fit_data d;
   d.dir = fs::path(dir_text).lexically_normal().string();
@@ -270,6 +294,7 @@ fit_data load_fit_data(const std::string& dir_text) {
 
   d.scene_path = resolve_file(r, d.dir, "scene");
   d.setup = load_scene(d.scene_path);
+  check_fit_sheets(d.setup, d.scene_path);
 
   const json& tilts = array_of(r, "tilt_series", true);
   for (std::size_t i = 0; i < tilts.size(); ++i)

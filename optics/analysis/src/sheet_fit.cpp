@@ -210,9 +210,7 @@ class sheet_fitter {
 
 scene fit_scene(const scene& setup, double tilt_deg, double floating_distance_mm, double a_per_mm, double c_mm,
                 double mu) {
-  scene s = setup;
-  s.sheet().pose.pitch_deg = tilt_deg;
-  airr::set_floating_distance(s, floating_distance_mm);
+  scene s = measurement_layout(setup, tilt_deg, floating_distance_mm);
   const double r_mm = reference_distance(setup);
   for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) {
     auto& m = s.retroreflectors[i].model;

@@ -99,6 +99,12 @@ part_frame aerial_image_frame(const scene& s) {
 
 glm::dvec3 aerial_image_center(const scene& s) { return aerial_image_frame(s).center; }
 
+pose mirrored_in_half_mirror(const scene& s, const part_frame& f) {
+  const part_frame hm = half_mirror_frame(s);
+  const glm::dvec3 n = reflect(f.n, hm.n), v = reflect(f.v, hm.n);
+  return pose_from_rotation(glm::dmat3(glm::cross(v, n), v, n), mirror_point(f.center, hm.center, hm.n));
+}
+
 bool sheet_seen_by_reflection(const scene& s, std::size_t sheet) {
   const part_frame hm = half_mirror_frame(s), rr = retroreflector_frame(s, sheet);
   const glm::dvec3 display = source_frame(s).center;

@@ -60,6 +60,17 @@ inline constexpr int fit_data_version = 1;
 // Throws airr::input_error "FILE: FIELD: problem" naming what is missing or wrong.
 fit_data load_fit_data(const std::string& dir);
 
+// The device a measurement was taken on: the setup with its first sheet at pitch `tilt_deg` and
+// the display at floating distance `floating_distance_mm`. A device may have more sheets if each
+// is the first sheet's mirror image in the half mirror (so that every sheet sees the aerial
+// image's centre at the first sheet's incidence, which the fit's per-tilt a and mu describe);
+// they follow the first sheet's tilt.
+scene measurement_layout(const scene& setup, double tilt_deg, double floating_distance_mm);
+
+// Throws input_error "<origin>: retroreflectors[i]: ..." for a sheet after the first that is not
+// the first sheet's mirror image in the half mirror.
+void check_fit_sheets(const scene& setup, const std::string& origin);
+
 // A CSV in the `airr mtf` format: header naming lp_per_mm and mtf (cycles_per_pixel optional).
 // Fills lp_per_mm, mtf and, when the CSV has cycles_per_pixel, pixel_mm. Throws input_error.
 void read_mtf_csv(const std::string& path, mtf_measurement& m);

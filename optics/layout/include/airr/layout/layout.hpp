@@ -33,6 +33,11 @@ part_frame retroreflector_frame(const scene& s, std::size_t sheet = 0);
 part_frame aerial_image_frame(const scene& s);
 glm::dvec3 aerial_image_center(const scene& s);
 
+// The pose of a part's mirror image in the half mirror: its centre and plane mirrored, its front
+// facing the mirror as the original's does, its width axis turned so that the frame stays
+// right-handed.
+pose mirrored_in_half_mirror(const scene& s, const part_frame& f);
+
 // Whether the observer's ideal path reaches sheet i by reflection in the half mirror: the sheet
 // is across the half mirror from the display, so the display's light reaches it through the
 // mirror (and comes back to the aerial image by reflection). Otherwise the path passes through.
