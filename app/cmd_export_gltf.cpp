@@ -16,7 +16,8 @@ void add_export_gltf_command(CLI::App& app) {
   auto opt = std::make_shared<options>();
   auto* cmd = app.add_subcommand("export-gltf",
                                  "Write the layout as glTF (.glb or .gltf): every part, prop and the observer, with "
-                                 "their roles in extras, so that a glTF tool opens it and airr reads it back");
+                                 "their roles in extras, and the display's image embedded as its texture, so "
+                                 "that a glTF tool opens it and airr reads it back");
   cmd->add_option("scene", opt->scene_path, "Scene file (JSON, or a glTF layout)")->required();
   cmd->add_option("-o,--output", opt->out, "Output .glb or .gltf file")->required();
   cmd->add_option("--set", opt->sets, "Override a scene field, e.g. retroreflectors.0.pose.pitch_deg=20");

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -21,10 +22,14 @@ namespace airr::fuzz {
 
 namespace fs = std::filesystem;
 
-// A folder of this process's own for the files the loaders read (they take paths); removed at exit.
+// A folder of this process's own for the files the loaders read (they take paths), and for the
+// cache glTF images are extracted into (XDG_CACHE_HOME); removed at exit.
 struct work_folder {
   fs::path path = fs::temp_directory_path() / ("airr-fuzz-" + std::to_string(::getpid()));
-  work_folder() { fs::create_directories(path); }
+  work_folder() {
+    fs::create_directories(path);
+    ::setenv("XDG_CACHE_HOME", path.c_str(), 1);
+  }
   ~work_folder() {
     std::error_code ec;
     fs::remove_all(path, ec);

@@ -15,24 +15,8 @@ namespace airr::ui {
 
 namespace fs = std::filesystem;
 
-// $<variable>/airr-studio, else ~/<fallback>/airr-studio (the XDG base directories), created.
-static std::string xdg_dir(const char* variable, const char* fallback) {
-  fs::path base;
-  if (const char* xdg = std::getenv(variable); xdg && *xdg && fs::path(xdg).is_absolute()) {
-    base = xdg;
-  } else if (const char* home = std::getenv("HOME"); home && *home) {
-    base = fs::path(home) / fallback;
-  } else {
-    base = fs::temp_directory_path();
-  }
-  const fs::path dir = base / "airr-studio";
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  return dir.string();
-}
-
-std::string config_dir() { return xdg_dir("XDG_CONFIG_HOME", ".config"); }
-std::string state_dir() { return xdg_dir("XDG_STATE_HOME", ".local/state"); }
+std::string config_dir() { return xdg_app_dir("XDG_CONFIG_HOME", ".config"); }
+std::string state_dir() { return xdg_app_dir("XDG_STATE_HOME", ".local/state"); }
 
 studio_settings load_settings() {
   studio_settings s;

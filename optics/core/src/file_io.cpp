@@ -3,6 +3,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -76,6 +77,21 @@ std::optional<file_stamp> stamp_of(const std::string& path) {
 }
 
 std::string absolute_path(const std::string& path) { return fs::absolute(path).lexically_normal().string(); }
+
+std::string xdg_app_dir(const char* variable, const char* fallback) {
+  fs::path base;
+  if (const char* xdg = std::getenv(variable); xdg && *xdg && fs::path(xdg).is_absolute()) {
+    base = xdg;
+  } else if (const char* home = std::getenv("HOME"); home && *home) {
+    base = fs::path(home) / fallback;
+  } else {
+    base = fs::temp_directory_path();
+  }
+  const fs::path dir = base / "airr-studio";
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  return dir.string();
+}
 
 static std::string too_deep_message(const std::string& origin) {
   return origin + ": malformed JSON: nested deeper than " + std::to_string(max_json_depth) + " levels";

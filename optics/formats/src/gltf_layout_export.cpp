@@ -11,6 +11,7 @@
 #include "airr/formats/mesh_gltf.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
+#include "gltf_images.hpp"
 
 namespace airr {
 
@@ -19,6 +20,23 @@ using nlohmann::json;
 namespace {
 
 constexpr double metres_per_mm = 1e-3;
+
+std::string base64(const std::string& in) {
+  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((in.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < in.size(); i += 3) {
+    const auto byte = [&](std::size_t k) {
+      return k < in.size() ? std::uint32_t(static_cast<unsigned char>(in[k])) : 0u;
+    };
+    const std::uint32_t n = (byte(i) << 16) | (byte(i + 1) << 8) | byte(i + 2);
+    out += table[(n >> 18) & 63];
+    out += table[(n >> 12) & 63];
+    out += i + 1 < in.size() ? table[(n >> 6) & 63] : '=';
+    out += i + 2 < in.size() ? table[n & 63] : '=';
+  }
+  return out;
+}
 
 // The document and its one binary buffer, filled as parts are added.
 struct writer {
@@ -33,11 +51,14 @@ struct writer {
   std::string bin;
   std::set<std::string> names;
 
+  // A buffer view; target 0: none (an image's).
   int view(const void* data, std::size_t bytes, int target) {
     while (bin.size() % 4) bin.push_back('\0');
     const std::size_t offset = bin.size();
     bin.append(static_cast<const char*>(data), bytes);
-    doc["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}, {"target", target}});
+    json v = {{"buffer", 0}, {"byteOffset", offset}, {"byteLength", bytes}};
+    if (target) v["target"] = target;
+    doc["bufferViews"].push_back(v);
     return int(doc["bufferViews"].size() - 1);
   }
   int positions(const std::vector<glm::vec3>& p) {
@@ -50,6 +71,28 @@ struct writer {
                                 {"min", {lo.x, lo.y, lo.z}},
                                 {"max", {hi.x, hi.y, hi.z}}});
     return int(doc["accessors"].size() - 1);
+  }
+  int texcoords(const std::vector<glm::vec2>& uv) {
+    doc["accessors"].push_back({{"bufferView", view(uv.data(), uv.size() * sizeof(glm::vec2), 34962)},
+                                {"componentType", 5126},
+                                {"count", uv.size()},
+                                {"type", "VEC2"}});
+    return int(doc["accessors"].size() - 1);
+  }
+  // An image as a texture (bilinear, clamped at the edges, as the tracer samples the display): in
+  // the binary buffer for a GLB, else as a data URI.
+  int texture(const gltf::embedded_image& img, const std::string& name, bool binary) {
+    json image = {{"name", name}};
+    if (binary) {
+      image["bufferView"] = view(img.bytes.data(), img.bytes.size(), 0);
+      image["mimeType"] = img.mime_type;
+    } else {
+      image["uri"] = "data:" + img.mime_type + ";base64," + base64(img.bytes);
+    }
+    doc["images"].push_back(image);
+    doc["samplers"] = {{{"magFilter", 9729}, {"minFilter", 9729}, {"wrapS", 33071}, {"wrapT", 33071}}};
+    doc["textures"].push_back({{"sampler", 0}, {"source", doc["images"].size() - 1}});
+    return int(doc["textures"].size() - 1);
   }
   int indices(const std::vector<std::uint32_t>& idx) {
     doc["accessors"].push_back({{"bufferView", view(idx.data(), idx.size() * 4, 34963)},
@@ -98,6 +141,52 @@ int rectangle_mesh(writer& w, double width_mm, double height_mm, int material) {
       {{"primitives",
         {{{"attributes", {{"POSITION", w.positions(p)}}}, {"indices", w.indices(idx)}, {"material", material}}}}});
   return int(w.doc["meshes"].size() - 1);
+}
+
+// The display's whole panel in its own xy plane (front +z), in metres: the emitting area (its image
+// as texture -1: none; texel row 0 at the top, +y) and, with a bezel, the black frame around it,
+// each a primitive of its own, so that the mesh's extent is the panel and the image covers only
+// the emitting area.
+int display_mesh(writer& w, const source_params& src, int texture) {
+  const float x = float(0.5 * src.width_mm * metres_per_mm), y = float(0.5 * src.height_mm * metres_per_mm);
+  const float bx = float(0.5 * (src.width_mm + 2 * src.bezel_mm) * metres_per_mm);
+  const float by = float(0.5 * (src.height_mm + 2 * src.bezel_mm) * metres_per_mm);
+  json glow = {{"name", "display"},
+               {"pbrMetallicRoughness", pbr(glm::dvec3(0.05), 0, 0.5)},
+               {"emissiveFactor", {1.0, 1.0, 1.0}}};
+  json area = {{"attributes", {{"POSITION", w.positions({{-x, -y, 0}, {x, -y, 0}, {x, y, 0}, {-x, y, 0}})}}},
+               {"indices", w.indices({0, 1, 2, 0, 2, 3})}};
+  if (texture >= 0) {
+    glow["pbrMetallicRoughness"] = pbr(glm::dvec3(1), 0, 0.5);
+    glow["pbrMetallicRoughness"]["baseColorTexture"] = {{"index", texture}};
+    glow["emissiveTexture"] = {{"index", texture}};
+    area["attributes"]["TEXCOORD_0"] = w.texcoords({{0, 1}, {1, 1}, {1, 0}, {0, 0}});
+  }
+  area["material"] = w.material(glow);
+  json prims = json::array({area});
+  if (src.bezel_mm > 0) {
+    const std::vector<glm::vec3> p = {{-bx, -by, 0}, {bx, -by, 0}, {bx, by, 0}, {-bx, by, 0},
+                                      {-x, -y, 0},   {x, -y, 0},   {x, y, 0},   {-x, y, 0}};
+    // Four trapezoids between the outer corners 0-3 and the inner ones 4-7.
+    std::vector<std::uint32_t> idx;
+    for (std::uint32_t k = 0; k < 4; ++k) {
+      const std::uint32_t a = k, b = (k + 1) % 4, c = 4 + (k + 1) % 4, d = 4 + k;
+      idx.insert(idx.end(), {a, b, c, a, c, d});
+    }
+    prims.push_back(
+        {{"attributes", {{"POSITION", w.positions(p)}}},
+         {"indices", w.indices(idx)},
+         {"material", w.material({{"name", "bezel"}, {"pbrMetallicRoughness", pbr(glm::dvec3(0.02), 0, 0.5)}})}});
+  }
+  w.doc["meshes"].push_back({{"name", "Display"}, {"primitives", prims}});
+  return int(w.doc["meshes"].size() - 1);
+}
+
+// The display's image as a texture (-1 for a uniform display).
+int display_texture(writer& w, const scene& s, bool binary) {
+  if (s.source.image.empty()) return -1;
+  const std::string path = resolve_scene_path(s, s.source.image);
+  return w.texture(gltf::image_to_embed(path), std::filesystem::path(path).filename().string(), binary);
 }
 
 // A prop's triangles in metres, one primitive per material.
@@ -160,42 +249,22 @@ std::string glb(const json& doc, std::string bin) {
   return out;
 }
 
-std::string base64(const std::string& in) {
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((in.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < in.size(); i += 3) {
-    const auto byte = [&](std::size_t k) {
-      return k < in.size() ? std::uint32_t(static_cast<unsigned char>(in[k])) : 0u;
-    };
-    const std::uint32_t n = (byte(i) << 16) | (byte(i + 1) << 8) | byte(i + 2);
-    out += table[(n >> 18) & 63];
-    out += table[(n >> 12) & 63];
-    out += i + 1 < in.size() ? table[(n >> 6) & 63] : '=';
-    out += i + 2 < in.size() ? table[n & 63] : '=';
-  }
-  return out;
-}
-
 }  // namespace
 
 void export_gltf_layout(const scene& original, const std::string& path) {
   if (!is_gltf_path(path)) throw input_error(path + ": a glTF layout is written as .glb or .gltf");
   const std::string dir = std::filesystem::absolute(path).parent_path().string();
+  const std::string ext = std::filesystem::path(path).extension().string();
+  const bool binary = ext == ".glb" || ext == ".GLB";
   // Paths in extras count from the new file's folder.
   const scene s = rebase_scene_paths(original, dir);
   const json form = scene_to_json(s);
   writer w;
   json roots = json::array();
 
-  // The display: its whole panel (the bezel included), glowing.
+  // The display: its whole panel (the bezel included), glowing with its image.
   json src = form["source"];
-  const double bezel = 2 * s.source.bezel_mm;
-  const int display_mat = w.material({{"name", "display"},
-                                      {"pbrMetallicRoughness", pbr(glm::dvec3(0.05), 0, 0.5)},
-                                      {"emissiveFactor", {1.0, 1.0, 1.0}}});
-  json display = {{"name", w.unique("Display")},
-                  {"mesh", rectangle_mesh(w, s.source.width_mm + bezel, s.source.height_mm + bezel, display_mat)}};
+  json display = {{"name", w.unique("Display")}, {"mesh", display_mesh(w, s.source, display_texture(w, s, binary))}};
   place(display, s.source.pose);
   for (const char* key : {"width_mm", "height_mm", "pose", "mesh"}) src.erase(key);
   src["role"] = "display";
@@ -273,8 +342,6 @@ void export_gltf_layout(const scene& original, const std::string& path) {
                                  {"observer", form["observer"]},
                                  {"render", form["render"]}}}}}});
   if (w.doc["materials"].empty()) w.doc.erase("materials");
-  const bool binary =
-      std::filesystem::path(path).extension() == ".glb" || std::filesystem::path(path).extension() == ".GLB";
   if (binary) {
     w.doc["buffers"] = {{{"byteLength", w.bin.size()}}};
     write_file_atomic(path, glb(w.doc, w.bin));

@@ -233,6 +233,7 @@ gltf_layout read_gltf_layout(const std::string& path) {
     display["width_mm"] = w;
     display["height_mm"] = h;
   }
+  gltf::choose_display_image(f, c.display.front(), display, out.notes);
   doc["source"] = display;
   doc["half_mirror"] = part(c.half_mirror.front(), "half_mirror", "half_mirror");
   doc["retroreflectors"] = json::array();

@@ -14,13 +14,17 @@
 #include "airr/core/error.hpp"
 #include "airr/core/json_reader.hpp"
 #include "airr/layout/layout.hpp"
+#include "gltf_materials.hpp"
 
 namespace airr::gltf {
 
 namespace {
 
-// Images are not needed: accept them unread.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+// Images are decoded only when asked for (gltf_images.hpp): keep a data URI's bytes, which
+// tinygltf passes here alone (a buffer view's stay in its buffer).
+bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  if (image->bufferView < 0 && image->uri.empty() && size > 0) image->image.assign(bytes, bytes + size);
   return true;
 }
 
@@ -126,31 +130,6 @@ std::uint32_t index_at(const accessor_view& v, int component_type, std::size_t i
   }
 }
 
-// The index in out.materials of glTF material `material` (-1: glTF's default material), added
-// when no equal one is there yet.
-std::uint32_t material_slot(const file& f, int material, triangle_mesh& out) {
-  mesh_material mm;
-  if (material >= 0) {
-    if (std::size_t(material) >= f.model.materials.size()) {
-      throw input_error(f.path + ": material " + std::to_string(material) + " does not exist");
-    }
-    const tinygltf::Material& gm = f.model.materials[std::size_t(material)];
-    const auto& pbr = gm.pbrMetallicRoughness;
-    mm.name = gm.name;
-    auto unit = [](double v) { return std::isfinite(v) ? float(std::clamp(v, 0.0, 1.0)) : 0.0f; };
-    if (pbr.baseColorFactor.size() >= 3) {
-      mm.base_color = {unit(pbr.baseColorFactor[0]), unit(pbr.baseColorFactor[1]), unit(pbr.baseColorFactor[2])};
-    }
-    mm.metallic = unit(pbr.metallicFactor);
-    mm.roughness = unit(pbr.roughnessFactor);
-  }
-  for (std::size_t k = 0; k < out.materials.size(); ++k) {
-    if (out.materials[k] == mm) return std::uint32_t(k);
-  }
-  out.materials.push_back(mm);
-  return std::uint32_t(out.materials.size() - 1);
-}
-
 }  // namespace
 
 std::string node_label(const file& f, int node) {
@@ -178,7 +157,7 @@ file read(const std::string& path) {
   file f;
   f.path = path;
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(skip_image, nullptr);
+  loader.SetImageLoader(keep_image_bytes, nullptr);
   loader.SetStoreOriginalJSONForExtrasAndExtensions(true);
   std::string err, warn;
   const std::string dir = std::filesystem::path(path).parent_path().string();
@@ -389,7 +368,7 @@ void append_node_triangles(const file& f, int node, const glm::dmat4& xf, triang
         }
         out.positions.reserve(base + positions.size());
         for (const auto& p : positions) out.positions.emplace_back(p);
-        const std::uint32_t mat = material_slot(f, material, out);
+        const std::uint32_t mat = material_slot(f, material, node_label(f, node), out);
         for (std::uint32_t i : triangles) out.indices.push_back(std::uint32_t(base) + i);
         out.triangle_materials.insert(out.triangle_materials.end(), triangles.size() / 3, mat);
       });

@@ -21,7 +21,8 @@ inline constexpr std::size_t max_triangles = 20'000'000;
 inline constexpr std::uintmax_t max_gltf_bytes = std::uintmax_t(2) << 30;
 
 // The file, read as GLB when it starts with GLB's magic, else as JSON glTF; external and
-// data-URI buffers are read, images are not.
+// data-URI buffers are read, images are not decoded (a data-URI image's bytes are kept in its
+// `image`; gltf_images.hpp reads images).
 struct file {
   std::string path;
   tinygltf::Model model;

@@ -9,6 +9,7 @@
 #include <mutex>
 #include <system_error>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imageio.h>
 
@@ -225,6 +226,26 @@ void write_image(const std::string& path, const image_rgb& img, const image_meta
     fs::remove(tmp, ec);
     throw input_error(path + ": cannot replace file: " + why);
   }
+}
+
+std::string encode_png(const image_rgb& img, bool sixteen_bit, const std::string& what) {
+  ImageSpec spec(img.width, img.height, 3, sixteen_bit ? TypeDesc::UINT16 : TypeDesc::UINT8);
+  spec.attribute("oiio:ColorSpace", sixteen_bit ? "linear" : "sRGB");
+  std::vector<float> px(img.rgb.size());
+  for (std::size_t i = 0; i < px.size(); ++i) {
+    const float v = std::clamp(img.rgb[i], 0.0f, 1.0f);
+    px[i] = sixteen_bit ? v : float(srgb_encode(v));
+  }
+  std::vector<unsigned char> bytes;
+  Filesystem::IOVecOutput proxy(bytes);
+  auto out = ImageOutput::create("png", &proxy);
+  const bool ok =
+      out && out->open("embedded.png", spec) && out->write_image(TypeDesc::FLOAT, px.data()) && out->close();
+  if (!ok) {
+    const std::string why = one_line(out ? out->geterror() : geterror());
+    throw input_error(what + ": cannot encode PNG: " + (why.empty() ? "write failed" : why));
+  }
+  return std::string(bytes.begin(), bytes.end());
 }
 
 std::vector<std::string> read_image_layer_names(const std::string& path) {

@@ -35,6 +35,11 @@ std::string rebase_path(const std::string& path, const std::string& old_base, co
 // The absolute, normalised form of a path (for recent-file lists and dropped files).
 std::string absolute_path(const std::string& path);
 
+// The programs' folder in an XDG base directory, created: $<variable>/airr-studio when the
+// variable holds an absolute path, else ~/<fallback>/airr-studio, else <temp>/airr-studio; e.g.
+// ("XDG_CACHE_HOME", ".cache"). The designer's settings, recovery copies and the cache live there.
+std::string xdg_app_dir(const char* variable, const char* fallback);
+
 // What a file was when it was read: a changed modification time or size means it changed.
 struct file_stamp {
   std::filesystem::file_time_type mtime{};

@@ -9,6 +9,7 @@
 namespace airr {
 
 // A glTF material as far as the tracer uses it (glTF's defaults: white, metallic 1, roughness 1).
+// base_color is linear: baseColorFactor times its base-colour texture's mean (mesh_gltf.hpp).
 struct mesh_material {
   std::string name;
   glm::vec3 base_color{1.0f};

@@ -18,6 +18,16 @@
 //   is (an orbit stays an orbit); a moved one places a look-at observer with the extras' other
 //   fields (lens, field of view, size), aiming as far ahead as the extras' observer aimed
 //   (300 mm without one). A note says which was used.
+//
+// Self-contained: the display's image travels in the file as the base-colour texture of the
+// display's mesh (see export_gltf_layout), while its extras keep naming the image file. Reading,
+// the named file (relative to the glTF's folder) wins when it exists; when the extras name none,
+// or it is missing, the mesh's texture is used: an embedded one is extracted once into the cache,
+// <XDG_CACHE_HOME or ~/.cache>/airr-studio/embedded/<content hash>-<size>.png (or .jpg), written
+// atomically and reused while its bytes match, and source.image names that file (so the renderer
+// and every other reader of source.image read it like any image; a scene saved from such a layout
+// names the cache's copy). A note says which image was used; a damaged embedded image is an error
+// naming the file and the display's node.
 #include <string>
 #include <utility>
 #include <vector>
@@ -38,7 +48,8 @@ bool is_gltf_path(const std::string& path);
 //   clockwise seen from the front), its width axis from the node's x axis, its size from the
 //   mesh's extent (the display's mesh is its whole panel, bezel included). The role's other fields
 //   (a display's image, intensity, bezel_mm, emission_profile; a half mirror's reflectance and
-//   transmittance; a sheet's model) come from its extras;
+//   transmittance; a sheet's model) come from its extras; the display's image, when its file is
+//   missing, from its mesh's base-colour texture (as the top of this header says);
 // - props: every topmost node outside the parts whose subtree has triangles, by node name (or
 //   "#index"), with its rigid pose; surface, albedo, visible and name from extras, else the glTF
 //   material;
@@ -79,7 +90,15 @@ bool gltf_has_layout_roles(const std::string& path);
 
 // Writes the layout as glTF (.glb, or .gltf with the buffer embedded), atomically: one node per
 // part with its rectangle, one per visible or hidden prop with its triangles and materials, a
-// camera for the observer, and every role and field in extras. Throws input_error naming the path.
+// camera for the observer, and every role and field in extras. The display's mesh is its whole
+// panel in two primitives: the emitting area, whose material has the display's image (if any) as
+// baseColorTexture and emissiveTexture, its texture coordinates spanning [0, 1] over that area
+// (texel row 0 at its top), and around it the bezel's black frame (without a bezel, none); so the
+// mesh's extent stays the panel the reader takes the size from, and the image covers only the
+// emitting area. The image is the file's own bytes when it is PNG or JPEG (identical pixels),
+// else PNG (16-bit, linear, when the file has more than 8 bits per channel, since 16-bit files read
+// as linear; 8-bit sRGB otherwise); in a .glb it sits in the binary buffer, in a .gltf in a data
+// URI. Throws input_error naming the path (or the image file).
 void export_gltf_layout(const scene& s, const std::string& path);
 
 }  // namespace airr

@@ -62,6 +62,12 @@ struct image_layer {
 void write_image(const std::string& path, const image_rgb& img, const image_metadata& meta, float exposure = 1.0f,
                  const std::vector<image_layer>& layers = {});
 
+// The bytes of a PNG file holding the image (for embedding it in another file, e.g. a glTF
+// layout): 8-bit sRGB-encoded, or with `sixteen_bit` its linear values in 16 bits, so that
+// load_image reads either back as these pixels (to their precision; values are clamped to
+// [0, 1]). Throws input_error "<what>: ...".
+std::string encode_png(const image_rgb& img, bool sixteen_bit, const std::string& what);
+
 // The layer names of an image file's channels "<name>.<channel>" (in order, each once).
 std::vector<std::string> read_image_layer_names(const std::string& path);
 

@@ -32,7 +32,10 @@ pose gltf_node_rigid_pose(const std::string& path, const std::string& node);
 
 // How a prop's triangle scatters: its surface, or with prop_surface::material, the triangle's
 // glTF material: metallic (>= 0.5) and smooth (roughness <= 0.3) is a mirror of its base colour,
-// anything else diffuse with its base colour as albedo.
+// anything else diffuse with its base colour as albedo. The base colour is baseColorFactor times,
+// when the material has a baseColorTexture, the mean linear colour of the texture's image (its
+// codes sRGB-decoded, as glTF specifies; every texel alike, texture coordinates are not read; an
+// embedded image is read through the cache gltf_layout.hpp describes).
 struct surface_response {
   prop_surface kind = prop_surface::absorber;  // absorber, diffuse or mirror
   glm::vec3 reflectance{0.0f};
