@@ -1,5 +1,5 @@
-// airr psf SCENE -o psf.csv [--plot psf.png] [--samples N] [--no-pixel] [--max-lp F] [--points N]
-//          [--set key=value ...]
+// airr psf SCENE [-o psf.csv] [--plot psf.png] [--image psf.exr] [--png psf.png] [--focus A:B:STEP ...]
+//          [--field N ...] [--samples N] [--no-pixel] [--max-lp F] [--points N] [--set key=value ...]
 #include <chrono>
 #include <cstdio>
 #include <memory>
@@ -8,10 +8,14 @@
 
 #include "airr/analysis/plot_png.hpp"
 #include "airr/analysis/psf_mtf.hpp"
+#include "airr/core/error.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
+#include "airr/layout/psf_focus.hpp"
+#include "airr/layout/sheet_models.hpp"
 #include "airr/measure/mtf_routes.hpp"
 #include "commands.hpp"
+#include "psf_views.hpp"
 
 namespace {
 
@@ -64,11 +68,14 @@ void add_psf_command(CLI::App& app) {
     bool no_pixel = false;
     double max_lp = 2.0;
     int points = 101;
+    psf_picture_options picture;
+    focus_options focus;
+    field_options field;
   };
   auto opt = std::make_shared<options>();
   auto* cmd = app.add_subcommand("psf", "MTF of the model PSF on the aerial-image plane (no tracer)");
   cmd->add_option("scene", opt->scene_path, "Scene JSON file")->required();
-  cmd->add_option("-o,--output", opt->csv, "CSV file to write (lp_per_mm,mtf)")->required();
+  cmd->add_option("-o,--output", opt->csv, "CSV file of the MTF to write (lp_per_mm,mtf)");
   cmd->add_option("--plot", opt->plot, "Also write a PNG plot of the MTF");
   cmd->add_option("--samples", opt->samples, "Rays traced through the retroreflector (default 100000)")
       ->check(CLI::Range(100, 100000000));
@@ -78,15 +85,46 @@ void add_psf_command(CLI::App& app) {
       ->check(CLI::Range(0.01, 1000.0));
   cmd->add_option("--points", opt->points, "Frequencies in the CSV, 0 .. max evenly spaced (default 101)")
       ->check(CLI::Range(2, 100000));
+  cmd->add_option("--image", opt->picture.image,
+                  "Write the 2D model PSF as an image (EXR: density per mm^2, mm per pixel in its metadata)");
+  cmd->add_option("--png", opt->picture.png, "Write the 2D model PSF as a log-scaled picture with mm axes");
+  cmd->add_option("--pixels", opt->picture.pixels,
+                  "Pixels per side of the PSF pictures (odd; default 129, and for --image enough for r50 to span 4)")
+      ->check(CLI::Range(3, 4095));
+  cmd->add_option("--extent", opt->picture.half_width_mm,
+                  "Half-width of the 2D PSF picture in mm (default: the square holding 99.8% of it)")
+      ->check(CLI::Range(1e-6, 1e4));
+  cmd->add_option("--focus", opt->focus.range,
+                  "Through focus: planes at offsets start:end:step mm along the chief ray (+ towards the observer)");
+  cmd->add_option("--focus-csv", opt->focus.csv, "Through focus: CSV of offset, r50, r80 and peak");
+  cmd->add_option("--focus-plot", opt->focus.plot, "Through focus: PNG plot of r50 and r80 against the offset");
+  cmd->add_option("--focus-strip", opt->focus.strip, "Through focus: PNG strip of the PSFs (at most nine planes)");
+  cmd->add_option("--field", opt->field.n, "Spot matrix: model PSFs at N x N points over the aerial image")
+      ->check(CLI::Range(1, 9));
+  cmd->add_option("--field-csv", opt->field.csv, "Spot matrix: CSV of each point's r50");
+  cmd->add_option("--field-png", opt->field.png, "Spot matrix: PNG of the PSFs, each with its r50");
   cmd->add_option("--set", opt->sets, "Override a scene value, e.g. retroreflectors.0.model.preset=rf-ay");
   cmd->callback([opt] {
     std::vector<airr::scene_override> overrides;
     for (const auto& s : opt->sets) overrides.push_back(airr::parse_override(s));
     const airr::scene s = load_scene_noting(opt->scene_path, overrides);
+    if (opt->csv.empty() && opt->plot.empty() && opt->picture.image.empty() && opt->picture.png.empty() &&
+        opt->focus.range.empty() && opt->field.n == 0) {
+      throw airr::input_error("psf: nothing to write: give -o, --plot, --image, --png, --focus or --field");
+    }
+    if (opt->picture.pixels && opt->picture.pixels % 2 == 0)
+      throw airr::input_error("psf: --pixels must be odd (the middle pixel is the ideal point)");
+    if (opt->focus.range.empty() && !(opt->focus.csv + opt->focus.plot + opt->focus.strip).empty())
+      throw airr::input_error("psf: --focus-csv, --focus-plot and --focus-strip need --focus start:end:step");
+    if (opt->field.n == 0 && !(opt->field.csv + opt->field.png).empty())
+      throw airr::input_error("psf: --field-csv and --field-png need --field N");
+    const std::vector<double> focus_offsets =
+        opt->focus.range.empty() ? std::vector<double>{} : airr::parse_focus_offsets(opt->focus.range);
+    const airr::retro_model_list models = airr::make_sheet_models(s);
     const double pixel_mm = opt->no_pixel ? 0.0 : airr::make_camera(s).mm_per_pixel;
 
     const auto t0 = std::chrono::steady_clock::now();
-    const airr::psf_samples psf = airr::scene_psf(s, opt->samples);
+    const airr::psf_samples psf = airr::scene_psf(s, models, opt->samples);
     const double t_sample = seconds_since(t0);
     const auto t1 = std::chrono::steady_clock::now();
     const auto curve =
@@ -116,8 +154,10 @@ void add_psf_command(CLI::App& app) {
     std::printf("time: %.3f s (sampling %.3f s, %d-point MTF curve %.3f s, mean MTF, MTF50 and radius %.3f s)\n",
                 t_sample + t_curve + t_summary, t_sample, opt->points, t_curve, t_summary);
 
-    airr::write_file_atomic(opt->csv, psf_csv(curve));
-    std::printf("wrote %s\n", opt->csv.c_str());
+    if (!opt->csv.empty()) {
+      airr::write_file_atomic(opt->csv, psf_csv(curve));
+      std::printf("wrote %s\n", opt->csv.c_str());
+    }
     if (!opt->plot.empty()) {
       std::vector<airr::analysis::plot_series> series;
       char label[96];
@@ -143,5 +183,16 @@ void add_psf_command(CLI::App& app) {
       airr::analysis::write_plot_png(opt->plot, series, pp);
       std::printf("wrote %s\n", opt->plot.c_str());
     }
+    if (!opt->picture.image.empty() || !opt->picture.png.empty()) {
+      // Pictures from independent samples: their noise shows as noise, not as the lattice of
+      // the sequence the numbers above use.
+      write_psf_pictures(s, airr::sample_psf(s, models, {.samples = opt->samples, .seed = s.seed, .stratified = false}),
+                         opt->picture);
+    }
+    if (!opt->focus.range.empty())
+      run_through_focus(s, models, focus_offsets, opt->samples, opt->picture.pixels ? opt->picture.pixels : 129,
+                        opt->focus);
+    if (opt->field.n > 0)
+      run_spot_matrix(s, models, opt->samples, opt->picture.pixels ? opt->picture.pixels : 129, opt->field);
   });
 }

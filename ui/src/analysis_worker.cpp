@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 
 #include "airr/analysis/mtf_metrics.hpp"
+#include "airr/analysis/psf_grid.hpp"
 #include "airr/analysis/psf_mtf.hpp"
 #include "airr/analysis/slanted_edge_mtf.hpp"
 #include "airr/layout/layout.hpp"
@@ -41,19 +42,9 @@ predicted_plots compute_predicted(const scene& s, std::uint64_t generation, cons
     out.brightness = psf.brightness();
     // Cross-section: offsets within a thin horizontal band through the centre, binned along x.
     const double half_range = std::max(4.0 * out.r50_mm, 0.5), band = std::max(out.r50_mm / 4.0, 0.01);
-    const int bins = 61;
-    out.psf_x_mm.resize(bins);
-    out.psf_density.assign(bins, 0.0);
-    double total = 0;
-    for (std::size_t i = 0; i < psf.offset_mm.size(); ++i) total += psf.weight[i];
-    for (int b = 0; b < bins; ++b) out.psf_x_mm[b] = -half_range + (b + 0.5) * 2 * half_range / bins;
-    for (std::size_t i = 0; i < psf.offset_mm.size(); ++i) {
-      const glm::dvec2 o = psf.offset_mm[i];
-      if (std::abs(o.y) > band || std::abs(o.x) >= half_range) continue;
-      out.psf_density[int((o.x + half_range) / (2 * half_range) * bins)] += psf.weight[i];
-    }
-    const double cell_area = (2 * half_range / bins) * (2 * band);
-    for (double& d : out.psf_density) d = total > 0 ? d / total / cell_area : 0.0;  // per mm^2
+    analysis::psf_section section = analysis::psf_cross_section(psf, half_range, band, 61);
+    out.psf_x_mm = std::move(section.x_mm);
+    out.psf_density = std::move(section.density);
     out.psf_ms = ms_since(t0);
 
     const auto t1 = clock_type::now();

@@ -250,6 +250,18 @@ cv::Mat render_heatmap(const std::vector<double>& values, int nx, int ny, const 
     }
   }
 
+  if (!params.scale_bar_unit.empty()) {
+    // An eighth to a third of the axis: 1, 2 or 5 times a power of ten.
+    const double length = nice_step(xa.hi - xa.lo, 8);
+    const int px = static_cast<int>(std::lround(length / (xa.hi - xa.lo) * area.width));
+    const cv::Point a0(area.x + 15, area.y + area.height - 18), a1(a0.x + px, a0.y);
+    cv::line(img, a0, a1, black, 6);
+    cv::line(img, a0, a1, cv::Scalar::all(255), 3);
+    const std::string label = tick_text(length, length) + " " + params.scale_bar_unit;
+    put_text(img, label, {a0.x, a0.y - 14}, 0.5, 3, 0.0, 0.5, black);
+    put_text(img, label, {a0.x, a0.y - 14}, 0.5, 1, 0.0, 0.5, cv::Scalar::all(255));
+  }
+
   // Colour bar with its own ticks.
   const cv::Rect bar(area.x + area.width + 25, area.y, 22, area.height);
   cv::Mat ramp(256, 1, CV_8U), ramp_colours, ramp_cells;

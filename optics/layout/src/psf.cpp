@@ -98,8 +98,13 @@ static double add_sheet_samples(const psf_chief_ray& chief, const retro_model& m
     for (std::uint64_t i = b * block; i < end; ++i) {
       // The lobe and shift samples stratify each other across the PSF's samples (a rotated R6
       // sequence, as the tracer's pixels use); the rest comes from the per-sample generator.
-      const std::array<double, 6> q = r6_point(i, rotation);
       pcg32 rng = sample_rng(i, 0, p.seed);
+      std::array<double, 6> q;
+      if (p.stratified) {
+        q = r6_point(i, rotation);
+      } else {
+        for (double& x : q) x = rng.next_double();
+      }
       retro_samples u;
       u.lobe = {q[2], q[3]};
       u.shift = {q[4], q[5]};

@@ -11,6 +11,7 @@
 
 #include "airr/core/assets.hpp"
 #include "airr/core/error.hpp"
+#include "airr/core/number_range.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/measure/mtf_routes.hpp"
@@ -24,19 +25,6 @@ std::string number(double v) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "%.10g", v);
   return buf;
-}
-
-double parse_number(const std::string& text, const std::string& whole, const char* what) {
-  std::size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::logic_error&) {
-    used = 0;
-  }
-  if (text.empty() || used != text.size() || !std::isfinite(v))
-    throw input_error("--vary " + whole + ": " + what + " '" + text + "' is not a number");
-  return v;
 }
 
 std::string point_label(double d, double tilt) {
@@ -53,27 +41,11 @@ sweep_axis parse_sweep_axis(const std::string& text) {
   a.key = text.substr(0, eq);
   if (a.key != "floating_distance" && a.key != "tilt")
     throw input_error("--vary " + text + ": unknown key '" + a.key + "' (use floating_distance or tilt)");
-  const std::string range = text.substr(eq + 1);
-  const auto c1 = range.find(':'), c2 = c1 == std::string::npos ? c1 : range.find(':', c1 + 1);
-  if (c2 == std::string::npos || range.find(':', c2 + 1) != std::string::npos)
-    throw input_error("--vary " + text + ": expected start:end:step after '='");
-  a.start = parse_number(range.substr(0, c1), text, "start");
-  a.end = parse_number(range.substr(c1 + 1, c2 - c1 - 1), text, "end");
-  a.step = parse_number(range.substr(c2 + 1), text, "step");
-  if (a.start > a.end) throw input_error("--vary " + text + ": start is above end");
-  if (!(a.step > 0)) throw input_error("--vary " + text + ": step must be positive");
-  if (std::floor((a.end - a.start) / a.step + 1e-9) + 1 > max_sweep_points)
-    throw input_error("--vary " + text + ": more than " + std::to_string(max_sweep_points) + " points");
+  a.range = parse_number_range(text.substr(eq + 1), "--vary " + text, max_sweep_points);
   return a;
 }
 
-std::vector<double> sweep_values(const sweep_axis& a) {
-  // A small tolerance keeps the end point when start + k * step lands on it up to rounding.
-  const int n = int(std::floor((a.end - a.start) / a.step + 1e-9)) + 1;
-  std::vector<double> v;
-  for (int i = 0; i < n; ++i) v.push_back(a.start + i * a.step);
-  return v;
-}
+std::vector<double> sweep_values(const sweep_axis& a) { return range_values(a.range); }
 
 sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_progress& progress) {
   if (p.axes.empty()) throw input_error("--vary: give floating_distance=start:end:step and/or tilt=start:end:step");

@@ -42,6 +42,7 @@ struct heatmap_params {
   double value_min = 0, value_max = 1;                // the colour bar's ends (values beyond: clamped)
   std::optional<std::pair<double, double>> marker;    // a position to mark (x, y), and its label
   std::string marker_label;
+  std::string scale_bar_unit;  // non-empty: a bar of a round length in x's unit, e.g. "mm", bottom left
   int width = 900;
   int height = 760;
 };

@@ -22,6 +22,10 @@ namespace airr {
 struct psf_params {
   std::uint64_t samples = 100000;
   std::uint64_t seed = 1;
+  // The lobe and shift samples from a low-discrepancy sequence (smooth integrals: MTF, radii);
+  // false: independent random samples, whose noise a picture shows as noise rather than as the
+  // sequence's lattice.
+  bool stratified = true;
 };
 
 // One sheet's share of a PSF: its brightness and chief ray, or why the chief ray misses it.

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "airr/core/number_range.hpp"
 #include "airr/layout/scene.hpp"
 
 namespace airr {
@@ -15,7 +16,7 @@ namespace airr {
 // (retroreflector.tilt_deg).
 struct sweep_axis {
   std::string key;
-  double start = 0, end = 0, step = 1;
+  number_range range;
 };
 inline constexpr int max_sweep_points = 200;
 

@@ -1,0 +1,197 @@
+#include "psf_views.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "airr/analysis/bokeh.hpp"
+#include "airr/analysis/plot_png.hpp"
+#include "airr/analysis/psf_grid.hpp"
+#include "airr/analysis/psf_png.hpp"
+#include "airr/core/files.hpp"
+#include "airr/formats/image.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/layout/psf_focus.hpp"
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::string fmt(const char* format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
+// The grid's density as a grey linear image, with what a reader needs to use it.
+void write_grid_image(const std::string& path, const airr::analysis::psf_grid& g, airr::image_metadata meta) {
+  airr::image_rgb img{g.size, g.size, std::vector<float>(std::size_t(g.size) * g.size * 3)};
+  for (int row = 0; row < g.size; ++row)
+    for (int col = 0; col < g.size; ++col) std::fill_n(img.at(col, row), 3, float(g.at(col, row)));
+  meta[airr::mm_per_pixel_attribute] = fmt("%.10g", g.mm_per_pixel);
+  meta["airr:psf_units"] =
+      "per mm^2 of the aerial-image plane; integrates to the aerial radiance per unit source "
+      "radiance";
+  meta["airr:psf_center"] = "the middle pixel's centre is the ideal image point; x right, y up";
+  airr::write_image(path, img, meta);
+}
+
+std::string sheet_summary(const airr::scene& s) {
+  std::string out;
+  for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) {
+    if (i) out += " + ";
+    out += s.retroreflectors[i].model.type;
+  }
+  return out;
+}
+
+}  // namespace
+
+// The picture of `psf` on a square of half-width `half` mm, with what it holds printed.
+static airr::analysis::psf_grid psf_picture(const airr::psf_samples& psf, int pixels, double half, const char* what) {
+  const auto t0 = std::chrono::steady_clock::now();
+  airr::analysis::psf_grid g = airr::analysis::psf_to_grid(psf, pixels, 2 * half / pixels);
+  std::printf(
+      "2D PSF %s: %d x %d pixels of %.5g mm (+-%.4g mm), holding %.4f%% of the brightness, peak %.6g per "
+      "mm^2 (%.3f s)\n",
+      what, g.size, g.size, g.mm_per_pixel, g.half_width_mm(),
+      psf.brightness() > 0 ? 100 * g.integral() / psf.brightness() : 0.0, g.peak(), seconds_since(t0));
+  return g;
+}
+
+void write_psf_pictures(const airr::scene& s, const airr::psf_samples& psf, const psf_picture_options& o) {
+  namespace an = airr::analysis;
+  const double r50 = airr::energy_radius(psf, 0.5);
+  if (!o.image.empty()) {
+    const double half = o.half_width_mm > 0 ? o.half_width_mm : an::psf_picture_half_width(psf, true);
+    int pixels = o.pixels;
+    if (pixels == 0) pixels = 2 * std::clamp(int(std::ceil(4 * half / std::max(r50, 1e-9))), 64, 512) + 1;
+    write_grid_image(o.image, psf_picture(psf, pixels, half, "image"),
+                     {{"airr:psf", "model PSF on the aerial-image plane"},
+                      {"airr:psf_brightness", fmt("%.10g", psf.brightness())},
+                      {"airr:psf_r50_mm", fmt("%.10g", r50)},
+                      {"airr:sheets", sheet_summary(s)}});
+    std::printf("wrote %s\n", o.image.c_str());
+  }
+  if (!o.png.empty()) {
+    const double half = o.half_width_mm > 0 ? o.half_width_mm : an::psf_picture_half_width(psf, false);
+    const an::psf_grid g = psf_picture(psf, o.pixels ? o.pixels : 129, half, "picture");
+    char title[200];
+    std::snprintf(title, sizeof title, "model PSF: %s, D %g mm, tilt %g deg, r50 %.4g mm (%.1f%% shown)",
+                  sheet_summary(s).c_str(), airr::floating_distance(s), s.sheet().pose.pitch_deg, r50,
+                  psf.brightness() > 0 ? 100 * g.integral() / psf.brightness() : 0.0);
+    an::write_psf_panels_png(o.png, {{&g, "aerial-image plane"}},
+                             {.title = title, .panel_width = 640, .panel_height = 560});
+    std::printf("wrote %s\n", o.png.c_str());
+  }
+}
+
+void run_through_focus(const airr::scene& s, const airr::retro_model_list& models, const std::vector<double>& offsets,
+                       std::uint64_t samples, int pixels, const focus_options& o) {
+  namespace an = airr::analysis;
+  const auto t0 = std::chrono::steady_clock::now();
+  const an::through_focus tf =
+      an::compute_through_focus(s, models, offsets, {.samples = samples, .seed = s.seed, .stratified = false}, pixels);
+  const double seconds = seconds_since(t0);
+  for (const airr::psf_sheet_share& share : tf.sheets)
+    if (!share.missed.empty())
+      std::printf("through focus: sheet %zu adds nothing: %s\n", share.sheet, share.missed.c_str());
+  std::printf(
+      "through focus (the bundle from the display point of the aerial image's centre, over every sheet; "
+      "offsets along the chief ray, positive towards the observer):\n");
+  std::printf("  offset_mm    r50_mm    r80_mm  peak_per_mm2\n");
+  std::string csv = "offset_mm,r50_mm,r80_mm,peak_per_mm2\n";
+  for (const an::focus_plane& p : tf.planes) {
+    std::printf("  %9.4g %9.5g %9.5g  %12.6g\n", p.offset_mm, p.r50_mm, p.r80_mm, p.peak_per_mm2);
+    char row[128];
+    std::snprintf(row, sizeof row, "%.10g,%.10g,%.10g,%.10g\n", p.offset_mm, p.r50_mm, p.r80_mm, p.peak_per_mm2);
+    csv += row;
+  }
+  std::printf("best focus: %.4g mm (smallest r50)\n", tf.best_offset_mm);
+  std::printf("through-focus time: %.3f s for %zu planes, %llu rays per sheet\n", seconds, tf.planes.size(),
+              static_cast<unsigned long long>(samples));
+  if (!o.csv.empty()) {
+    airr::write_file_atomic(o.csv, csv);
+    std::printf("wrote %s\n", o.csv.c_str());
+  }
+  if (!o.plot.empty()) {
+    an::plot_series r50{"r50 (50% energy radius)", {}, {}, {}}, r80{"r80 (80% energy radius)", {}, {}, {}};
+    for (const an::focus_plane& p : tf.planes) {
+      r50.x.push_back(p.offset_mm);
+      r50.y.push_back(p.r50_mm);
+      r80.x.push_back(p.offset_mm);
+      r80.y.push_back(p.r80_mm);
+    }
+    an::plot_params pp;
+    pp.title = "through focus: " + sheet_summary(s) + ", best focus " + fmt("%.3g", tf.best_offset_mm) + " mm";
+    pp.x_title = "offset from the aerial image along the chief ray (mm, + towards the observer)";
+    pp.y_title = "energy radius (mm)";
+    pp.y_min = 0.0;
+    an::write_plot_png(o.plot, {r50, r80}, pp);
+    std::printf("wrote %s\n", o.plot.c_str());
+  }
+  if (!o.strip.empty()) {
+    // At most nine planes, evenly picked, the ends included.
+    const std::size_t n = tf.planes.size(), shown = std::min<std::size_t>(n, 9);
+    std::vector<an::psf_panel> panels;
+    std::vector<std::string> labels;
+    for (std::size_t k = 0; k < shown; ++k) {
+      const std::size_t i = shown == 1 ? 0 : k * (n - 1) / (shown - 1);
+      const an::focus_plane& p = tf.planes[i];
+      panels.push_back({&p.grid, fmt("z %+.3g mm", p.offset_mm) + fmt(", r50 %.3g mm", p.r50_mm)});
+    }
+    an::write_psf_panels_png(o.strip, panels,
+                             {.title = "through focus: " + sheet_summary(s) + " (each of unit weight)",
+                              .columns = int(panels.size()),
+                              .value_title = "log10 density (1/mm^2, unit weight)"});
+    std::printf("wrote %s\n", o.strip.c_str());
+  }
+}
+
+void run_spot_matrix(const airr::scene& s, const airr::retro_model_list& models, std::uint64_t samples, int pixels,
+                     const field_options& o) {
+  namespace an = airr::analysis;
+  const auto t0 = std::chrono::steady_clock::now();
+  const an::spot_matrix m =
+      an::compute_spot_matrix(s, models, o.n, {.samples = samples, .seed = s.seed, .stratified = false}, pixels);
+  const double seconds = seconds_since(t0);
+  std::printf("spot matrix (%d x %d over the central 90%% of the aerial image, as the observer sees it):\n", m.n, m.n);
+  std::string csv = "row,col,x_mm,y_mm,r50_mm,brightness,incidence_deg\n";
+  for (const an::field_spot& spot : m.spots) {
+    if (!spot.missed.empty()) {
+      std::printf("  row %d col %d (%+.4g, %+.4g) mm: %s\n", spot.row, spot.col, spot.x_mm, spot.y_mm,
+                  spot.missed.c_str());
+      csv += std::to_string(spot.row) + "," + std::to_string(spot.col) + fmt(",%.10g", spot.x_mm) +
+             fmt(",%.10g,,,\n", spot.y_mm);
+      continue;
+    }
+    std::printf("  row %d col %d (%+.4g, %+.4g) mm: r50 %.5g mm, brightness %.6g, incidence %.4g deg\n", spot.row,
+                spot.col, spot.x_mm, spot.y_mm, spot.r50_mm, spot.brightness, spot.incidence_deg);
+    char row[200];
+    std::snprintf(row, sizeof row, "%d,%d,%.10g,%.10g,%.10g,%.10g,%.10g\n", spot.row, spot.col, spot.x_mm, spot.y_mm,
+                  spot.r50_mm, spot.brightness, spot.incidence_deg);
+    csv += row;
+  }
+  std::printf("spot-matrix time: %.3f s\n", seconds);
+  if (!o.csv.empty()) {
+    airr::write_file_atomic(o.csv, csv);
+    std::printf("wrote %s\n", o.csv.c_str());
+  }
+  if (!o.png.empty()) {
+    std::vector<an::psf_panel> panels;
+    for (const an::field_spot& spot : m.spots) {
+      const std::string where = fmt("(%+.3g, ", spot.x_mm) + fmt("%+.3g) mm", spot.y_mm);
+      panels.push_back(
+          {&spot.grid, spot.missed.empty() ? where + fmt(", r50 %.3g mm", spot.r50_mm) : where + ": not reached"});
+    }
+    an::write_psf_panels_png(
+        o.png, panels,
+        {.title = "spot matrix: " + sheet_summary(s) + ", D " + fmt("%g mm", airr::floating_distance(s)) + ", tilt " +
+                  fmt("%g deg", s.sheet().pose.pitch_deg),
+         .columns = m.n});
+    std::printf("wrote %s\n", o.png.c_str());
+  }
+}
