@@ -1,13 +1,19 @@
 // airr sweep SCENE --vary floating_distance=150:300:25 [--vary tilt=0:45:5] [--psf] [--spp N]
-//                  [-o sweep.csv] [--plot sweep.png] [--set key=value ...]
+//                  [-o sweep.csv] [--plot sweep.png] [--png map.png --map r50|mean_mtf|mtf50]
+//                  [--set key=value ...]
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "airr/analysis/plot_png.hpp"
+#include "airr/core/error.hpp"
 #include "airr/formats/scene_json.hpp"
+#include "airr/layout/layout.hpp"
 #include "airr/measure/sweep.hpp"
 #include "commands.hpp"
 #include "progress_bar.hpp"
@@ -47,11 +53,51 @@ void write_sweep_plot(const std::string& path, const airr::sweep_result& r, cons
   airr::analysis::write_plot_png(path, series, pp);
 }
 
+// The blur over a floating-distance x tilt grid as a heat map, the scene's own layout marked.
+void write_sweep_map(const std::string& path, const airr::sweep_result& r, const std::string& metric,
+                     const airr::scene& s, const airr::sweep_params& p) {
+  std::vector<double> distances, tilts, values;
+  for (const auto& pt : r.points) {
+    if (std::find(distances.begin(), distances.end(), pt.floating_distance_mm) == distances.end())
+      distances.push_back(pt.floating_distance_mm);
+    if (std::find(tilts.begin(), tilts.end(), pt.tilt_deg) == tilts.end()) tilts.push_back(pt.tilt_deg);
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    values.push_back(metric == "r50"        ? pt.r50_mm
+                     : metric == "mean_mtf" ? pt.mean_mtf
+                                            : pt.mtf50_lp_per_mm.value_or(nan));
+  }
+  if (distances.size() < 2 || tilts.size() < 2)
+    throw airr::input_error("sweep: --png draws a floating distance x tilt map: vary both, each over 2 or more values");
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (double v : values)
+    if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  if (!(hi > lo))
+    hi = lo + (std::isfinite(lo) ? std::max(1e-9, std::abs(lo) * 0.01) : 1.0), lo = std::isfinite(lo) ? lo : 0.0;
+  airr::analysis::heatmap_params hp;
+  const std::string route = p.psf_route ? "model PSF" : "edge render, " + std::to_string(p.spp) + " spp";
+  hp.title = (metric == "r50"        ? "r50 (50% energy radius)"
+              : metric == "mean_mtf" ? "mean MTF over (0, 1] lp/mm"
+                                     : "MTF50") +
+             std::string(" over floating distance and tilt (") + route + ")";
+  hp.x_title = "floating distance D (mm)";
+  hp.y_title = "retroreflector tilt (deg)";
+  hp.value_title = metric == "r50" ? "r50 (mm)" : metric == "mean_mtf" ? "mean MTF (unitless)" : "MTF50 (lp/mm)";
+  hp.x_min = distances.front();
+  hp.x_max = distances.back();
+  hp.y_min = tilts.front();
+  hp.y_max = tilts.back();
+  hp.value_min = lo;
+  hp.value_max = hi;
+  hp.marker = std::make_pair(airr::floating_distance(s), s.sheet().pose.pitch_deg);
+  hp.marker_label = "design";
+  airr::analysis::write_heatmap_png(path, values, int(distances.size()), int(tilts.size()), hp);
+}
+
 }  // namespace
 
 void add_sweep_command(CLI::App& app) {
   struct options {
-    std::string scene_path, csv, plot, chart;
+    std::string scene_path, csv, plot, chart, map_png, map_metric = "r50";
     std::vector<std::string> vary, sets;
     bool psf = false;
     std::uint64_t spp = 64;
@@ -71,6 +117,10 @@ void add_sweep_command(CLI::App& app) {
       ->check(CLI::Range(100, 100000000));
   cmd->add_option("-o,--output", opt->csv, "CSV file to write");
   cmd->add_option("--plot", opt->plot, "PNG plot of mean MTF against the varied parameter");
+  cmd->add_option("--png", opt->map_png,
+                  "PNG map over floating distance x tilt (vary both) of --map, the scene's layout marked");
+  cmd->add_option("--map", opt->map_metric, "What --png maps: r50 (default), mean_mtf or mtf50")
+      ->check(CLI::IsMember({"r50", "mean_mtf", "mtf50"}));
   cmd->add_option("--set", opt->sets, "Override a scene value, e.g. retroreflectors.0.model.preset=rf-ay");
   cmd->add_option("--threads", opt->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
   cmd->callback([opt] {
@@ -85,6 +135,8 @@ void add_sweep_command(CLI::App& app) {
     for (const auto& s : opt->sets) overrides.push_back(airr::parse_override(s));
     const airr::scene s = load_scene_noting(opt->scene_path, overrides);
 
+    if (!opt->map_png.empty() && opt->vary.size() != 2)
+      throw airr::input_error("sweep: --png draws a floating distance x tilt map: give --vary for both");
     progress_bar bar("sweep");
     const auto r = airr::run_sweep(s, p, [&](double f, const std::string& detail) {
       if (f < 1.0)
@@ -116,6 +168,10 @@ void add_sweep_command(CLI::App& app) {
     if (!opt->plot.empty()) {
       write_sweep_plot(opt->plot, r, p);
       std::printf("wrote %s\n", opt->plot.c_str());
+    }
+    if (!opt->map_png.empty()) {
+      write_sweep_map(opt->map_png, r, opt->map_metric, s, p);
+      std::printf("wrote %s\n", opt->map_png.c_str());
     }
   });
 }

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include <opencv2/imgproc.hpp>
@@ -204,4 +205,36 @@ TEST(Bokeh, CommandWritesThePictures) {
   test::expect_one_line_error(test::run_cli("psf " + scene_path + " --pixels 64 --png " + dir.file("x.png")),
                               {"--pixels", "odd"});
   test::expect_one_line_error(test::run_cli("psf " + scene_path), {"nothing to write"});
+}
+
+// The floating distance x tilt map holds at each grid point what `airr psf` says of that layout.
+TEST(Bokeh, DistanceTiltMapEqualsThePsfAtItsPoints) {
+  const test::temp_dir dir;
+  const std::string scene_path = test::scene_file(dir, [](nlohmann::json& j) {
+    j["retroreflectors"][0]["model"] = {{"type", "sinc_shift"}, {"preset", "rf-an"}};
+  });
+  const auto sweep = test::run_cli(
+      "sweep " + scene_path + " --psf --samples 20000 --vary floating_distance=150:250:50 --vary tilt=0:30:10 -o " +
+      dir.file("map.csv") + " --png " + dir.file("map.png"));
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.out;
+  EXPECT_GT(std::filesystem::file_size(dir.file("map.png")), 5000u);
+  const csv_table map = read_csv_table(dir.file("map.csv"));
+  ASSERT_EQ(map.rows.size(), 12u);
+  const int d_col = map.column("floating_distance_mm"), t_col = map.column("tilt_deg");
+  const int r50_col = map.column("r50_mm"), mtf_col = map.column("mean_mtf_0_1");
+  for (std::size_t row : {0u, 5u, 7u, 11u}) {
+    const std::vector<double>& v = map.rows[row];
+    char sets[128];
+    std::snprintf(sets, sizeof sets, " --set floating_distance_mm=%.10g --set tilt_deg=%.10g", v[d_col], v[t_col]);
+    const auto psf = test::run_cli("psf " + scene_path + " --samples 20000 -o " + dir.file("p.csv") + sets);
+    ASSERT_EQ(psf.exit_code, 0) << psf.out;
+    const auto r50_at = psf.out.find("50%-energy radius: "), mtf_at = psf.out.find("mean MTF over (0, 1] lp/mm: ");
+    ASSERT_NE(r50_at, std::string::npos);
+    ASSERT_NE(mtf_at, std::string::npos);
+    EXPECT_NEAR(std::stod(psf.out.substr(r50_at + 19)), v[r50_col], 6e-5) << sets;
+    EXPECT_NEAR(std::stod(psf.out.substr(mtf_at + 28)), v[mtf_col], 6e-6) << sets;
+  }
+  test::expect_one_line_error(
+      test::run_cli("sweep " + scene_path + " --psf --vary tilt=0:30:10 --png " + dir.file("x.png")),
+      {"--png", "--vary for both"});
 }

@@ -9,6 +9,8 @@
 #include <memory>
 #include <stdexcept>
 
+#include <tbb/parallel_for.h>
+
 #include "airr/core/assets.hpp"
 #include "airr/core/error.hpp"
 #include "airr/core/number_range.hpp"
@@ -29,6 +31,19 @@ std::string number(double v) {
 
 std::string point_label(double d, double tilt) {
   return "sweep point floating_distance=" + number(d) + ", tilt=" + number(tilt);
+}
+
+std::string detail_of(const sweep_point& pt) {
+  return "D " + number(pt.floating_distance_mm) + " mm, tilt " + number(pt.tilt_deg) + " deg";
+}
+
+// The model PSF's numbers at one point (both routes report them); the PSF itself.
+psf_samples measure_psf(const scene& s, const sweep_params& p, sweep_point& pt) {
+  psf_samples psf = scene_psf(s, p.psf_samples);
+  pt.r50_mm = energy_radius(psf);
+  pt.brightness = psf.brightness();
+  for (const psf_sheet_share& share : psf.sheets) pt.sheet_brightness.push_back(share.brightness);
+  return psf;
 }
 
 }  // namespace
@@ -85,25 +100,37 @@ sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_pro
 
   sweep_result r;
   r.mm_per_pixel = make_camera(base).mm_per_pixel;
-  std::unique_ptr<render_session> session;
   const double n = double(scenes.size());
+  r.points.resize(scenes.size());
   for (std::size_t i = 0; i < scenes.size(); ++i) {
+    r.points[i].floating_distance_mm = grid[i].first;
+    r.points[i].tilt_deg = grid[i].second;
+  }
+  if (p.psf_route) {
+    // Points in parallel, a batch at a time so that progress is reported between batches; each
+    // point's result depends on its layout and seed alone.
+    const std::size_t batch = 8;
+    for (std::size_t first = 0; first < scenes.size(); first += batch) {
+      const std::size_t last = std::min(scenes.size(), first + batch);
+      if (progress) progress(double(first) / n, detail_of(r.points[first]));
+      tbb::parallel_for(first, last, [&](std::size_t i) {
+        const psf_samples psf = measure_psf(scenes[i], p, r.points[i]);
+        const mtf_summary m = psf_route_mtf(psf, make_camera(scenes[i]).mm_per_pixel);
+        r.points[i].mean_mtf = m.mean_mtf;
+        r.points[i].mtf50_lp_per_mm = m.mtf50_lp_per_mm;
+      });
+    }
+  }
+  std::unique_ptr<render_session> session;
+  for (std::size_t i = 0; i < scenes.size() && !p.psf_route; ++i) {
     const scene& s = scenes[i];
-    sweep_point pt;
-    pt.floating_distance_mm = grid[i].first;
-    pt.tilt_deg = grid[i].second;
+    sweep_point& pt = r.points[i];
     const std::string label = point_label(pt.floating_distance_mm, pt.tilt_deg);
-    const std::string detail = "D " + number(pt.floating_distance_mm) + " mm, tilt " + number(pt.tilt_deg) + " deg";
+    const std::string detail = detail_of(pt);
     if (progress) progress(double(i) / n, detail);
-
-    const psf_samples psf = scene_psf(s, p.psf_samples);
-    pt.r50_mm = energy_radius(psf);
-    pt.brightness = psf.brightness();
-    for (const psf_sheet_share& share : psf.sheets) pt.sheet_brightness.push_back(share.brightness);
+    measure_psf(s, p, pt);
     mtf_summary m;
-    if (p.psf_route) {
-      m = psf_route_mtf(psf, make_camera(s).mm_per_pixel);
-    } else {
+    {
       std::uint64_t gen = 0;
       if (!session) {
         // No coarse preview: only the finished image is measured.
@@ -131,7 +158,6 @@ sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_pro
     }
     pt.mean_mtf = m.mean_mtf;
     pt.mtf50_lp_per_mm = m.mtf50_lp_per_mm;
-    r.points.push_back(pt);
   }
   if (session) session->stop();
   if (progress) progress(1.0, std::to_string(scenes.size()) + " points");
