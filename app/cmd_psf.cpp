@@ -71,6 +71,7 @@ void add_psf_command(CLI::App& app) {
     psf_picture_options picture;
     focus_options focus;
     field_options field;
+    traced_options traced;
   };
   auto opt = std::make_shared<options>();
   auto* cmd = app.add_subcommand("psf", "MTF of the model PSF on the aerial-image plane (no tracer)");
@@ -94,6 +95,13 @@ void add_psf_command(CLI::App& app) {
   cmd->add_option("--extent", opt->picture.half_width_mm,
                   "Half-width of the 2D PSF picture in mm (default: the square holding 99.8% of it)")
       ->check(CLI::Range(1e-6, 1e4));
+  cmd->add_flag("--traced", opt->traced.on,
+                "With --image/--png: also render a small disc on the display with the tracer and set it beside the "
+                "model blurred by the same disc, on the picture's grid");
+  cmd->add_option("--disc-mm", opt->traced.disc_mm, "--traced: the disc's diameter on the display (default 0.2 mm)")
+      ->check(CLI::Range(1e-4, 1e3));
+  cmd->add_option("--traced-spp", opt->traced.spp, "--traced: samples per pixel (default 256)")
+      ->check(CLI::Range(1, 1 << 20));
   cmd->add_option("--focus", opt->focus.range,
                   "Through focus: planes at offsets start:end:step mm along the chief ray (+ towards the observer)");
   cmd->add_option("--focus-csv", opt->focus.csv, "Through focus: CSV of offset, r50, r80 and peak");
@@ -116,6 +124,8 @@ void add_psf_command(CLI::App& app) {
       throw airr::input_error("psf: --pixels must be odd (the middle pixel is the ideal point)");
     if (opt->focus.range.empty() && !(opt->focus.csv + opt->focus.plot + opt->focus.strip).empty())
       throw airr::input_error("psf: --focus-csv, --focus-plot and --focus-strip need --focus start:end:step");
+    if (opt->traced.on && opt->picture.image.empty() && opt->picture.png.empty())
+      throw airr::input_error("psf: --traced needs --image or --png");
     if (opt->field.n == 0 && !(opt->field.csv + opt->field.png).empty())
       throw airr::input_error("psf: --field-csv and --field-png need --field N");
     const std::vector<double> focus_offsets =
@@ -187,7 +197,7 @@ void add_psf_command(CLI::App& app) {
       // Pictures from independent samples: their noise shows as noise, not as the lattice of
       // the sequence the numbers above use.
       write_psf_pictures(s, airr::sample_psf(s, models, {.samples = opt->samples, .seed = s.seed, .stratified = false}),
-                         opt->picture);
+                         opt->picture, opt->traced);
     }
     if (!opt->focus.range.empty())
       run_through_focus(s, models, focus_offsets, opt->samples, opt->picture.pixels ? opt->picture.pixels : 129,

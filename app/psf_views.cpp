@@ -13,6 +13,8 @@
 #include "airr/formats/image.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/layout/psf_focus.hpp"
+#include "airr/measure/traced_psf.hpp"
+#include "progress_bar.hpp"
 
 namespace {
 
@@ -26,17 +28,26 @@ std::string fmt(const char* format, double v) {
   return buf;
 }
 
-// The grid's density as a grey linear image, with what a reader needs to use it.
-void write_grid_image(const std::string& path, const airr::analysis::psf_grid& g, airr::image_metadata meta) {
+airr::image_rgb grid_image(const airr::analysis::psf_grid& g) {
   airr::image_rgb img{g.size, g.size, std::vector<float>(std::size_t(g.size) * g.size * 3)};
   for (int row = 0; row < g.size; ++row)
     for (int col = 0; col < g.size; ++col) std::fill_n(img.at(col, row), 3, float(g.at(col, row)));
+  return img;
+}
+
+// The grid's density as a grey linear image (and other grids of its size as layers), with what a
+// reader needs to use it.
+void write_grid_image(const std::string& path, const airr::analysis::psf_grid& g, airr::image_metadata meta,
+                      const std::vector<std::pair<std::string, const airr::analysis::psf_grid*>>& layers = {}) {
   meta[airr::mm_per_pixel_attribute] = fmt("%.10g", g.mm_per_pixel);
   meta["airr:psf_units"] =
-      "per mm^2 of the aerial-image plane; integrates to the aerial radiance per unit source "
-      "radiance";
+      "per mm^2 of the aerial-image plane; integrates to the aerial radiance per unit source radiance";
   meta["airr:psf_center"] = "the middle pixel's centre is the ideal image point; x right, y up";
-  airr::write_image(path, img, meta);
+  std::vector<airr::image_rgb> layer_images;
+  for (const auto& [name, grid] : layers) layer_images.push_back(grid_image(*grid));
+  std::vector<airr::image_layer> named;
+  for (std::size_t i = 0; i < layers.size(); ++i) named.push_back({layers[i].first, &layer_images[i]});
+  airr::write_image(path, grid_image(g), meta, 1.0f, named);
 }
 
 std::string sheet_summary(const airr::scene& s) {
@@ -62,8 +73,63 @@ static airr::analysis::psf_grid psf_picture(const airr::psf_samples& psf, int pi
   return g;
 }
 
-void write_psf_pictures(const airr::scene& s, const airr::psf_samples& psf, const psf_picture_options& o) {
+// The model, the model blurred by the disc, the tracer's render of the disc and their difference,
+// on the picture's grid.
+static void write_traced_comparison(const airr::scene& s, const airr::psf_samples& psf, const psf_picture_options& o,
+                                    const traced_options& t) {
   namespace an = airr::analysis;
+  const double half = o.half_width_mm > 0 ? o.half_width_mm : an::psf_picture_half_width(psf, false);
+  const int pixels = o.pixels ? o.pixels : 129;
+  const an::psf_grid model = psf_picture(psf, pixels, half, "picture");
+  const an::psf_grid blurred = an::psf_to_grid(an::blur_by_disc(psf, t.disc_mm, s.seed), pixels, 2 * half / pixels);
+  progress_bar bar("traced PSF");
+  const airr::traced_psf traced =
+      airr::trace_psf(s, pixels, model.mm_per_pixel, {.disc_mm = t.disc_mm, .spp = t.spp, .seed = s.seed},
+                      [&](double f) { f < 1.0 ? bar.update(f) : bar.finish(); });
+  an::psf_grid difference = traced.grid;
+  for (std::size_t i = 0; i < difference.density.size(); ++i) difference.density[i] -= blurred.density[i];
+  an::psf_grid magnitude = difference;
+  for (double& d : magnitude.density) d = std::abs(d);
+
+  const double r50_model = an::grid_energy_radius(blurred), r50_traced = an::grid_energy_radius(traced.grid);
+  const double mtf_model = an::grid_mean_mtf(blurred), mtf_traced = an::grid_mean_mtf(traced.grid);
+  std::printf("traced PSF: a %.4g mm disc (%.5g mm^2 drawn), %llu spp, plain path tracer, pinhole observer (%.2f s)\n",
+              t.disc_mm, traced.disc_area_mm2, static_cast<unsigned long long>(traced.spp), traced.seconds);
+  std::printf(
+      "  on the picture's grid:  r50 %.5g mm (model x disc) vs %.5g mm (traced), %+.2f%%; mean MTF over (0, "
+      "1] lp/mm %.5f vs %.5f, %+.4f; brightness held %.6g vs %.6g\n",
+      r50_model, r50_traced, 100 * (r50_traced / r50_model - 1), mtf_model, mtf_traced, mtf_traced - mtf_model,
+      blurred.integral(), traced.grid.integral());
+  if (!o.image.empty()) {
+    write_grid_image(o.image, model,
+                     {{"airr:psf", "model PSF on the aerial-image plane (layers: model_disc, traced, difference)"},
+                      {"airr:psf_brightness", fmt("%.10g", psf.brightness())},
+                      {"airr:psf_held", fmt("%.10g", model.integral())},
+                      {"airr:traced_disc_mm", fmt("%.10g", t.disc_mm)},
+                      {"airr:traced_spp", std::to_string(t.spp)},
+                      {"airr:sheets", sheet_summary(s)}},
+                     {{"model_disc", &blurred}, {"traced", &traced.grid}, {"difference", &difference}});
+    std::printf("wrote %s\n", o.image.c_str());
+  }
+  if (!o.png.empty()) {
+    const std::string title = "model and tracer: " + sheet_summary(s) + ", D " +
+                              fmt("%g mm", airr::floating_distance(s)) + ", tilt " +
+                              fmt("%g deg", s.sheet().pose.pitch_deg) + ", disc " + fmt("%g mm", t.disc_mm) + ", " +
+                              std::to_string(t.spp) + " spp";
+    an::write_psf_panels_png(o.png,
+                             {{&model, "model, r50 " + fmt("%.3g mm", airr::energy_radius(psf))},
+                              {&blurred, "model x disc, r50 " + fmt("%.3g mm", r50_model)},
+                              {&traced.grid, "traced, r50 " + fmt("%.3g mm", r50_traced)},
+                              {&magnitude, "|traced - model x disc|"}},
+                             {.title = title, .columns = 4});
+    std::printf("wrote %s\n", o.png.c_str());
+  }
+}
+
+void write_psf_pictures(const airr::scene& s, const airr::psf_samples& psf, const psf_picture_options& o,
+                        const traced_options& traced) {
+  namespace an = airr::analysis;
+  if (traced.on) return write_traced_comparison(s, psf, o, traced);
   const double r50 = airr::energy_radius(psf, 0.5);
   if (!o.image.empty()) {
     const double half = o.half_width_mm > 0 ? o.half_width_mm : an::psf_picture_half_width(psf, true);

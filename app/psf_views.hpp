@@ -16,6 +16,13 @@ struct psf_picture_options {
   double half_width_mm = 0;  // 0: the square holding 99.8% of the PSF
 };
 
+// The tracer's PSF beside the model's (--traced): a disc on the display, rendered.
+struct traced_options {
+  bool on = false;
+  double disc_mm = 0.2;
+  std::uint64_t spp = 256;
+};
+
 struct focus_options {
   std::string range;  // "start:end:step" in mm; empty: none
   std::string csv, plot, strip;
@@ -26,7 +33,10 @@ struct field_options {
   std::string csv, png;
 };
 
-void write_psf_pictures(const airr::scene& s, const airr::psf_samples& psf, const psf_picture_options& o);
+// With `traced.on` both files use the picture's grid: the image then holds the model PSF there
+// (its share of the brightness in the metadata) and layers model_disc, traced and difference.
+void write_psf_pictures(const airr::scene& s, const airr::psf_samples& psf, const psf_picture_options& o,
+                        const traced_options& traced);
 // `offsets` as parse_focus_offsets reads them from o.range.
 void run_through_focus(const airr::scene& s, const airr::retro_model_list& models, const std::vector<double>& offsets,
                        std::uint64_t samples, int pixels, const focus_options& o);

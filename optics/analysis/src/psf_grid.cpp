@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <string>
 
+#include "airr/analysis/psf_mtf.hpp"
 #include "airr/core/error.hpp"
+#include "airr/core/random.hpp"
 
 namespace airr::analysis {
 
@@ -63,6 +66,57 @@ double psf_picture_half_width(const psf_samples& psf, bool whole) {
   const double half =
       whole ? 1.05 * psf_square_half_width(psf, psf_whole_fraction, 0.0) : 1.25 * psf_square_half_width(psf, 0.95, 0.0);
   return std::max(half, 0.05);
+}
+
+psf_samples blur_by_disc(const psf_samples& psf, double disc_mm, std::uint64_t seed) {
+  psf_samples out = psf;
+  for (std::size_t i = 0; i < out.offset_mm.size(); ++i) {
+    pcg32 rng = sample_rng(i, 7, seed);
+    const double r = 0.5 * disc_mm * std::sqrt(rng.next_double()), phi = 2 * std::numbers::pi * rng.next_double();
+    out.offset_mm[i] += glm::dvec2(r * std::cos(phi), r * std::sin(phi));
+  }
+  return out;
+}
+
+double grid_energy_radius(const psf_grid& g, double fraction) {
+  std::vector<std::pair<double, double>> rw;
+  double total = 0;
+  const double half = 0.5 * (g.size - 1);
+  for (int row = 0; row < g.size; ++row) {
+    for (int col = 0; col < g.size; ++col) {
+      const double d = g.at(col, row);
+      if (d <= 0) continue;
+      rw.emplace_back(std::hypot(col - half, row - half) * g.mm_per_pixel, d);
+      total += d;
+    }
+  }
+  if (total <= 0) return 0;
+  std::sort(rw.begin(), rw.end());
+  // Pixels at one radius come in rings of four or eight; between rings, the radius is interpolated
+  // by the energy gathered, so that it does not jump from ring to ring.
+  double acc = 0, previous_r = 0;
+  for (std::size_t i = 0; i < rw.size();) {
+    const double r = rw[i].first;
+    double ring = 0;
+    for (; i < rw.size() && rw[i].first == r; ++i) ring += rw[i].second;
+    if (acc + ring >= fraction * total) return previous_r + (r - previous_r) * (fraction * total - acc) / ring;
+    acc += ring;
+    previous_r = r;
+  }
+  return rw.back().first;
+}
+
+double grid_mean_mtf(const psf_grid& g) {
+  psf_samples line;
+  const double half = 0.5 * (g.size - 1);
+  for (int col = 0; col < g.size; ++col) {
+    double sum = 0;
+    for (int row = 0; row < g.size; ++row) sum += std::max(0.0, g.at(col, row));
+    line.offset_mm.emplace_back((col - half) * g.mm_per_pixel, 0.0);
+    line.weight.push_back(sum);
+  }
+  line.launched = 1;
+  return psf_mean_mtf(line, 1.0, 0.0);
 }
 
 psf_section psf_cross_section(const psf_samples& psf, double half_range_mm, double band_mm, int bins) {

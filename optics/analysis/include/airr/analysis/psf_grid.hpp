@@ -36,6 +36,16 @@ double psf_square_half_width(const psf_samples& psf, double fraction, double at_
 inline constexpr double psf_whole_fraction = 0.998;
 double psf_picture_half_width(const psf_samples& psf, bool whole);
 
+// The PSF blurred by a uniform disc of diameter `disc_mm` (each sample moved by a point of the
+// disc drawn with its own generator, seeded by `seed`): what a small disc instead of a point shows.
+psf_samples blur_by_disc(const psf_samples& psf, double disc_mm, std::uint64_t seed = 1);
+
+// Numbers read off a picture, alike for any grid: the radius around the middle pixel's centre
+// holding `fraction` of what the grid holds, and the mean over (0, 1] lp/mm of the MTF along x
+// of the grid's line spread (its columns summed).
+double grid_energy_radius(const psf_grid& g, double fraction = 0.5);
+double grid_mean_mtf(const psf_grid& g);
+
 // A cross-section through the PSF's centre: the weight within `band_mm` of y = 0, in `bins` bins
 // over [-half_range_mm, half_range_mm] along x, per mm^2 of the weight of the whole PSF.
 struct psf_section {
