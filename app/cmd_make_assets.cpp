@@ -1,4 +1,4 @@
-// airr make-assets --dir DIR: regenerates the glTF models and test charts shipped in assets/
+// airr make-assets --dir DIR: regenerates the glTF models, test charts and scenes shipped in assets/
 // (`--dir assets` in the source tree; installed assets are never rewritten in place).
 #include <filesystem>
 
@@ -6,11 +6,13 @@
 #include "airr/formats/scene_json.hpp"
 #include "airr/measure/test_charts.hpp"
 #include "airr/models/corner_cube.hpp"
+#include "airr/models/retro_model.hpp"
 #include "commands.hpp"
 
 void add_make_assets_command(CLI::App& app) {
   auto dir = std::make_shared<std::string>();
-  auto* cmd = app.add_subcommand("make-assets", "Regenerate the panel model, test charts and default scene in assets/");
+  auto* cmd = app.add_subcommand("make-assets",
+                                 "Regenerate the panel model, test charts, default scene and ideal bench in assets/");
   cmd->add_option("--dir", *dir, "Directory to write them into (the source tree's assets/ to update them)")->required();
   cmd->callback([dir] {
     namespace fs = std::filesystem;
@@ -23,12 +25,18 @@ void add_make_assets_command(CLI::App& app) {
     airr::write_image(*dir + "/charts/test_chart.png", airr::make_test_chart(), meta);
     airr::write_image(*dir + "/charts/slanted_edge.png", airr::make_slanted_edge_chart(), meta);
     fs::create_directories(fs::path(*dir) / "scenes");
-    airr::scene s;  // the reference layout: D = 150 mm, tilt 0
-    s.source.image = "../charts/test_chart.png";
-    airr::save_scene(s, *dir + "/scenes/default.json");
+    // The reference layout (D = 150 mm, tilt 0) with the ideal retroreflector: the sharp bench.
+    airr::scene ideal;
+    ideal.source.image = "../charts/test_chart.png";
+    airr::save_scene(ideal, *dir + "/scenes/ideal_bench.json");
+    // The same layout with a real sheet, RF-Ay, so the first image shows its blur.
+    airr::scene rf_ay = ideal;
+    rf_ay.sheet().model = {.type = "sinc_shift", .values = {}};
+    airr::set_model_value(rf_ay.sheet().model, "preset", "rf-ay");
+    airr::save_scene(rf_ay, *dir + "/scenes/default.json");
     std::fprintf(stderr,
                  "wrote %s, models/corner_cube.gltf, charts/test_chart.png, charts/slanted_edge.png, "
-                 "scenes/default.json in %s\n",
+                 "scenes/default.json, scenes/ideal_bench.json in %s\n",
                  panel.c_str(), dir->c_str());
   });
 }

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Regenerates the shipped generated assets into a temporary directory and compares them with the
-# shipped ones: models and the default scene byte for byte, charts pixel for pixel, and the
-# corner-cube shift table (at a reduced grid) by total-variation distance per incidence angle.
+# shipped ones: models and scenes (the default and the ideal bench) byte for byte, charts pixel for
+# pixel, and the corner-cube shift table (at a reduced grid) by total-variation distance per
+# incidence angle.
 set -euo pipefail
 airr="$1"
 assets="$2"
@@ -10,7 +11,7 @@ trap 'rm -rf "$tmp"' EXIT
 
 "$airr" make-assets --dir "$tmp"
 status=0
-for f in models/panel.gltf models/corner_cube.gltf scenes/default.json; do
+for f in models/panel.gltf models/corner_cube.gltf scenes/default.json scenes/ideal_bench.json; do
   if cmp -s "$tmp/$f" "$assets/$f"; then echo "same: $f"; else echo "DIFFERS: $f" >&2; diff "$tmp/$f" "$assets/$f" | head -20 >&2; status=1; fi
 done
 for f in charts/test_chart.png charts/slanted_edge.png; do

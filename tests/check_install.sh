@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Installs AIRR Studio into a temporary prefix and moves the prefix elsewhere (the programs find
 # their assets relative to themselves). Then, from an unrelated directory with a fresh home and no
-# AIRR_ASSETS: renders a scene saved there, runs `airr psf` with a preset by name, and starts
-# airr-studio under Xvfb for a screenshot. Nothing may be written into the prefix; the designer's
-# settings go under the XDG directories; without its share/ the installed program names where it
-# looked for the assets (it never falls back to the source tree).
+# AIRR_ASSETS: renders a scene saved there, runs `airr psf` with a preset by name and on the shipped
+# scenes, and starts airr-studio under Xvfb for a screenshot. Nothing may be written into the
+# prefix; the designer's settings go under the XDG directories; without its share/ the installed
+# program names where it looked for the assets (it never falls back to the source tree).
 set -euo pipefail
 build_dir=$(cd "$1" && pwd)
 tmp=$(mktemp -d)
@@ -17,7 +17,8 @@ fail() {
 cmake --install "$build_dir" --prefix "$tmp/staging" >/dev/null
 mv "$tmp/staging" "$tmp/moved-prefix"
 prefix=$tmp/moved-prefix
-for f in bin/airr bin/airr-studio share/airr-studio/scenes/default.json share/airr-studio/presets/rf-ay.json \
+for f in bin/airr bin/airr-studio share/airr-studio/scenes/default.json share/airr-studio/scenes/ideal_bench.json \
+  share/airr-studio/presets/rf-ay.json \
   share/airr-studio/charts/test_chart.png share/applications/airr-studio.desktop \
   share/mime/packages/airr-studio.xml share/icons/hicolor/scalable/apps/airr-studio.svg \
   share/icons/hicolor/16x16/apps/airr-studio.png share/icons/hicolor/256x256/apps/airr-studio.png \
@@ -49,6 +50,11 @@ PY
 "$prefix/bin/airr" psf bench.airr.json --samples 20000 -o psf.csv
 rows=$(tail -n +2 psf.csv | wc -l)
 [ "$rows" -ge 50 ] || fail "airr psf wrote $rows rows"
+# The shipped scenes as installed: the default's sheet names its preset (RF-Ay) by name.
+for s in default ideal_bench; do
+  "$prefix/bin/airr" psf "$prefix/share/airr-studio/scenes/$s.json" --samples 2000 -o psf.csv >/dev/null ||
+    fail "airr psf on the installed scenes/$s.json failed"
+done
 # A preset name that is not shipped is refused, naming the installed presets' folder.
 if "$prefix/bin/airr" psf bench.airr.json --set retroreflectors.0.model.preset=no-such-sheet -o x.csv 2>err.txt; then
   fail "an unknown preset was accepted"

@@ -29,6 +29,7 @@ for lib in libc6 libstdc++6 libembree3 libglfw3 libopenimageio libtbb libopencv-
 done
 
 for f in ./usr/bin/airr ./usr/bin/airr-studio ./usr/share/airr-studio/scenes/default.json \
+  ./usr/share/airr-studio/scenes/ideal_bench.json \
   ./usr/share/airr-studio/presets/rf-an.json ./usr/share/airr-studio/presets/rf-ay.json \
   ./usr/share/airr-studio/shift_tables/corner_cube.json ./usr/share/applications/airr-studio.desktop \
   ./usr/share/mime/packages/airr-studio.xml ./usr/share/icons/hicolor/scalable/apps/airr-studio.svg \

@@ -20,7 +20,7 @@ using namespace airr;
 namespace {
 
 // The default layout seen from 30 degrees above with a wide field: the top of the aerial image
-// and, below it, the display itself.
+// and, below it, the display itself. An empty `model` keeps the ideal bench's ideal sheet.
 scene looking_down(const std::string& model) {
   std::vector<scene_override> o = {{"observer.elevation_deg", "30"},
                                    {"observer.fov_deg", "60"},
@@ -30,7 +30,7 @@ scene looking_down(const std::string& model) {
     o.push_back({"retroreflectors.0.model.type", "\"sinc_shift\""});
     o.push_back({"retroreflectors.0.model.preset", "\"" + model + "\""});
   }
-  return load_scene(default_scene_path(), o);
+  return load_scene(ideal_bench_scene_path(), o);
 }
 
 render_snapshot render_components(const scene& s, std::uint64_t spp) {

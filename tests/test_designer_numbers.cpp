@@ -137,6 +137,7 @@ TEST(DesignerNumbers, DroppedGltfBecomesAPropOrOpensAsALayout) {
 TEST(DesignerNumbers, ShippedSceneOpensUntitledSoTheAssetsAreNeverSavedOver) {
   test::temp_dir dir;
   EXPECT_TRUE(is_shipped_asset(default_scene_path()));
+  EXPECT_TRUE(is_shipped_asset(ideal_bench_scene_path()));
   EXPECT_TRUE(is_shipped_asset(asset_dir() + "/presets/../scenes/default.json"));
   EXPECT_FALSE(is_shipped_asset(dir.file("default.json")));
   EXPECT_FALSE(is_shipped_asset(""));
@@ -195,6 +196,7 @@ TEST(DesignerNumbers, AssetsFolderFollowsAirrAssets) {
   setenv("AIRR_ASSETS", "/somewhere/else", 1);
   EXPECT_EQ(asset_dir(), "/somewhere/else");
   EXPECT_EQ(default_scene_path(), "/somewhere/else/scenes/default.json");
+  EXPECT_EQ(ideal_bench_scene_path(), "/somewhere/else/scenes/ideal_bench.json");
   unsetenv("AIRR_ASSETS");
   EXPECT_EQ(asset_dir(), found);
 }

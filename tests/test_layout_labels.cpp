@@ -56,7 +56,7 @@ void expect_clear(const scene& s, const std::string& name) {
 }  // namespace
 
 TEST(LayoutLabels, ShippedScenesHaveNoOverprintedLabel) {
-  for (const char* name : {"default.json", "two_sheet_kiosk.json"}) {
+  for (const char* name : {"default.json", "ideal_bench.json", "two_sheet_kiosk.json"}) {
     expect_clear(load_scene(asset_dir() + "/scenes/" + name), name);
   }
 }

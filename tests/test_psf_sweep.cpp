@@ -249,12 +249,13 @@ double printed_value(const std::string& out, const std::string& pattern) {
   return std::stod(m[1]);
 }
 
+// On the ideal bench: its ideal sheet, then each preset in its place.
 TEST(PsfCommand, CsvStartsAtOneAndFallsAndTheIdealRadiusIsZero) {
   test::temp_dir dir;
   for (const char* preset : {static_cast<const char*>(nullptr), "rf-ay", "rf-an"}) {
     const std::string csv = dir.file("psf.csv"), png = dir.file("psf.png");
-    const auto r = test::run_cli("psf " + default_scene_path() + " -o " + csv + " --plot " + png + " --samples 20000" +
-                                 (preset ? preset_sets(preset) : std::string()));
+    const auto r = test::run_cli("psf " + ideal_bench_scene_path() + " -o " + csv + " --plot " + png +
+                                 " --samples 20000" + (preset ? preset_sets(preset) : std::string()));
     ASSERT_EQ(r.exit_code, 0) << r.out;
     const auto rows = lines_of(read_file(csv));
     ASSERT_EQ(rows.size(), 102u);
@@ -292,15 +293,15 @@ TEST(PsfCommand, CsvStartsAtOneAndFallsAndTheIdealRadiusIsZero) {
 
 TEST(PsfCommand, NoPixelRaisesTheIdealMeanMtfToOne) {
   test::temp_dir dir;
-  const auto with = test::run_cli("psf " + default_scene_path() + " -o " + dir.file("a.csv") + " --samples 1000");
+  const auto with = test::run_cli("psf " + ideal_bench_scene_path() + " -o " + dir.file("a.csv") + " --samples 1000");
   const auto without =
-      test::run_cli("psf " + default_scene_path() + " -o " + dir.file("b.csv") + " --samples 1000 --no-pixel");
+      test::run_cli("psf " + ideal_bench_scene_path() + " -o " + dir.file("b.csv") + " --samples 1000 --no-pixel");
   ASSERT_EQ(with.exit_code, 0) << with.out;
   ASSERT_EQ(without.exit_code, 0) << without.out;
   const std::string pattern = R"(mean MTF over \(0, 1\] lp/mm: (\S+))";
   EXPECT_NEAR(printed_value(without.out, pattern), 1.0, 1e-9) << without.out;
   // The default camera's pixel alone: the mean of sinc(pi f p) over (0, 1] lp/mm.
-  const double p = make_camera(load_scene(default_scene_path())).mm_per_pixel;
+  const double p = make_camera(load_scene(ideal_bench_scene_path())).mm_per_pixel;
   double sum = 0;
   for (int i = 1; i <= 200; ++i) {
     const double x = std::numbers::pi * (i / 200.0) * p;

@@ -30,17 +30,20 @@ std::string write_scene(const test::temp_dir& dir, const std::function<void(nloh
 }  // namespace
 
 TEST(SceneJson, DefaultSceneRoundTripsExactly) {
-  const scene a = load_scene(airr::default_scene_path());
-  test::temp_dir dir;
-  const std::string copy = dir.file("copy.json");
-  // Relative paths are kept verbatim, so the saved text equals the shipped one.
-  save_scene(a, copy);
-  const nlohmann::json original = nlohmann::json::parse(read_text_file(airr::default_scene_path()));
-  const nlohmann::json saved = nlohmann::json::parse(read_text_file(copy));
-  EXPECT_EQ(saved, scene_to_json(a));
-  EXPECT_EQ(scene_to_json(scene_from_json(saved, copy)), saved);
-  // The shipped file is in the canonical complete form.
-  EXPECT_EQ(original, saved);
+  // The default scene (RF-Ay) and the ideal bench, both written by `airr make-assets`.
+  for (const std::string& path : {airr::default_scene_path(), airr::ideal_bench_scene_path()}) {
+    const scene a = load_scene(path);
+    test::temp_dir dir;
+    const std::string copy = dir.file("copy.json");
+    // Relative paths are kept verbatim, so the saved text equals the shipped one.
+    save_scene(a, copy);
+    const nlohmann::json original = nlohmann::json::parse(read_text_file(path));
+    const nlohmann::json saved = nlohmann::json::parse(read_text_file(copy));
+    EXPECT_EQ(saved, scene_to_json(a)) << path;
+    EXPECT_EQ(scene_to_json(scene_from_json(saved, copy)), saved) << path;
+    // The shipped file is in the canonical complete form.
+    EXPECT_EQ(original, saved) << path;
+  }
 }
 
 TEST(SceneJson, NonDefaultValuesRoundTripBitExactly) {

@@ -158,12 +158,38 @@ TEST(Migration, Version1GeometryIsKept) {
             std::string::npos);
 }
 
-TEST(Migration, DefaultSceneIsTheVersion1DefaultScene) {
+// Version 1's default scene had the ideal sheet: today's ideal bench.
+TEST(Migration, IdealBenchIsTheVersion1DefaultScene) {
   const auto f = shipped_v1_files().front();
   scene migrated = parse_file(f.path, f.base_dir);
-  const scene shipped = load_scene(default_scene_path());
+  const scene shipped = load_scene(ideal_bench_scene_path());
   migrated.base_dir = shipped.base_dir;
   EXPECT_TRUE(migrated == shipped);
+}
+
+// The designer opens on a real sheet (RF-Ay, from its preset), so the first image shows the blur;
+// the ideal bench is the same layout with the ideal retroreflector (mu = 1).
+TEST(ShippedScenes, DefaultSheetIsRfAyAndIdealBenchSheetIsIdeal) {
+  const scene shipped = load_scene(default_scene_path());
+  ASSERT_EQ(shipped.retroreflectors.size(), 1u);
+  EXPECT_EQ(shipped.sheet().model.type, "sinc_shift");
+  EXPECT_EQ(read_model_values(shipped.sheet().model).text("preset"), "rf-ay");
+  // Nothing but the preset is set: a and mu per tilt and c are RF-Ay's (Table 2; first entry: tilt 0).
+  EXPECT_EQ(shipped.sheet().model.values.size(), 1u);
+  const sinc_shift_params p = resolve_sinc_shift_params(shipped.sheet().model, {.base_dir = shipped.base_dir});
+  ASSERT_EQ(p.a_per_mm.size(), 10u);
+  EXPECT_DOUBLE_EQ(p.a_per_mm.front(), 9.9302);
+  EXPECT_DOUBLE_EQ(p.mu.front(), 0.33505);
+  EXPECT_DOUBLE_EQ(p.c_mm, 0.94966);
+
+  const scene ideal = load_scene(ideal_bench_scene_path());
+  ASSERT_EQ(ideal.retroreflectors.size(), 1u);
+  EXPECT_EQ(ideal.sheet().model.type, "ideal");
+  EXPECT_EQ(read_model_values(ideal.sheet().model).number("mu"), 1.0);
+  // Otherwise the same layout.
+  scene same = ideal;
+  same.sheet().model = shipped.sheet().model;
+  EXPECT_TRUE(same == shipped);
 }
 
 // ---------------------------------------------------------------- bad layouts

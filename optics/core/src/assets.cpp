@@ -36,6 +36,7 @@ std::string asset_dir() {
 }
 
 std::string default_scene_path() { return asset_dir() + "/scenes/default.json"; }
+std::string ideal_bench_scene_path() { return asset_dir() + "/scenes/ideal_bench.json"; }
 
 bool is_shipped_asset(const std::string& path) {
   if (path.empty()) return false;

@@ -8,7 +8,10 @@ namespace airr {
 // (<prefix>/bin/../share/airr-studio, wherever the prefix was moved); else, for a program still in
 // the build tree, the source tree's assets/. An installed program never looks in the source tree.
 std::string asset_dir();
+// The scene the designer opens by default: the reference layout with an RF-Ay sheet.
 std::string default_scene_path();
+// The same layout with the ideal retroreflector (mu = 1): a sharp image, for exact comparisons.
+std::string ideal_bench_scene_path();
 // Whether `path` is one of the shipped assets (the designer never saves over those).
 bool is_shipped_asset(const std::string& path);
 
