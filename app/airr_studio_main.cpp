@@ -30,9 +30,11 @@ struct options {
   int threads = 0;
   std::string fit_dir;
   std::string save_as;
+  std::string export_bokeh;        // after a scripted run, the Bokeh tab's pictures (and the plot data beside them)
   std::vector<std::string> edits;  // applied as one designer edit after the scripted frames
   double screenshot_after = -1;    // with edits: seconds after the edit (0: its first image)
   std::string component;           // the render view shows this component (empty: the whole image)
+  std::string plots = "mtf";       // the Plots window's tab
   std::string zone;                // the viewing zone's quantity; a full one is computed before the screenshot
 };
 
@@ -90,15 +92,21 @@ int main(int argc, char** argv) {
   cli.add_option("--fit", opt.fit_dir,
                  "Open the fit window and fit this data directory (scripted runs apply the result)");
   cli.add_option("--save-as", opt.save_as, "After a scripted run, save the scene to this file");
+  cli.add_option("--export-bokeh", opt.export_bokeh,
+                 "After a scripted run, export the bokeh views as PNG to this file and siblings, and the plot data "
+                 "as CSV beside them");
   cli.add_option("--edit", opt.edits,
                  "After the scripted frames, change key=value as one edit in the designer would (repeatable), then "
                  "take the screenshot --screenshot-after seconds later");
   cli.add_option("--screenshot-after", opt.screenshot_after,
-                 "With --edit: seconds from the edit to the screenshot (0: the first frame showing the edit)")
+                 "With --edit: seconds from the edit to the screenshot (0: the first frame showing the edit; "
+                 "default: once the edit's plots are done)")
       ->check(CLI::Range(0.0, 3600.0));
   cli.add_option("--zone", opt.zone,
                  "The viewing zone shows this quantity; a scripted run computes the full pass before its screenshot")
       ->check(CLI::IsMember({"visible", "brightness", "mtf", "stray"}));
+  cli.add_option("--plots", opt.plots, "The Plots window opens on this tab (mtf or bokeh)")
+      ->check(CLI::IsMember({"mtf", "bokeh"}));
   cli.add_option("--component", opt.component, "The render view shows one component of the image")
       ->check(CLI::IsMember({"aerial", "direct", "reflection", "rest"}));
   CLI11_PARSE(cli, argc, argv);
@@ -174,6 +182,8 @@ int main(int argc, char** argv) {
   for (int k = 0; k < airr::component_count; ++k) {
     if (opt.component == airr::component_names[k]) st.view.component = k;
   }
+  st.plots_tab = opt.plots == "bokeh" ? 1 : 0;
+  st.select_plots_tab = true;
   const char* const zone_quantities[] = {"visible", "brightness", "mtf", "stray"};
   for (int k = 0; k < 4; ++k) {
     if (opt.zone == zone_quantities[k]) st.zone_quantity = k;
@@ -284,7 +294,7 @@ int main(int argc, char** argv) {
         glfwSwapBuffers(window);
         continue;
       }
-      if (screenshot_pending && edit_at >= 0) {
+      if (screenshot_pending && edit_at >= 0 && opt.screenshot_after >= 0) {
         // A timed look after the edit: its first image, or what shows so many seconds later.
         const bool due = opt.screenshot_after <= 0 ? st.first_image_uploaded : now() - edit_at >= opt.screenshot_after;
         if (!due) {
@@ -326,9 +336,32 @@ int main(int argc, char** argv) {
             j["marks"] = nlohmann::json::array({rect(v.scale_box)});
             for (const auto& r : v.handles) j["marks"].push_back(rect(r));
           }
+          // What the Bokeh tab showed (when it was open), its views' times per edit.
+          nlohmann::json bokeh;
+          if (const auto b = st.analysis.bokeh(); b && st.plots_tab == 1) {
+            const auto& shown = st.bokeh_shown;
+            bokeh = {{"generation", shown.generation},
+                     {"current", shown.current},
+                     {"r50_mm", shown.r50_mm},
+                     {"psf_area",
+                      {shown.psf_area[0] * sx, shown.psf_area[1] * sy, shown.psf_area[2] * sx, shown.psf_area[3] * sy}},
+                     {"psf_x_mm", shown.psf_x_mm},
+                     {"marker", {shown.marker[0] * sx, shown.marker[1] * sy}},
+                     {"marker_d_tilt", shown.marker_d_tilt},
+                     {"best_focus_mm", b->focus.best_offset_mm},
+                     {"ms", {{"psf", b->psf_ms}, {"focus", b->focus_ms}, {"spots", b->spots_ms}, {"map", b->map_ms}}}};
+            std::fprintf(stderr,
+                         "bokeh views (generation %llu%s): 2D PSF %.1f ms, through focus %.1f ms, spot matrix %.1f "
+                         "ms, D x tilt map %.0f ms; MTF plot %.1f ms\n",
+                         static_cast<unsigned long long>(b->generation), shown.current ? ", current" : ", previous",
+                         b->psf_ms, b->focus_ms, b->spots_ms, b->map_ms,
+                         st.analysis.predicted() ? st.analysis.predicted()->psf_ms : 0.0);
+          }
           airr::write_file_atomic(
               opt.screenshot + ".json",
-              nlohmann::json{{"width", fw}, {"height", fh}, {"regions", regions}, {"layout_views", views}}.dump(2) +
+              nlohmann::json{
+                  {"width", fw}, {"height", fh}, {"regions", regions}, {"layout_views", views}, {"bokeh", bokeh}}
+                      .dump(2) +
                   "\n");
           const int shown = st.view.uploaded_component;
           std::fprintf(stderr, "wrote %s (%dx%d); the render view shows %s%s%s\n", opt.screenshot.c_str(), fw, fh,
@@ -339,6 +372,18 @@ int main(int argc, char** argv) {
         } catch (const std::exception& e) {
           std::fprintf(stderr, "error: %s\n", e.what());
           exit_code = 1;
+        }
+      }
+      if (!opt.export_bokeh.empty()) {
+        // As File > Export bokeh pictures and Export plot data (the CSV beside the pictures).
+        const std::string csv = (std::filesystem::path(opt.export_bokeh).replace_extension(".csv")).string();
+        const bool pictures = airr::ui::studio_export_bokeh(st, opt.export_bokeh);
+        const std::string said = st.status;
+        if (!pictures || !airr::ui::studio_export_plots(st, csv)) {
+          std::fprintf(stderr, "error: %s\n", pictures ? st.status.c_str() : said.c_str());
+          exit_code = 1;
+        } else {
+          std::fprintf(stderr, "%s; plot data in %s\n", said.c_str(), csv.c_str());
         }
       }
       if (!opt.save_as.empty() && !airr::ui::studio_save(st, opt.save_as)) {

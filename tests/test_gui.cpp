@@ -337,3 +337,83 @@ TEST(Gui, LayoutLabelsNeverOverprintInTheShippedScenes) {
     EXPECT_GE((r3[2] - r3[0]) * (r3[3] - r3[1]), 1.9 * (rs[2] - rs[0]) * (rs[3] - rs[1]));
   }
 }
+
+// The Bokeh tab: its 2D PSF's bright core spans the r50 that `airr psf` prints for the scene (the
+// picture is bright inside 0.8 r50 and dim at 1.7 to 1.9 r50, beyond the edge of even a flat disc,
+// which holds half its energy within 0.71 of its radius; read through the plot's mm range), and
+// an edit of the tilt moves the D x tilt map's design marker and changes the PSF.
+TEST(Gui, BokehTabShowsThePsfAndFollowsAnEdit) {
+  struct shown {
+    nlohmann::json bokeh;
+    rgb8_image img;
+  };
+  auto run = [](const test::temp_dir& dir, const std::string& extra) {
+    const std::string shot = dir.file("bokeh.png");
+    const studio_run r =
+        run_studio(dir, default_scene_path() + " --plots bokeh --frames 10" + extra + " --screenshot " + shot);
+    EXPECT_EQ(r.status, 0) << r.log;
+    EXPECT_NE(r.log.find("bokeh views (generation"), std::string::npos) << r.log;
+    return shown{nlohmann::json::parse(std::ifstream(shot + ".json")).at("bokeh"), read_png(shot)};
+  };
+  auto printed_r50 = [](const std::string& sets) {
+    const test::temp_dir dir;
+    const auto r = test::run_cli("psf " + default_scene_path() + " --samples 8000 -o " + dir.file("p.csv") + sets);
+    const auto at = r.out.find("50%-energy radius: ");
+    return at == std::string::npos ? -1.0 : std::stod(r.out.substr(at + 19));
+  };
+  const test::temp_dir before_dir, after_dir;
+  const shown before = run(before_dir, "");
+  const shown after = run(after_dir, " --edit tilt_deg=30 --export-bokeh " + after_dir.file("views.png"));
+  ASSERT_FALSE(before.bokeh.is_null());
+  ASSERT_FALSE(after.bokeh.is_null());
+  for (const shown* s : {&before, &after}) EXPECT_TRUE(s->bokeh.at("current").get<bool>()) << s->bokeh.dump();
+
+  EXPECT_NEAR(before.bokeh.at("r50_mm").get<double>(), printed_r50(""), 1e-4);
+  EXPECT_NEAR(after.bokeh.at("r50_mm").get<double>(), printed_r50(" --set tilt_deg=30"), 1e-4);
+  EXPECT_GT(std::abs(after.bokeh.at("r50_mm").get<double>() - before.bokeh.at("r50_mm").get<double>()), 0.01);
+
+  for (const shown* s : {&before, &after}) {
+    const auto& area = s->bokeh.at("psf_area");
+    const auto& x_mm = s->bokeh.at("psf_x_mm");
+    const double x0 = area[0].get<double>(), y0 = area[1].get<double>(), x1 = area[2].get<double>(),
+                 y1 = area[3].get<double>();
+    const double mm_per_px = (x_mm[1].get<double>() - x_mm[0].get<double>()) / (x1 - x0);
+    const double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1), r50_px = s->bokeh.at("r50_mm").get<double>() / mm_per_px;
+    ASSERT_GT(r50_px, 8.0) << "the picture shows r50 over too few pixels";
+    double inner = 0, outer = 0;
+    int n_inner = 0, n_outer = 0;
+    for (int y = int(y0) + 1; y < int(y1); ++y) {
+      for (int x = int(x0) + 1; x < int(x1); ++x) {
+        const double r = std::hypot(x + 0.5 - cx, y + 0.5 - cy) / r50_px;
+        const unsigned char* p = s->img.at(x, y);
+        const double g = (p[0] + p[1] + p[2]) / 3.0;
+        if (r < 0.8) inner += g, ++n_inner;
+        if (r > 1.7 && r < 1.9) outer += g, ++n_outer;
+      }
+    }
+    std::printf("tilt %g: r50 %.4f mm over %.1f px; grey inside 0.8 r50 %.1f, at 1.7-1.9 r50 %.1f\n",
+                s->bokeh.at("marker_d_tilt")[1].get<double>(), s->bokeh.at("r50_mm").get<double>(), r50_px,
+                inner / std::max(n_inner, 1), outer / std::max(n_outer, 1));
+    ASSERT_GT(n_inner, 50);
+    ASSERT_GT(n_outer, 50);
+    EXPECT_GT(inner / n_inner, outer / n_outer + 30)
+        << "inside 0.8 r50 " << inner / n_inner << ", beyond 1.5 r50 " << outer / n_outer;
+  }
+
+  // The design marker: at tilt 0, then at tilt 30 (higher on the map) at the same D.
+  EXPECT_NEAR(before.bokeh.at("marker_d_tilt")[1].get<double>(), 0.0, 1e-9);
+  EXPECT_NEAR(after.bokeh.at("marker_d_tilt")[1].get<double>(), 30.0, 1e-9);
+  EXPECT_NEAR(after.bokeh.at("marker")[0].get<double>(), before.bokeh.at("marker")[0].get<double>(), 1.0);
+  EXPECT_LT(after.bokeh.at("marker")[1].get<double>(), before.bokeh.at("marker")[1].get<double>() - 20);
+  const auto& m = after.bokeh.at("marker");
+  const unsigned char* p = after.img.at(int(m[0].get<double>()), int(m[1].get<double>()));
+  EXPECT_GT(p[0] + p[1] + p[2], 600) << "the marker is drawn white where the JSON says";
+
+  // The export: five pictures and the plot data with the bokeh views' numbers of the edited layout.
+  for (const char* name : {"views.png", "views_focus.png", "views_strip.png", "views_spots.png", "views_map.png"})
+    EXPECT_GT(read_png(after_dir.file(name)).width, 300) << name;
+  std::ifstream csv(after_dir.file("views.csv"));
+  const std::string text((std::istreambuf_iterator<char>(csv)), std::istreambuf_iterator<char>());
+  for (const char* curve : {"through_focus_r50(offset_mm)", "psf2d_middle_row(mm)", "blur_map_r50_at_tilt_30"})
+    EXPECT_NE(text.find(curve), std::string::npos) << curve;
+}

@@ -162,9 +162,14 @@ std::shared_ptr<const measured_plots> analysis_worker::measured() const {
   return measured_;
 }
 
+std::shared_ptr<const bokeh_plots> analysis_worker::bokeh() const {
+  std::lock_guard lock(mutex_);
+  return bokeh_;
+}
+
 void analysis_worker::wait_idle() const {
   std::unique_lock lock(mutex_);
-  changed_.wait(lock, [&] { return !busy_ && !pending_scene_ && !pending_render_; });
+  changed_.wait(lock, [&] { return !busy_ && !pending_scene_ && !pending_render_ && !pending_bokeh_; });
 }
 
 void analysis_worker::run() {
@@ -172,7 +177,7 @@ void analysis_worker::run() {
   lower_thread_priority(5);
   std::unique_lock lock(mutex_);
   while (true) {
-    changed_.wait(lock, [&] { return stopping_ || pending_scene_ || pending_render_; });
+    changed_.wait(lock, [&] { return stopping_ || pending_scene_ || pending_render_ || pending_bokeh_; });
     if (stopping_) return;
     busy_ = true;
     if (pending_scene_) {
@@ -180,16 +185,31 @@ void analysis_worker::run() {
       pending_scene_.reset();
       lock.unlock();
       auto result = std::make_shared<const predicted_plots>(
-          compute_predicted(request.layout, request.generation, {}, std::move(request.models)));
+          compute_predicted(request.layout, request.generation, {}, request.models));
       lock.lock();
       predicted_ = std::move(result);
-    } else {
+      bokeh_r50_ = predicted_->error.empty() ? std::optional<double>(predicted_->r50_mm) : std::nullopt;
+      pending_bokeh_ = std::move(request);
+    } else if (pending_render_) {
       auto [snap, s] = std::move(*pending_render_);
       pending_render_.reset();
       lock.unlock();
       auto result = std::make_shared<const measured_plots>(measure_render_mtf(snap, s));
       lock.lock();
       measured_ = std::move(result);
+    } else {
+      scene_request request = std::move(*pending_bokeh_);
+      pending_bokeh_.reset();
+      lock.unlock();
+      std::optional<bokeh_plots> result = compute_bokeh(
+          request.layout, request.generation, {}, std::move(request.models),
+          [this] {
+            std::lock_guard stop_lock(mutex_);
+            return stopping_ || pending_scene_.has_value();
+          },
+          bokeh_r50_);
+      lock.lock();
+      if (result) bokeh_ = std::make_shared<const bokeh_plots>(std::move(*result));
     }
     busy_ = false;
     changed_.notify_all();

@@ -1,5 +1,6 @@
-// The plots: MTF predicted from the model PSF (every edit) and measured on the render (when the
-// source shows a slanted edge), the PSF's cross-section, and mean MTF against floating distance.
+// The plots, in two tabs. MTF: predicted from the model PSF (every edit) and measured on the
+// render (when the source shows a slanted edge), the PSF's cross-section, and mean MTF against
+// floating distance. Bokeh: panel_bokeh.cpp.
 // "Pin" keeps the current predicted curve for before/after comparisons. The viewing zone shows
 // where on the observer's orbit the aerial image can be seen; a click moves the observer there.
 #include <algorithm>
@@ -101,8 +102,7 @@ static void draw_viewing_zone(studio& st, const predicted_plots* pred, float h, 
   }
 }
 
-void draw_plots_panel(studio& st) {
-  ImGui::Begin("Plots");
+static void draw_mtf_tab(studio& st) {
   const auto pred = st.analysis.predicted();
   const auto meas = st.analysis.measured();
   const bool current = pred && pred->generation == st.generation;
@@ -202,6 +202,23 @@ void draw_plots_panel(studio& st) {
                                 .height = h}));
 
   draw_viewing_zone(st, pred.get(), h, keep);
+}
+
+void draw_plots_panel(studio& st) {
+  ImGui::Begin("Plots");
+  if (ImGui::BeginTabBar("plots_tabs")) {
+    const char* names[] = {"MTF", "Bokeh"};
+    for (int k = 0; k < 2; ++k) {
+      const ImGuiTabItemFlags flags = st.select_plots_tab && st.plots_tab == k ? ImGuiTabItemFlags_SetSelected : 0;
+      if (ImGui::BeginTabItem(names[k], nullptr, flags)) {
+        if (!st.select_plots_tab) st.plots_tab = k;
+        k == 0 ? draw_mtf_tab(st) : draw_bokeh_tab(st);
+        ImGui::EndTabItem();
+      }
+    }
+    st.select_plots_tab = false;
+    ImGui::EndTabBar();
+  }
   ImGui::End();
 }
 

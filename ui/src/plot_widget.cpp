@@ -70,7 +70,7 @@ plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, cons
 
   const float scale = ImGui::GetFontSize() / 13.0f;
   const ImVec2 origin = ImGui::GetCursorScreenPos();
-  const float width = std::max(100.0f, ImGui::GetContentRegionAvail().x);
+  const float width = std::max(p.compact ? 30.0f : 100.0f, ImGui::GetContentRegionAvail().x);
   const float height = p.height * scale;
   ImGui::InvisibleButton(id, ImVec2(width, height));
   const bool hovered = ImGui::IsItemHovered();
@@ -78,8 +78,18 @@ plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, cons
   const float line_h = ImGui::GetTextLineHeight();
 
   // Plot area inside margins for tick labels and titles.
-  const ImVec2 a(origin.x + 4.2f * line_h, origin.y + 1.4f * line_h);
-  const ImVec2 b(origin.x + width - 0.8f * line_h, origin.y + height - 2.4f * line_h);
+  const ImVec2 a = p.compact ? ImVec2(origin.x + 0.2f * line_h, origin.y + 1.1f * line_h)
+                             : ImVec2(origin.x + 4.2f * line_h, origin.y + 1.4f * line_h);
+  const ImVec2 b = p.compact ? ImVec2(origin.x + width - 0.2f * line_h, origin.y + height - 0.2f * line_h)
+                             : ImVec2(origin.x + width - 0.8f * line_h, origin.y + height - 2.4f * line_h);
+  if (p.equal_aspect && b.x > a.x && b.y > a.y) {
+    const double ux = (p.x_max - p.x_min) / (b.x - a.x), uy = (p.y_max - p.y_min) / (b.y - a.y);
+    double& lo = ux > uy ? p.y_min : p.x_min;
+    double& hi = ux > uy ? p.y_max : p.x_max;
+    const double centre = 0.5 * (lo + hi), half = 0.5 * std::max(ux, uy) * (ux > uy ? b.y - a.y : b.x - a.x);
+    lo = centre - half;
+    hi = centre + half;
+  }
   const ImU32 axis_col = ImGui::GetColorU32(ImGuiCol_Text);
   const ImU32 grid_col = ImGui::GetColorU32(ImGuiCol_TextDisabled, 0.35f);
   dl->AddRectFilled(a, b, ImGui::GetColorU32(ImGuiCol_FrameBg));
@@ -105,10 +115,13 @@ plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, cons
 
   if (!p.title.empty()) {
     const float w = ImGui::CalcTextSize(p.title.c_str()).x;
-    dl->AddText(ImVec2(b.x - w, origin.y), axis_col, p.title.c_str());  // the y title takes the left
+    // The y title takes the left; a compact plot's title is centred.
+    dl->AddText(ImVec2(p.compact ? (a.x + b.x - w) / 2 : b.x - w, origin.y), axis_col, p.title.c_str());
   }
-  const auto xt = nice_ticks(p.x_min, p.x_max, std::max(2, int((b.x - a.x) / (5 * line_h))));
-  const auto yt = nice_ticks(p.y_min, p.y_max, std::max(2, int((b.y - a.y) / (2.5f * line_h))));
+  const auto xt =
+      p.compact ? std::vector<double>{} : nice_ticks(p.x_min, p.x_max, std::max(2, int((b.x - a.x) / (5 * line_h))));
+  const auto yt =
+      p.compact ? std::vector<double>{} : nice_ticks(p.y_min, p.y_max, std::max(2, int((b.y - a.y) / (2.5f * line_h))));
   const double xstep = xt.size() > 1 ? xt[1] - xt[0] : 1, ystep = yt.size() > 1 ? yt[1] - yt[0] : 1;
   for (double t : xt) {
     const float x = sx(t);
@@ -127,11 +140,11 @@ plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, cons
     dl->AddText(ImVec2(a.x - 0.45f * line_h - w, y - line_h / 2), axis_col, s.c_str());
   }
   dl->AddRect(a, b, axis_col);
-  if (!p.x_title.empty()) {
+  if (!p.x_title.empty() && !p.compact) {
     const float w = ImGui::CalcTextSize(p.x_title.c_str()).x;
     dl->AddText(ImVec2((a.x + b.x - w) / 2, b.y + 1.35f * line_h), axis_col, p.x_title.c_str());
   }
-  if (!p.y_title.empty()) {
+  if (!p.y_title.empty() && !p.compact) {
     // ImGui draws no vertical text: the y title sits above the y axis.
     dl->AddText(ImVec2(origin.x, origin.y), axis_col, p.y_title.c_str());
   }
@@ -187,6 +200,10 @@ plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, cons
   hover.area[1] = a.y;
   hover.area[2] = b.x;
   hover.area[3] = b.y;
+  hover.range[0] = p.x_min;
+  hover.range[1] = p.x_max;
+  hover.range[2] = p.y_min;
+  hover.range[3] = p.y_max;
   if (hovered) {
     const ImVec2 m = ImGui::GetIO().MousePos;
     if (m.x >= a.x && m.x <= b.x && m.y >= a.y && m.y <= b.y) {

@@ -1,6 +1,8 @@
 // The designer's file actions: open, save, add a prop, drop a file, export the layout, render and plots.
 #include <filesystem>
 
+#include "airr/analysis/plot_png.hpp"
+#include "airr/analysis/psf_png.hpp"
 #include "airr/core/assets.hpp"
 #include "airr/core/error.hpp"
 #include "airr/formats/gltf_layout.hpp"
@@ -154,10 +156,108 @@ bool studio_export_plots(studio& st, const std::string& path) {
     add("mean_mtf_vs_floating_distance(mm)", pred->sweep_d_mm, pred->sweep_mean_mtf);
   }
   if (meas && meas->found) add("mtf_measured_on_render(lp_per_mm)", meas->lp_per_mm, meas->mtf);
+  // The Bokeh tab's numbers, when they are the current layout's.
+  if (const auto b = st.analysis.bokeh(); b && b->generation == st.generation) {
+    std::vector<double> offsets, r50, r80, row_x, row;
+    for (const auto& p : b->focus.planes) {
+      offsets.push_back(p.offset_mm);
+      r50.push_back(p.r50_mm);
+      r80.push_back(p.r80_mm);
+    }
+    add("through_focus_r50(offset_mm)", offsets, r50);
+    add("through_focus_r80(offset_mm)", offsets, r80);
+    const int mid = b->psf.size / 2;
+    for (int col = 0; col < b->psf.size; ++col) {
+      row_x.push_back((col - mid) * b->psf.mm_per_pixel);
+      row.push_back(b->psf.at(col, mid));
+    }
+    add("psf2d_middle_row(mm)", row_x, row);
+    for (int r = 0; r < b->spots.n; ++r) {
+      std::vector<double> x, y;
+      for (int c = 0; c < b->spots.n; ++c) {
+        const auto& spot = b->spots.spots[std::size_t(r) * b->spots.n + c];
+        x.push_back(spot.x_mm);
+        y.push_back(spot.missed.empty() ? spot.r50_mm : std::nan(""));
+      }
+      add("spot_r50_at_y_" + std::to_string(b->spots.spots[std::size_t(r) * b->spots.n].y_mm) + "(x_mm)", x, y);
+    }
+    for (std::size_t t = 0; t < b->map_tilt_deg.size(); ++t) {
+      const auto first = b->map_r50_mm.begin() + std::ptrdiff_t(t * b->map_d_mm.size());
+      add("blur_map_r50_at_tilt_" + std::to_string(b->map_tilt_deg[t]) + "(D_mm)", b->map_d_mm,
+          std::vector<double>(first, first + std::ptrdiff_t(b->map_d_mm.size())));
+    }
+  }
   for (const auto& p : st.pinned_mtf) add("pinned:" + p.label, p.x, p.y);
   try {
     write_file_atomic(path, csv);
     st.status = "exported " + path;
+    return true;
+  } catch (const std::exception& e) {
+    st.status = std::string("cannot export: ") + e.what();
+    return false;
+  }
+}
+
+bool studio_export_bokeh(studio& st, const std::string& path) {
+  namespace an = analysis;
+  const auto b = st.analysis.bokeh();
+  if (!b || b->generation != st.generation || b->psf.size == 0) {
+    st.status = "cannot export: the bokeh views are not yet those of the current layout";
+    return false;
+  }
+  const fs::path base(path);
+  const std::string stem = (base.parent_path() / base.stem()).string();
+  char layout[96];
+  std::snprintf(layout, sizeof layout, "D %.1f mm, tilt %.1f deg", b->floating_distance_mm, b->tilt_deg);
+  try {
+    an::write_psf_panels_png(path, {{&b->psf, "aerial-image plane"}},
+                             {.title = "model PSF, " + std::string(layout), .panel_width = 640, .panel_height = 560});
+    an::plot_series r50{"r50", {}, {}, {}}, r80{"r80", {}, {}, {}};
+    for (const auto& p : b->focus.planes) {
+      r50.x.push_back(p.offset_mm);
+      r50.y.push_back(p.r50_mm);
+      r80.x.push_back(p.offset_mm);
+      r80.y.push_back(p.r80_mm);
+    }
+    an::plot_params pp;
+    pp.title = "through focus, " + std::string(layout);
+    pp.x_title = "offset along the chief ray (mm, + towards the observer)";
+    pp.y_title = "energy radius (mm)";
+    pp.y_min = 0.0;
+    an::write_plot_png(stem + "_focus.png", {r50, r80}, pp);
+    std::vector<an::psf_panel> strip, spots;
+    for (std::size_t i : b->strip)
+      strip.push_back({&b->focus.planes[i].grid, std::to_string(int(b->focus.planes[i].offset_mm)) + " mm"});
+    an::write_psf_panels_png(stem + "_strip.png", strip,
+                             {.title = "through focus, " + std::string(layout), .columns = int(strip.size())});
+    for (const auto& s : b->spots.spots) {
+      char label[64];
+      std::snprintf(label, sizeof label, "(%+.3g, %+.3g) mm, r50 %.3g mm", s.x_mm, s.y_mm, s.r50_mm);
+      spots.push_back({&s.grid, s.missed.empty() ? label : "not reached"});
+    }
+    an::write_psf_panels_png(stem + "_spots.png", spots,
+                             {.title = "spot matrix, " + std::string(layout), .columns = b->spots.n});
+    double lo = 1e300, hi = -1e300;
+    for (double v : b->map_r50_mm)
+      if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+    if (!(hi > lo)) lo = 0, hi = std::max(hi, 1e-6);
+    an::write_heatmap_png(stem + "_map.png", b->map_r50_mm, int(b->map_d_mm.size()), int(b->map_tilt_deg.size()),
+                          {.title = "r50 over floating distance and tilt",
+                           .x_title = "floating distance D (mm)",
+                           .y_title = "retroreflector tilt (deg)",
+                           .value_title = "r50 (mm)",
+                           .x_min = b->map_d_mm.front(),
+                           .x_max = b->map_d_mm.back(),
+                           .y_min = b->map_tilt_deg.front(),
+                           .y_max = b->map_tilt_deg.back(),
+                           .value_min = lo,
+                           .value_max = hi,
+                           .marker = std::make_pair(b->floating_distance_mm, b->tilt_deg),
+                           .marker_label = "design",
+                           .scale_bar_unit = "",
+                           .width = 900,
+                           .height = 760});
+    st.status = "exported " + path + " and " + stem + "_{focus,strip,spots,map}.png";
     return true;
   } catch (const std::exception& e) {
     st.status = std::string("cannot export: ") + e.what();

@@ -46,9 +46,16 @@ static void run_pending(studio& st) {
       studio_open(st, st.pending_path);
       break;
     case studio::pending_action::new_scene: {
+      // The shipped default scene, untitled (its relative paths point into assets/).
       scene s;
-      s.base_dir = asset_dir() + "/scenes";  // the defaults' relative paths point into assets/
-      s.source.image = "../charts/test_chart.png";
+      try {
+        s = load_scene(default_scene_path());
+      } catch (const std::exception& e) {
+        s.base_dir = asset_dir() + "/scenes";
+        s.source.image = "../charts/test_chart.png";
+        st.status =
+            std::string("the default scene does not load (") + e.what() + "); a new scene starts on the ideal bench";
+      }
       studio_start(st, s, "");
       break;
     }
@@ -100,6 +107,10 @@ void draw_menu(studio& st) {
     if (ImGui::MenuItem("Export plot data...")) {
       st.dialog.request(file_purpose::export_plots, true, "Export plot data (CSV)", start_dir(st), {".csv"},
                         "plots.csv");
+    }
+    if (ImGui::MenuItem("Export bokeh pictures...")) {
+      st.dialog.request(file_purpose::export_bokeh, true, "Export the bokeh views (PNG; the others beside it)",
+                        start_dir(st), {".png"}, "bokeh.png");
     }
     ImGui::Separator();
     if (ImGui::MenuItem("Fit a sheet preset...")) st.show_fit = true;
@@ -155,6 +166,9 @@ void handle_dialog(studio& st) {
       break;
     case file_purpose::export_plots:
       studio_export_plots(st, path);
+      break;
+    case file_purpose::export_bokeh:
+      studio_export_bokeh(st, path);
       break;
     case file_purpose::choose_source_image:
       studio_drop_file(st, path);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <tbb/parallel_for.h>
+
 #include "airr/core/error.hpp"
 #include "airr/layout/layout.hpp"
 
@@ -29,22 +31,23 @@ through_focus compute_through_focus(const scene& s, const retro_model_list& mode
   const focus_bundle bundle = sample_focus_bundle(s, models, p, aerial_image_center(s));
   through_focus out;
   out.sheets = bundle.sheets;
-  std::vector<psf_samples> cuts;
-  double half_width = 0;
-  for (double z : offsets) {
-    cuts.push_back(cut_focus_bundle(bundle, z));
-    half_width = std::max(half_width, psf_picture_half_width(cuts.back(), false));
-  }
-  const double pixel = 2 * half_width / grid_size;
-  for (std::size_t i = 0; i < offsets.size(); ++i) {
-    focus_plane plane;
-    plane.offset_mm = offsets[i];
-    plane.r50_mm = energy_radius(cuts[i], 0.5);
-    plane.r80_mm = energy_radius(cuts[i], 0.8);
-    plane.grid = psf_to_grid(cuts[i], grid_size, pixel);
-    plane.peak_per_mm2 = plane.grid.peak();
-    out.planes.push_back(std::move(plane));
-  }
+  // The planes in parallel: cut, picture extent, radii; then the pictures on one common grid.
+  std::vector<psf_samples> cuts(offsets.size());
+  std::vector<double> half_widths(offsets.size());
+  out.planes.resize(offsets.size());
+  tbb::parallel_for(std::size_t(0), offsets.size(), [&](std::size_t i) {
+    cuts[i] = cut_focus_bundle(bundle, offsets[i]);
+    half_widths[i] = psf_picture_half_width(cuts[i], false);
+    const std::vector<double> radii = energy_radii(cuts[i], {0.5, 0.8});
+    out.planes[i].offset_mm = offsets[i];
+    out.planes[i].r50_mm = radii[0];
+    out.planes[i].r80_mm = radii[1];
+  });
+  const double pixel = 2 * *std::max_element(half_widths.begin(), half_widths.end()) / grid_size;
+  tbb::parallel_for(std::size_t(0), offsets.size(), [&](std::size_t i) {
+    out.planes[i].grid = psf_to_grid(cuts[i], grid_size, pixel);
+    out.planes[i].peak_per_mm2 = out.planes[i].grid.peak();
+  });
   out.best_offset_mm = best_offset(out.planes);
   return out;
 }

@@ -196,21 +196,30 @@ psf_samples sample_psf(const scene& s, const retro_model& model, const psf_param
   return sample_sheet_psf(s, 0, model, p, aerial_image_center(s));
 }
 
-double energy_radius(const psf_samples& psf, double fraction) {
+double energy_radius(const psf_samples& psf, double fraction) { return energy_radii(psf, {fraction})[0]; }
+
+std::vector<double> energy_radii(const psf_samples& psf, const std::vector<double>& fractions) {
   std::vector<std::pair<double, double>> rw(psf.offset_mm.size());
   double total = 0;
   for (std::size_t i = 0; i < rw.size(); ++i) {
     rw[i] = {glm::length(psf.offset_mm[i]), psf.weight[i]};
     total += psf.weight[i];
   }
-  if (total <= 0) return 0;
+  std::vector<double> radii(fractions.size(), 0.0);
+  if (total <= 0) return radii;
   std::sort(rw.begin(), rw.end());
-  double acc = 0;
-  for (const auto& [r, w] : rw) {
-    acc += w;
-    if (acc >= fraction * total) return r;
+  for (std::size_t k = 0; k < fractions.size(); ++k) {
+    radii[k] = rw.back().first;
+    double acc = 0;
+    for (const auto& [r, w] : rw) {
+      acc += w;
+      if (acc >= fractions[k] * total) {
+        radii[k] = r;
+        break;
+      }
+    }
   }
-  return rw.back().first;
+  return radii;
 }
 
 }  // namespace airr

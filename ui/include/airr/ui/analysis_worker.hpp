@@ -1,7 +1,8 @@
 #pragma once
 // Plot data computed off the UI thread: the model PSF's MTF, its cross-section and the mean MTF
-// against floating distance for the current layout, and the slanted-edge MTF measured on the
-// render. The newest request wins; results carry the generation they belong to.
+// against floating distance for the current layout, the slanted-edge MTF measured on the render,
+// and the Bokeh tab's views (after the others, while no newer layout waits). The newest request
+// wins; results carry the generation they belong to.
 #include <condition_variable>
 #include <memory>
 #include <mutex>
@@ -15,6 +16,7 @@
 #include "airr/layout/viewing_zone.hpp"
 #include "airr/models/retro_model.hpp"
 #include "airr/render/render_session.hpp"
+#include "airr/ui/bokeh_plots.hpp"
 
 namespace airr::ui {
 
@@ -71,6 +73,7 @@ class analysis_worker {
   void submit_render(const render_snapshot& snap, const scene& s);
   std::shared_ptr<const predicted_plots> predicted() const;
   std::shared_ptr<const measured_plots> measured() const;
+  std::shared_ptr<const bokeh_plots> bokeh() const;
   // Blocks until the latest submitted scene's plots are published (for scripted runs).
   void wait_idle() const;
 
@@ -86,8 +89,11 @@ class analysis_worker {
   };
   std::optional<scene_request> pending_scene_;
   std::optional<std::pair<render_snapshot, scene>> pending_render_;
+  std::optional<scene_request> pending_bokeh_;  // the last scene's, once its other plots are out
+  std::optional<double> bokeh_r50_;             // its r50 from those plots
   std::shared_ptr<const predicted_plots> predicted_;
   std::shared_ptr<const measured_plots> measured_;
+  std::shared_ptr<const bokeh_plots> bokeh_;
   bool busy_ = false;
   bool stopping_ = false;
   std::thread worker_;

@@ -11,6 +11,7 @@ enum class file_purpose {
   save_scene,
   export_render,
   export_plots,
+  export_bokeh,
   choose_source_image,
   choose_fit_data,
   save_preset,

@@ -32,6 +32,9 @@ struct plot_params {
   bool auto_x = true, auto_y = false;
   float height = 200;  // pixels before content scale; width fills the window
   const plot_heatmap* heatmap = nullptr;
+  bool equal_aspect = false;
+  bool compact = false;  // a small picture: its title above, no ticks or axis titles  // widen one axis's range so that
+                         // a unit is as long on both (pictures in mm)
 };
 
 // What the cursor points at, when it is over the plot area.
@@ -39,7 +42,8 @@ struct plot_hover {
   bool active = false;
   bool clicked = false;  // the left button went down over the plot area this frame
   double x = 0, y = 0;
-  float area[4] = {0, 0, 0, 0};  // the plot area on screen: x0, y0, x1, y1
+  float area[4] = {0, 0, 0, 0};    // the plot area on screen: x0, y0, x1, y1
+  double range[4] = {0, 0, 0, 0};  // the ranges drawn there: x_min, x_max, y_min, y_max
 };
 
 plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, const plot_params& params);

@@ -100,6 +100,21 @@ struct studio {
   int zone_quantity = 0;
   std::unique_ptr<zone_job> zone_job_;
 
+  // The Plots window's tab (0 MTF, 1 Bokeh), chosen by the next frame when select_plots_tab.
+  int plots_tab = 0;
+  bool select_plots_tab = false;
+  // What the Bokeh tab showed last, for scripted checks: the generation of its numbers, r50, the
+  // 2D PSF's plot area (screen) and x range (mm), the design marker on the D x tilt map.
+  struct bokeh_shown_state {
+    std::uint64_t generation = 0;
+    bool current = false;
+    double r50_mm = 0;
+    std::array<float, 4> psf_area{};
+    std::array<double, 2> psf_x_mm{};
+    std::array<float, 2> marker{};
+    std::array<double, 2> marker_d_tilt{};
+  } bokeh_shown;
+
   // Crash recovery: unsaved edits are copied to config_dir()/recovery.json every few seconds.
   bool keep_recovery = true;  // off in scripted runs
   double last_recovery_write = -1;
@@ -134,6 +149,10 @@ bool studio_add_prop(studio& st, const std::string& path);
 bool studio_export_gltf(studio& st, const std::string& path);
 bool studio_export_render(studio& st, const std::string& path);
 bool studio_export_plots(studio& st, const std::string& path);
+// The Bokeh tab's views as PNG pictures: the 2D PSF at `path`, and beside it <stem>_focus.png (r50
+// and r80 through focus), <stem>_strip.png, <stem>_spots.png and <stem>_map.png. Only views of
+// the current layout are written (false with st.status otherwise).
+bool studio_export_bokeh(studio& st, const std::string& path);
 
 // Writes or removes the recovery copy as the dirty state requires; call once per frame.
 void studio_keep_recovery(studio& st, double now_seconds);
@@ -152,6 +171,7 @@ void draw_layout_view(studio& st);
 void draw_view_3d(studio& st, ImVec2 at, ImVec2 size);
 void draw_render_view(studio& st, double now_seconds);
 void draw_plots_panel(studio& st);
+void draw_bokeh_tab(studio& st);
 // Starts the viewing zone's full pass for the applied layout, on the predicted map's sphere
 // (false while the predicted plots are not yet those of the current layout).
 bool start_full_zone(studio& st);

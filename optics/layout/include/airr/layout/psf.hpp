@@ -101,5 +101,7 @@ psf_samples sample_psf(const scene& s, const retro_model& model, const psf_param
 
 // The radius around the ideal point holding `fraction` of the arriving energy.
 double energy_radius(const psf_samples& psf, double fraction = 0.5);
+// The same for several fractions at once (one sort), in the order given.
+std::vector<double> energy_radii(const psf_samples& psf, const std::vector<double>& fractions);
 
 }  // namespace airr
