@@ -65,7 +65,7 @@ spot_matrix compute_spot_matrix(const scene& s, const retro_model_list& models, 
   spot_matrix out;
   out.n = n;
   std::vector<psf_samples> psfs;
-  double half_width = 0;
+  double half_width = 0.05;  // when no point reaches a sheet, empty pictures of the smallest size
   for (int row = 0; row < n; ++row) {
     for (int col = 0; col < n; ++col) {
       field_spot spot;
