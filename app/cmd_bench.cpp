@@ -21,6 +21,7 @@
 #include "airr/render/tracer.hpp"
 #include "commands.hpp"
 #include "model_error_bench.hpp"
+#include "model_image_bench.hpp"
 #include "noise_bench.hpp"
 #include "prop_bench.hpp"
 
@@ -76,6 +77,8 @@ void add_bench_command(CLI::App& app) {
     bool noise = false;
     noise_bench_options noise_options;
     bool model_error = false;
+    bool model_image = false;
+    int runs = 3;
     std::vector<double> model_error_tilts;
     std::uint64_t prop_triangles = 0;
   };
@@ -92,7 +95,12 @@ void add_bench_command(CLI::App& app) {
   cmd->add_flag("--model-error", opt->model_error,
                 "Instead: the model image's (and the designer's first look's) relative RMS difference from the tracer "
                 "per preset and sheet tilt 0-45 deg (default 256 x 256, --spp 128)");
-  cmd->add_option("--tilts", opt->model_error_tilts, "With --model-error: sheet tilts (deg)");
+  cmd->add_flag("--model-image", opt->model_image,
+                "Instead: where an edit's model image spends its time (paths, bins, spectra, kernels, correlation, "
+                "gathering), quick and full quality, per preset and tilt (default 512 x 512, tilts 0 20 45)");
+  cmd->add_option("--runs", opt->runs, "With --model-image: runs per case (the median is reported)")
+      ->check(CLI::Range(1, 100));
+  cmd->add_option("--tilts", opt->model_error_tilts, "With --model-error or --model-image: sheet tilts (deg)");
   cmd->add_option("--prop-triangles", opt->prop_triangles,
                   "Instead: what a housing prop of this many triangles costs (load, Embree build, rays/s with and "
                   "without it)")
@@ -121,6 +129,16 @@ void add_bench_command(CLI::App& app) {
       m.threads = opt->noise_options.threads;
       if (m.spp < 2) throw airr::input_error("--model-error needs --spp 2 or more (the noise comes from two halves)");
       run_model_error_bench(m);
+      return;
+    }
+    if (opt->model_image) {
+      model_image_bench_options m;
+      m.scene_path = opt->scene_path;
+      if (cmd->count("--size")) m.size = opt->noise_options.size;
+      if (cmd->count("--presets")) m.presets = opt->noise_options.presets;
+      if (cmd->count("--tilts")) m.tilts_deg = opt->model_error_tilts;
+      m.runs = opt->runs;
+      run_model_image_bench(m);
       return;
     }
     if (opt->prop_triangles > 0) {

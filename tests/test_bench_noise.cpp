@@ -1,5 +1,6 @@
 // `airr bench --noise` end to end on a small image: pairs rendered through `airr render`, the law,
 // the forecast, and a side-by-side comparison (here with the same build, so the ratio is near 1).
+#include <sstream>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -26,4 +27,23 @@ TEST(BenchNoise, BadComparisonBuildIsNamed) {
   const test::command_result r = test::run_cli("bench --noise --size 16 --compare /nonexistent/airr");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.out.find("/nonexistent/airr: not an executable airr"), std::string::npos) << r.out;
+}
+
+// `airr bench --model-image` on a small image: one line per preset, tilt and quality, whose parts
+// (measured one after another) add up to no more than the total.
+TEST(BenchModelImage, ReportsWhereTheTimeGoes) {
+  const test::command_result r = test::run_cli("bench --model-image --size 48 --runs 1 --presets rf-an --tilts 0 30");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  int lines = 0;
+  std::istringstream in(r.out);
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream row(line);
+    std::string preset, quality;
+    double tilt = 0, total = 0, paths = 0, bins = 0, spectra = 0, loop = 0;
+    if (!(row >> preset >> tilt >> quality >> total >> paths >> bins >> spectra >> loop) || preset != "rf-an") continue;
+    ++lines;
+    EXPECT_TRUE(quality == "quick" || quality == "full") << line;
+    EXPECT_LE(paths + bins + spectra + loop, total + 1.5) << line;  // rounded to whole ms each
+  }
+  EXPECT_EQ(lines, 4) << r.out;
 }

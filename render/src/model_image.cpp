@@ -142,7 +142,12 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
     m->bins.push_back(std::move(b));
   }
   auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
+  using clock_type = std::chrono::steady_clock;
+  auto since = [](clock_type::time_point t) { return std::chrono::duration<double>(clock_type::now() - t).count(); };
+  m->bins_seconds = since(t0) - m->paths_seconds;
+  const auto t_spectra = clock_type::now();
   const grid_spectrum spectra[2] = {spectrum_of(m->grids[model_fine].padded), spectrum_of(m->grids[model_tail].padded)};
+  m->spectra_seconds = since(t_spectra);
   for (model_pixel& px : m->pixels) assign_bin(m->bins, px);
   // Each bin adds its share to the pixels it is the lower bin of, or the upper: no pixel is
   // written by two bins at once, and a bin's correlated grids are dropped as soon as it is done.
@@ -152,12 +157,19 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
     share.height = h;
     share.rgb.assign(std::size_t(w) * h * 3, 0.0f);
   }
+  std::vector<std::array<double, 3>> bin_seconds(std::size_t(bins), {0.0, 0.0, 0.0});
+  const auto t_loop = clock_type::now();
   detail::parallel_rows(bins, p.threads, [&](int k0, int k1) {
     for (int k = k0; k < k1 && !cancelled(); ++k) {
+      auto t = clock_type::now();
       const std::array<cv::Mat, 2> kernels =
           bin_kernels(*m, m->bins[std::size_t(k)], std::size_t(k), p.psf_samples, s.seed, p.threads, cancel);
+      bin_seconds[std::size_t(k)][0] = since(t);
+      t = clock_type::now();
       const correlated_grid correlated[2] = {correlate(spectra[model_fine], kernels[model_fine]),
                                              correlate(spectra[model_tail], kernels[model_tail])};
+      bin_seconds[std::size_t(k)][1] = since(t);
+      t = clock_type::now();
       for (std::size_t i = 0; i < m->pixels.size(); ++i) {
         const model_pixel& px = m->pixels[i];
         if (!px.ok || (px.bin != k && px.bin + 1 != k)) continue;
@@ -168,9 +180,16 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
         float* out = shares[upper ? 1 : 0].rgb.data() + 3 * i;
         for (int c = 0; c < 3; ++c) out[c] = v[c] * weight;
       }
+      bin_seconds[std::size_t(k)][2] = since(t);
     }
   });
   if (cancelled()) return nullptr;
+  m->loop_seconds = since(t_loop);
+  for (const auto& b : bin_seconds) {
+    m->kernels_seconds += b[0];
+    m->correlate_seconds += b[1];
+    m->gather_seconds += b[2];
+  }
   m->image = std::move(shares[0]);
   for (std::size_t i = 0; i < m->image.rgb.size(); ++i) m->image.rgb[i] += shares[1].rgb[i];
   m->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

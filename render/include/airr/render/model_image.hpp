@@ -91,7 +91,12 @@ struct model_image {
   std::shared_ptr<const retro_model> model;
   std::size_t sheet = 0;     // the scene's sheet this is the share of
   double seconds = 0;        // to compute
-  double paths_seconds = 0;  // of which: the pixels' ideal paths
+  double paths_seconds = 0;  // of which: the pixels' ideal paths (and, before them, the display's grids)
+  // Where the rest went (airr bench --model-image): the bins' chief rays, the grids' spectra, and
+  // the per-bin loop (wall time); within the loop, summed over the bins that run side by side,
+  // sampling each bin's kernels, correlating the grids with them, and gathering the pixels.
+  double bins_seconds = 0, spectra_seconds = 0, loop_seconds = 0;
+  double kernels_seconds = 0, correlate_seconds = 0, gather_seconds = 0;
 };
 
 // Throws input_error when a parameter is out of range.

@@ -1,0 +1,16 @@
+#pragma once
+// airr bench --model-image: where an edit's model image spends its time, at the designer's quick
+// quality and at full quality, per sheet preset and tilt.
+#include <string>
+#include <vector>
+
+struct model_image_bench_options {
+  std::string scene_path;
+  int size = 512;
+  int runs = 3;  // per case; the median is reported
+  std::vector<std::string> presets{"rf-ay", "rf-an"};
+  std::vector<double> tilts_deg{0, 20, 45};
+};
+
+// Prints one line per preset, tilt and quality; throws input_error naming what failed.
+void run_model_image_bench(const model_image_bench_options& o);
