@@ -86,39 +86,51 @@ grid_spectrum spectrum_of(const image_rgb& padded) {
   grid_spectrum out;
   out.width = padded.width;
   out.height = padded.height;
-  const cv::Mat src(padded.height, padded.width, CV_32FC3, const_cast<float*>(padded.rgb.data()));
+  out.fft_width = cv::getOptimalDFTSize(padded.width);
+  out.fft_height = cv::getOptimalDFTSize(padded.height);
   const int n = is_grey(padded) ? 1 : 3;
-  const cv::Size size(cv::getOptimalDFTSize(padded.width), cv::getOptimalDFTSize(padded.height));
+  const std::size_t reals = std::size_t(out.fft_width) * out.fft_height;
   for (int c = 0; c < n; ++c) {
-    cv::Mat channel = cv::Mat::zeros(size, CV_32F);
-    cv::extractChannel(src, channel(cv::Rect(0, 0, padded.width, padded.height)), c);
-    cv::Mat spectrum;
-    cv::dft(channel, spectrum, 0, padded.height);
+    fft_buffer<float> channel = real_buffer(reals);
+    std::fill_n(channel.data.get(), reals, 0.0f);
+    for (int y = 0; y < padded.height; ++y) {
+      const float* src = padded.at(0, y) + c;
+      float* dst = channel.data.get() + std::size_t(y) * out.fft_width;
+      for (int x = 0; x < padded.width; ++x) dst[x] = src[3 * x];
+    }
+    fft_buffer<std::complex<float>> spectrum = complex_buffer(std::size_t(out.fft_height) * (out.fft_width / 2 + 1));
+    fft_forward(out.fft_width, out.fft_height, channel.data.get(), spectrum.data.get());
     out.channels.push_back(std::move(spectrum));
   }
   return out;
 }
 
 correlated_grid correlate(const grid_spectrum& grid, const cv::Mat& kernel) {
-  const cv::Size size = grid.channels.front().size();
-  const int r = kernel.rows / 2;
-  cv::Mat kernel_spectrum;
-  {
-    // The kernel with offset o at index o modulo the DFT's size.
-    cv::Mat wrapped = cv::Mat::zeros(size, CV_32F);
-    for (int y = -r; y <= r; ++y) {
-      const float* row = kernel.ptr<float>(y + r);
-      float* dst = wrapped.ptr<float>((y + size.height) % size.height);
-      for (int x = -r; x <= r; ++x) dst[(x + size.width) % size.width] = row[x + r];
-    }
-    cv::dft(wrapped, kernel_spectrum);
+  const int w = grid.fft_width, h = grid.fft_height, r = kernel.rows / 2;
+  const std::size_t reals = std::size_t(w) * h, complexes = std::size_t(h) * (w / 2 + 1);
+  // The kernel with offset o at index o modulo the transform's size.
+  fft_buffer<float> wrapped = real_buffer(reals);
+  std::fill_n(wrapped.data.get(), reals, 0.0f);
+  for (int y = -r; y <= r; ++y) {
+    const float* row = kernel.ptr<float>(y + r);
+    float* dst = wrapped.data.get() + std::size_t((y + h) % h) * w;
+    for (int x = -r; x <= r; ++x) dst[(x + w) % w] = row[x + r];
   }
+  fft_buffer<std::complex<float>> kernel_spectrum = complex_buffer(complexes);
+  fft_forward(w, h, wrapped.data.get(), kernel_spectrum.data.get());
   correlated_grid out;
-  for (const cv::Mat& channel : grid.channels) {
-    cv::Mat product, values;
-    cv::mulSpectrums(channel, kernel_spectrum, product, 0, true);
-    cv::dft(product, values, cv::DFT_INVERSE | cv::DFT_SCALE | cv::DFT_REAL_OUTPUT, grid.height);
-    out.channels.push_back(values(cv::Rect(0, 0, grid.width, grid.height)));
+  out.cols = grid.width;
+  out.rows = grid.height;
+  out.stride = w;
+  // Correlation: the grid's spectrum times the kernel's conjugate, back, scaled by 1 / (w h).
+  const float scale = 1.0f / float(reals);
+  for (const auto& channel : grid.channels) {
+    fft_buffer<std::complex<float>> product = complex_buffer(complexes);
+    for (std::size_t i = 0; i < complexes; ++i)
+      product.data[i] = channel.data[i] * std::conj(kernel_spectrum.data[i]) * scale;
+    fft_buffer<float> values = real_buffer(reals);
+    fft_inverse(w, h, product.data.get(), values.data.get());
+    out.channels.push_back(std::move(values));
   }
   return out;
 }

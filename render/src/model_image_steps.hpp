@@ -15,6 +15,7 @@
 #include "airr/layout/layout.hpp"
 #include "airr/models/emission_profile.hpp"
 #include "airr/render/model_image.hpp"
+#include "real_fft.hpp"
 
 namespace airr::model_image_steps {
 
@@ -64,8 +65,9 @@ cv::Mat display_texels(const scene& s, const image_rgb* display, int max_texels)
 // margins are black and as wide as the kernels reach, so a DFT the grid's own size suffices:
 // what wraps around lands on black.
 struct grid_spectrum {
-  int width = 0, height = 0;      // the padded grid's
-  std::vector<cv::Mat> channels;  // one spectrum per distinct channel (one for a grey display)
+  int width = 0, height = 0;          // the padded grid's
+  int fft_width = 0, fft_height = 0;  // the transform's (the grid zero-padded to sizes of small factors)
+  std::vector<fft_buffer<std::complex<float>>> channels;  // per distinct channel (one for a grey display)
 };
 
 grid_spectrum spectrum_of(const image_rgb& padded);
@@ -73,16 +75,16 @@ grid_spectrum spectrum_of(const image_rgb& padded);
 // out(x) = sum over offsets o of kernel(o) grid(x + o), the kernel's centre at offset 0 (the
 // prediction's sum, for every node at once); one matrix per distinct channel, as the spectrum.
 struct correlated_grid {
-  std::vector<cv::Mat> channels;
+  std::vector<fft_buffer<float>> channels;  // rows of `stride` values, the first `cols` of `rows` rows used
+  int cols = 0, rows = 0, stride = 0;
   glm::vec3 at(const glm::dvec2& t) const {
-    const cv::Mat& first = channels.front();
     const int x0 = int(std::floor(t.x)), y0 = int(std::floor(t.y));
-    if (x0 < 0 || y0 < 0 || x0 + 1 >= first.cols || y0 + 1 >= first.rows) return glm::vec3(0.0f);
+    if (x0 < 0 || y0 < 0 || x0 + 1 >= cols || y0 + 1 >= rows) return glm::vec3(0.0f);
     const float fx = float(t.x - x0), fy = float(t.y - y0);
     glm::vec3 v(0.0f);
     for (std::size_t c = 0; c < channels.size(); ++c) {
-      const float* r0 = channels[c].ptr<float>(y0);
-      const float* r1 = channels[c].ptr<float>(y0 + 1);
+      const float* r0 = channels[c].data.get() + std::size_t(y0) * stride;
+      const float* r1 = r0 + stride;
       v[int(c)] = (r0[x0] * (1 - fx) + r0[x0 + 1] * fx) * (1 - fy) + (r1[x0] * (1 - fx) + r1[x0 + 1] * fx) * fy;
     }
     return channels.size() == 1 ? glm::vec3(v[0]) : v;
