@@ -10,6 +10,7 @@
 #include "airr/measure/noise_level.hpp"
 #include "airr/render/layout_model_image.hpp"
 #include "airr/render/render_session.hpp"
+#include "bench_case.hpp"
 
 namespace {
 
@@ -35,18 +36,10 @@ void run_model_error_bench(const model_error_options& o) {
   std::printf("%-8s %6s %12s %12s %12s %14s %10s\n", "", "deg", "", "", "", "taken out", "");
   for (const std::string& preset : o.presets) {
     for (double tilt : o.tilts_deg) {
-      const std::string size = std::to_string(o.size);
-      const airr::scene s =
-          airr::load_scene(o.scene_path, {{"observer.width", size},
-                                          {"observer.height", size},
-                                          {"retroreflectors.0.model.type", "\"sinc_shift\""},
-                                          {"retroreflectors.0.model.preset", "\"" + preset + "\""},
-                                          {"retroreflectors.0.pose.pitch_deg", std::to_string(tilt)}});
-      const auto models = airr::make_sheet_models(s);
-      const std::string texture_path = airr::resolve_scene_path(s, s.source.image);
-      airr::image_rgb texture;
-      if (!texture_path.empty()) texture = airr::load_image(texture_path).pixels;
-      const airr::image_rgb* display = texture_path.empty() ? nullptr : &texture;
+      const bench_case c = load_bench_case(o.scene_path, o.size, preset, tilt);
+      const airr::scene& s = c.s;
+      const airr::retro_model_list& models = c.models;
+      const airr::image_rgb* display = c.display();
       const auto t0 = std::chrono::steady_clock::now();
       const auto full = airr::compute_layout_model_image(
           s, models, display, airr::model_image_params::for_image(s.observer.width, s.observer.height));

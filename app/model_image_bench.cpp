@@ -9,6 +9,7 @@
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/sheet_models.hpp"
 #include "airr/render/model_image.hpp"
+#include "bench_case.hpp"
 
 namespace {
 
@@ -28,22 +29,12 @@ void run_model_image_bench(const model_image_bench_options& o) {
               "spectra", "loop", "(kernels", "correlate", "gather)");
   for (const std::string& preset : o.presets) {
     for (double tilt : o.tilts_deg) {
-      const std::string size = std::to_string(o.size);
-      const airr::scene s =
-          airr::load_scene(o.scene_path, {{"observer.width", size},
-                                          {"observer.height", size},
-                                          {"retroreflectors.0.model.type", "\"sinc_shift\""},
-                                          {"retroreflectors.0.model.preset", "\"" + preset + "\""},
-                                          {"retroreflectors.0.pose.pitch_deg", std::to_string(tilt)}});
-      const auto models = airr::make_sheet_models(s);
-      const std::string texture_path = airr::resolve_scene_path(s, s.source.image);
-      airr::image_rgb texture;
-      if (!texture_path.empty()) texture = airr::load_image(texture_path).pixels;
+      const bench_case c = load_bench_case(o.scene_path, o.size, preset, tilt);
       for (const bool quick : {true, false}) {
         std::vector<double> total, paths, bins, spectra, loop, kernels, correlate, gather;
         for (int r = 0; r < o.runs; ++r) {
           const auto t0 = std::chrono::steady_clock::now();
-          const auto m = airr::compute_model_image(s, models.front(), texture_path.empty() ? nullptr : &texture,
+          const auto m = airr::compute_model_image(c.s, c.models.front(), c.display(),
                                                    airr::model_image_params::for_image(o.size, o.size, quick));
           total.push_back(1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
           if (!m) throw airr::input_error("model image bench: no pixel sees the sheet");

@@ -4,13 +4,10 @@
 #include <array>
 #include <cmath>
 
-#include <tbb/parallel_for.h>
-
 #include "airr/core/error.hpp"
 #include "airr/core/geometry.hpp"
-#include "airr/core/low_discrepancy.hpp"
-#include "airr/core/random.hpp"
 #include "airr/layout/layout.hpp"
+#include "psf_sample_blocks.hpp"
 
 namespace airr {
 
@@ -83,42 +80,20 @@ static double add_sheet_samples(const psf_chief_ray& chief, const retro_model& m
                                 double hm_factor, psf_samples& out) {
   const part_frame& src = chief.src;
   const glm::dvec3 wi = chief.wi;
-  std::array<double, 6> rotation;
-  pcg32 rotation_rng = sample_rng(0, 0, p.seed ^ 0x5eedu);
-  for (double& r : rotation) r = rotation_rng.next_double();
-
-  // Blocks of samples run in parallel and are joined in order, so the result does not depend on
-  // the number of threads.
-  constexpr std::uint64_t block = 8192;
-  const std::size_t blocks = std::size_t((p.samples + block - 1) / block);
-  std::vector<psf_samples> parts(blocks);
-  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
-    psf_samples& part = parts[b];
-    const std::uint64_t end = std::min<std::uint64_t>(p.samples, (b + 1) * block);
-    for (std::uint64_t i = b * block; i < end; ++i) {
-      // The lobe and shift samples stratify each other across the PSF's samples (a rotated R6
-      // sequence, as the tracer's pixels use); the rest comes from the per-sample generator.
-      pcg32 rng = sample_rng(i, 0, p.seed);
-      std::array<double, 6> q;
-      if (p.stratified) {
-        q = r6_point(i, rotation);
-      } else {
-        for (double& x : q) x = rng.next_double();
-      }
-      retro_samples u;
-      u.lobe = {q[2], q[3]};
-      u.shift = {q[4], q[5]};
-      u.more = rng.split();
-      const retro_sample rs = model.sample(wi, u);
-      if (!(rs.weight > 0)) continue;
-      const auto delta = psf_landing_offset(chief, rs);
-      if (!delta) continue;
-      // The image of a point shows where rays land relative to the ideal point, point-mirrored;
-      // source (u, v) map to aerial (x, y).
-      part.offset_mm.emplace_back(-glm::dot(*delta, src.u), -glm::dot(*delta, src.v));
-      part.weight.push_back(rs.weight * hm_factor);
-    }
-  });
+  // The lobe and shift samples stratify each other across the PSF's samples (a rotated R6
+  // sequence, as the tracer's pixels use); the rest comes from the per-sample generator.
+  const std::vector<psf_samples> parts =
+      sample_in_blocks<psf_samples>(p.samples, p.seed, 0, 0x5eedu, p.stratified,
+                                    [&](const std::array<double, 6>&, const retro_samples& u, psf_samples& part) {
+                                      const retro_sample rs = model.sample(wi, u);
+                                      if (!(rs.weight > 0)) return;
+                                      const auto delta = psf_landing_offset(chief, rs);
+                                      if (!delta) return;
+                                      // The image of a point shows where rays land relative to the ideal point,
+                                      // point-mirrored; source (u, v) map to aerial (x, y).
+                                      part.offset_mm.emplace_back(-glm::dot(*delta, src.u), -glm::dot(*delta, src.v));
+                                      part.weight.push_back(rs.weight * hm_factor);
+                                    });
   double sum = 0;
   for (const psf_samples& part : parts) {
     out.offset_mm.insert(out.offset_mm.end(), part.offset_mm.begin(), part.offset_mm.end());

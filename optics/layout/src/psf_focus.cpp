@@ -5,15 +5,12 @@
 #include <memory>
 #include <optional>
 
-#include <tbb/parallel_for.h>
-
 #include "airr/core/error.hpp"
 #include "airr/core/geometry.hpp"
-#include "airr/core/low_discrepancy.hpp"
 #include "airr/core/number_range.hpp"
-#include "airr/core/random.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/models/emission_profile.hpp"
+#include "psf_sample_blocks.hpp"
 
 namespace airr {
 
@@ -84,32 +81,13 @@ std::optional<double> add_sheet_bundle(const scene& s, std::size_t sheet, const 
     return std::nullopt;
   }
 
-  std::array<double, 6> rotation;
-  pcg32 rotation_rng = sample_rng(0, 1, p.seed ^ 0xf0c5u);
-  for (double& r : rotation) r = rotation_rng.next_double();
-  // Blocks run in parallel and join in order: the result does not depend on the thread count.
-  constexpr std::uint64_t block = 8192;
-  const std::size_t blocks = std::size_t((p.samples + block - 1) / block);
-  std::vector<bundle_part> parts(blocks);
-  tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t k) {
-    const std::uint64_t end = std::min<std::uint64_t>(p.samples, (k + 1) * block);
-    for (std::uint64_t i = k * block; i < end; ++i) {
-      // The sheet point, the lobe and the shift stratify each other (the R6 sequence).
-      pcg32 rng = sample_rng(i, 1, p.seed);
-      std::array<double, 6> r;
-      if (p.stratified) {
-        r = r6_point(i, rotation);
-      } else {
-        for (double& x : r) x = rng.next_double();
-      }
-      retro_samples u;
-      u.lobe = {r[2], r[3]};
-      u.shift = {r[4], r[5]};
-      u.more = rng.split();
-      const glm::dvec3 q = part_point(sp.rr, (r[0] - 0.5) * sp.rr.width, (r[1] - 0.5) * sp.rr.height);
-      trace_one(sp, model, q, u, parts[k]);
-    }
-  });
+  // The sheet point, the lobe and the shift stratify each other.
+  const std::vector<bundle_part> parts = sample_in_blocks<bundle_part>(
+      p.samples, p.seed, 1, 0xf0c5u, p.stratified,
+      [&](const std::array<double, 6>& r, const retro_samples& u, bundle_part& part) {
+        const glm::dvec3 q = part_point(sp.rr, (r[0] - 0.5) * sp.rr.width, (r[1] - 0.5) * sp.rr.height);
+        trace_one(sp, model, q, u, part);
+      });
   double power = 0;
   for (const bundle_part& part : parts) {
     b.origin.insert(b.origin.end(), part.origin.begin(), part.origin.end());
