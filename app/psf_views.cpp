@@ -184,19 +184,8 @@ void run_through_focus(const airr::scene& s, const airr::retro_model_list& model
     std::printf("wrote %s\n", o.csv.c_str());
   }
   if (!o.plot.empty()) {
-    an::plot_series r50{"r50 (50% energy radius)", {}, {}, {}}, r80{"r80 (80% energy radius)", {}, {}, {}};
-    for (const an::focus_plane& p : tf.planes) {
-      r50.x.push_back(p.offset_mm);
-      r50.y.push_back(p.r50_mm);
-      r80.x.push_back(p.offset_mm);
-      r80.y.push_back(p.r80_mm);
-    }
-    an::plot_params pp;
-    pp.title = "through focus: " + sheet_summary(s) + ", best focus " + fmt("%.3g", tf.best_offset_mm) + " mm";
-    pp.x_title = "offset from the aerial image along the chief ray (mm, + towards the observer)";
-    pp.y_title = "energy radius (mm)";
-    pp.y_min = 0.0;
-    an::write_plot_png(o.plot, {r50, r80}, pp);
+    an::write_focus_plot_png(
+        o.plot, tf, "through focus: " + sheet_summary(s) + ", best focus " + fmt("%.3g", tf.best_offset_mm) + " mm");
     std::printf("wrote %s\n", o.plot.c_str());
   }
   if (!o.strip.empty()) {

@@ -212,19 +212,7 @@ bool studio_export_bokeh(studio& st, const std::string& path) {
   try {
     an::write_psf_panels_png(path, {{&b->psf, "aerial-image plane"}},
                              {.title = "model PSF, " + std::string(layout), .panel_width = 640, .panel_height = 560});
-    an::plot_series r50{"r50", {}, {}, {}}, r80{"r80", {}, {}, {}};
-    for (const auto& p : b->focus.planes) {
-      r50.x.push_back(p.offset_mm);
-      r50.y.push_back(p.r50_mm);
-      r80.x.push_back(p.offset_mm);
-      r80.y.push_back(p.r80_mm);
-    }
-    an::plot_params pp;
-    pp.title = "through focus, " + std::string(layout);
-    pp.x_title = "offset along the chief ray (mm, + towards the observer)";
-    pp.y_title = "energy radius (mm)";
-    pp.y_min = 0.0;
-    an::write_plot_png(stem + "_focus.png", {r50, r80}, pp);
+    an::write_focus_plot_png(stem + "_focus.png", b->focus, "through focus, " + std::string(layout));
     std::vector<an::psf_panel> strip, spots;
     for (std::size_t i : b->strip)
       strip.push_back({&b->focus.planes[i].grid, std::to_string(int(b->focus.planes[i].offset_mm)) + " mm"});

@@ -71,4 +71,20 @@ void write_psf_panels_png(const std::filesystem::path& path, const std::vector<p
   write_png(path, render_psf_panels(panels, params));
 }
 
+void write_focus_plot_png(const std::filesystem::path& path, const through_focus& tf, const std::string& title) {
+  plot_series r50{"r50 (50% energy radius)", {}, {}, {}}, r80{"r80 (80% energy radius)", {}, {}, {}};
+  for (const focus_plane& p : tf.planes) {
+    r50.x.push_back(p.offset_mm);
+    r50.y.push_back(p.r50_mm);
+    r80.x.push_back(p.offset_mm);
+    r80.y.push_back(p.r80_mm);
+  }
+  plot_params pp;
+  pp.title = title;
+  pp.x_title = "offset from the aerial image along the chief ray (mm, + towards the observer)";
+  pp.y_title = "energy radius (mm)";
+  pp.y_min = 0.0;
+  write_plot_png(path, {r50, r80}, pp);
+}
+
 }  // namespace airr::analysis

@@ -129,10 +129,7 @@ psf_samples sample_sheet_psf(const scene& s, std::size_t sheet, const retro_mode
 
 psf_samples sample_psf(const scene& s, const retro_model_list& models, const psf_params& p,
                        const glm::dvec3& aerial_point) {
-  if (models.size() != s.retroreflectors.size() || s.retroreflectors.empty()) {
-    throw input_error("psf: " + std::to_string(models.size()) + " models for " +
-                      std::to_string(s.retroreflectors.size()) + " sheets");
-  }
+  check_sheet_models(s, models, "psf");
   psf_samples out;
   out.launched = p.samples;
   std::string first_error;

@@ -106,10 +106,7 @@ std::optional<double> add_sheet_bundle(const scene& s, std::size_t sheet, const 
 
 focus_bundle sample_focus_bundle(const scene& s, const retro_model_list& models, const focus_params& p,
                                  const glm::dvec3& aerial_point) {
-  if (models.size() != s.retroreflectors.size() || s.retroreflectors.empty()) {
-    throw input_error("through focus: " + std::to_string(models.size()) + " models for " +
-                      std::to_string(s.retroreflectors.size()) + " sheets");
-  }
+  check_sheet_models(s, models, "through focus");
   focus_bundle b;
   b.aerial_point = aerial_point;
   b.launched = p.samples;

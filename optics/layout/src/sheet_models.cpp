@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "airr/core/error.hpp"
 #include "airr/layout/layout.hpp"
 
 namespace airr {
@@ -16,6 +17,13 @@ retro_model_list make_sheet_models(const scene& s) {
   retro_model_list models;
   for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) models.push_back(make_sheet_model(s, i));
   return models;
+}
+
+void check_sheet_models(const scene& s, const retro_model_list& models, const std::string& what) {
+  if (models.size() != s.retroreflectors.size() || s.retroreflectors.empty()) {
+    throw input_error(what + ": " + std::to_string(models.size()) + " models for " +
+                      std::to_string(s.retroreflectors.size()) + " sheets");
+  }
 }
 
 }  // namespace airr

@@ -7,6 +7,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "airr/analysis/bokeh.hpp"
 #include "airr/analysis/psf_grid.hpp"
 
 namespace airr::analysis {
@@ -28,5 +29,8 @@ struct psf_picture_params {
 cv::Mat render_psf_panels(const std::vector<psf_panel>& panels, const psf_picture_params& params);
 void write_psf_panels_png(const std::filesystem::path& path, const std::vector<psf_panel>& panels,
                           const psf_picture_params& params);
+
+// r50 and r80 against the offset through focus, as a PNG plot.
+void write_focus_plot_png(const std::filesystem::path& path, const through_focus& tf, const std::string& title);
 
 }  // namespace airr::analysis
