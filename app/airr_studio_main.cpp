@@ -365,10 +365,8 @@ int main(int argc, char** argv) {
                   "\n");
           const int shown = st.view.uploaded_component;
           std::fprintf(stderr, "wrote %s (%dx%d); the render view shows %s%s%s\n", opt.screenshot.c_str(), fw, fh,
-                       st.view.uploaded_model_image
-                           ? "the model image's first look"
-                           : ("the tracer at " + std::to_string(st.view.uploaded_spp) + " spp").c_str(),
-                       shown >= 0 ? ", component " : "", shown >= 0 ? airr::component_names[shown] : "");
+                       ("the " + st.view.uploaded_estimate).c_str(), shown >= 0 ? ", component " : "",
+                       shown >= 0 ? airr::component_names[shown] : "");
         } catch (const std::exception& e) {
           std::fprintf(stderr, "error: %s\n", e.what());
           exit_code = 1;

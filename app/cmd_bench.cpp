@@ -106,7 +106,8 @@ void add_bench_command(CLI::App& app) {
                   "without it)")
       ->check(CLI::Range(10, 20'000'000));
   cmd->add_option("--compare", opt->noise_options.compare,
-                  "With --noise: also measure another build's airr executable, side by side");
+                  "With --noise, --model-image or --model-error: also measure another build's airr executable, side "
+                  "by side");
   cmd->add_option("--noise-spp", opt->noise_options.spp,
                   "With --noise: samples per pixel of the measured render pairs (two or more)")
       ->check(CLI::Range(1, 1 << 20))
@@ -127,6 +128,7 @@ void add_bench_command(CLI::App& app) {
       if (cmd->count("--presets")) m.presets = opt->noise_options.presets;
       if (cmd->count("--tilts")) m.tilts_deg = opt->model_error_tilts;
       m.threads = opt->noise_options.threads;
+      m.compare = opt->noise_options.compare;
       if (m.spp < 2) throw airr::input_error("--model-error needs --spp 2 or more (the noise comes from two halves)");
       run_model_error_bench(m);
       return;
@@ -138,6 +140,7 @@ void add_bench_command(CLI::App& app) {
       if (cmd->count("--presets")) m.presets = opt->noise_options.presets;
       if (cmd->count("--tilts")) m.tilts_deg = opt->model_error_tilts;
       m.runs = opt->runs;
+      m.compare = opt->noise_options.compare;
       run_model_image_bench(m);
       return;
     }

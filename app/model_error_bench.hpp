@@ -1,6 +1,7 @@
 #pragma once
-// airr bench --model-error: how far the model image (and its first look in the designer) is from
-// the converged tracer, per sheet preset and sheet tilt, on the default scene.
+// airr bench --model-error: how far the model image (the control variate's, the designer's view of
+// it and its first look) is from the converged tracer, per sheet preset and sheet tilt, on the
+// default scene; with --compare, the other build's table beside it.
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@ struct model_error_options {
   std::vector<std::string> presets{"rf-ay", "rf-an"};
   std::vector<double> tilts_deg{0, 5, 10, 15, 20, 25, 30, 35, 40, 45};
   int threads = 0;
+  std::string compare;  // another build's airr; empty: this build only
 };
 
 // Prints one line per preset and tilt; throws input_error naming what failed.

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <sstream>
 
 #include "airr/core/error.hpp"
 #include "airr/formats/image.hpp"
@@ -10,32 +11,72 @@
 #include "airr/layout/sheet_models.hpp"
 #include "airr/render/model_image.hpp"
 #include "bench_case.hpp"
+#include "other_build.hpp"
 
 namespace {
+
+enum { view, quick, full };
+const char* const quality_names[] = {"view", "quick", "full"};
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
+// The other build's full-quality model image of each case, in seconds: the "model s" column of
+// its `airr bench --model-error` (which times compute_layout_model_image at for_image's full
+// quality), at two samples per pixel so that its tracer's part is short.
+std::vector<double> other_build_seconds(const build_under_test& b, const model_image_bench_options& o) {
+  std::string args =
+      "bench --model-error " + shell_quoted(o.scene_path) + " --size " + std::to_string(o.size) + " --spp 2 --presets";
+  for (const std::string& p : o.presets) args += " " + shell_quoted(p);
+  args += " --tilts";
+  for (double t : o.tilts_deg) args += " " + std::to_string(t);
+  const std::string out = run_build(b, args, "model image bench");
+  std::vector<double> seconds;
+  std::istringstream lines(out);
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::istringstream words(line);
+    std::string preset;
+    double tilt = 0;
+    if (!(words >> preset >> tilt) || std::find(o.presets.begin(), o.presets.end(), preset) == o.presets.end()) {
+      continue;
+    }
+    std::string word, last;
+    while (words >> word) last = word;
+    seconds.push_back(std::stod(last));
+  }
+  if (seconds.size() != o.presets.size() * o.tilts_deg.size()) {
+    throw airr::input_error("model image bench: " + b.airr + " --model-error printed " +
+                            std::to_string(seconds.size()) + " cases, not " +
+                            std::to_string(o.presets.size() * o.tilts_deg.size()));
+  }
+  return seconds;
+}
+
 }  // namespace
 
 void run_model_image_bench(const model_image_bench_options& o) {
+  const std::vector<build_under_test> builds = builds_under_test(o.compare);
   std::printf(
       "model image of sheet 0 at %dx%d, median of %d runs (ms); the loop's parts are summed over the bins that run "
       "side by side\n",
       o.size, o.size, o.runs);
   std::printf("%-6s %5s %-7s %8s %8s %8s %8s %8s %9s %9s %8s\n", "preset", "tilt", "quality", "total", "paths", "bins",
               "spectra", "loop", "(kernels", "correlate", "gather)");
+  std::vector<double> medians[3];
   for (const std::string& preset : o.presets) {
     for (double tilt : o.tilts_deg) {
       const bench_case c = load_bench_case(o.scene_path, o.size, preset, tilt);
-      for (const bool quick : {true, false}) {
+      for (const int quality : {view, quick, full}) {
+        const airr::model_image_params params =
+            quality == view ? airr::model_image_params::for_view()
+                            : airr::model_image_params::for_image(o.size, o.size, quality == quick);
         std::vector<double> total, paths, bins, spectra, loop, kernels, correlate, gather;
         for (int r = 0; r < o.runs; ++r) {
           const auto t0 = std::chrono::steady_clock::now();
-          const auto m = airr::compute_model_image(c.s, c.models.front(), c.display(),
-                                                   airr::model_image_params::for_image(o.size, o.size, quick));
+          const auto m = airr::compute_model_image(c.s, c.models.front(), c.display(), params);
           total.push_back(1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
           if (!m) throw airr::input_error("model image bench: no pixel sees the sheet");
           paths.push_back(1e3 * m->paths_seconds);
@@ -47,9 +88,23 @@ void run_model_image_bench(const model_image_bench_options& o) {
           gather.push_back(1e3 * m->gather_seconds);
         }
         std::printf("%-6s %5g %-7s %8.0f %8.0f %8.0f %8.0f %8.0f %9.0f %9.0f %8.0f\n", preset.c_str(), tilt,
-                    quick ? "quick" : "full", median(total), median(paths), median(bins), median(spectra), median(loop),
+                    quality_names[quality], median(total), median(paths), median(bins), median(spectra), median(loop),
                     median(kernels), median(correlate), median(gather));
+        medians[quality].push_back(median(total));
       }
     }
+  }
+  std::printf("median over the cases: view %.0f ms, quick %.0f ms, full %.0f ms\n", median(medians[view]),
+              median(medians[quick]), median(medians[full]));
+  if (builds.size() == 2) {
+    std::fflush(stdout);
+    const std::vector<double> other = other_build_seconds(builds[1], o);
+    std::vector<double> other_ms;
+    for (double s : other) other_ms.push_back(1e3 * s);
+    std::printf("other build (%s), full quality, one run per case:", builds[1].airr.c_str());
+    for (double ms : other_ms) std::printf(" %.0f", ms);
+    std::printf(" ms; median %.0f ms\n", median(other_ms));
+    std::printf("the other build's full-quality model image / this build's view-quality one: %.1fx (medians)\n",
+                median(other_ms) / median(medians[view]));
   }
 }

@@ -1,6 +1,7 @@
 #pragma once
-// airr bench --model-image: where an edit's model image spends its time, at the designer's quick
-// quality and at full quality, per sheet preset and tilt.
+// airr bench --model-image: where an edit's model image spends its time, at view quality (what the
+// designer is shown after the first look), at the control variate's quick and full qualities, per
+// sheet preset and tilt; with --compare, the other build's full-quality model image beside it.
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@ struct model_image_bench_options {
   int runs = 3;  // per case; the median is reported
   std::vector<std::string> presets{"rf-ay", "rf-an"};
   std::vector<double> tilts_deg{0, 20, 45};
+  std::string compare;  // another build's airr; empty: this build only
 };
 
 // Prints one line per preset, tilt and quality; throws input_error naming what failed.

@@ -11,16 +11,11 @@
 #include "airr/core/error.hpp"
 #include "airr/formats/image.hpp"
 #include "airr/measure/noise_level.hpp"
+#include "other_build.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string quoted(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-  return out + "'";
-}
 
 // A fresh directory for the renders, removed when done.
 struct scratch {
@@ -36,22 +31,17 @@ struct scratch {
   }
 };
 
-struct build_under_test {
-  std::string label;
-  std::string airr;  // the executable
-};
-
 // One `airr render` of the preset's scene; returns the image and the wall time.
 airr::image_rgb render_once(const build_under_test& b, const noise_bench_options& o, const std::string& preset,
                             std::uint64_t spp, int seed, const fs::path& dir, double& seconds) {
   const fs::path out = dir / "render.exr", log = dir / "render.log";
   const std::string size = std::to_string(o.size);
   const std::string cmd =
-      quoted(b.airr) + " render " + quoted(o.scene_path) + " --spp " + std::to_string(spp) + " --seed " +
+      shell_quoted(b.airr) + " render " + shell_quoted(o.scene_path) + " --spp " + std::to_string(spp) + " --seed " +
       std::to_string(seed) + " --threads " + std::to_string(o.threads) + " --set observer.width=" + size +
       " --set observer.height=" + size +
       " --set retroreflectors.0.model.type=sinc_shift --set retroreflectors.0.model.preset=" + preset + " -o " +
-      quoted(out.string()) + " > " + quoted(log.string()) + " 2>&1";
+      shell_quoted(out.string()) + " > " + shell_quoted(log.string()) + " 2>&1";
   const auto t0 = std::chrono::steady_clock::now();
   const int status = std::system(cmd.c_str());
   seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -105,11 +95,7 @@ void print_result(const build_under_test& b, const build_result& r) {
 }  // namespace
 
 void run_noise_bench(const noise_bench_options& o) {
-  std::vector<build_under_test> builds{{"this build", fs::read_symlink("/proc/self/exe").string()}};
-  if (!o.compare.empty()) {
-    if (::access(o.compare.c_str(), X_OK) != 0) throw airr::input_error(o.compare + ": not an executable airr");
-    builds.push_back({"other build", fs::absolute(o.compare).string()});
-  }
+  const std::vector<build_under_test> builds = builds_under_test(o.compare);
   std::printf(
       "noise benchmark: %s at %dx%d. Noise of one render = RMS difference of two renders with seeds 1 and 2, "
       "divided by sqrt 2 and by the mean; times are wall times of each build's `airr render` (startup included)\n",

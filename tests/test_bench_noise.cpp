@@ -42,8 +42,30 @@ TEST(BenchModelImage, ReportsWhereTheTimeGoes) {
     double tilt = 0, total = 0, paths = 0, bins = 0, spectra = 0, loop = 0;
     if (!(row >> preset >> tilt >> quality >> total >> paths >> bins >> spectra >> loop) || preset != "rf-an") continue;
     ++lines;
-    EXPECT_TRUE(quality == "quick" || quality == "full") << line;
+    EXPECT_TRUE(quality == "view" || quality == "quick" || quality == "full") << line;
     EXPECT_LE(paths + bins + spectra + loop, total + 1.5) << line;  // rounded to whole ms each
   }
-  EXPECT_EQ(lines, 4) << r.out;
+  EXPECT_EQ(lines, 6) << r.out;
+}
+
+// --compare runs the other build's --model-error and reads its model image's time per case (here
+// the other build is this one).
+TEST(BenchModelImage, ComparesWithAnotherBuild) {
+  const test::command_result r = test::run_cli(
+      "bench --model-image --size 48 --runs 1 --presets rf-an --tilts 0 30 "
+      "--compare " AIRR_CLI);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const std::size_t at = r.out.find("full quality, one run per case: ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  std::istringstream row(r.out.substr(at + 32));
+  double a = 0, b = 0;
+  ASSERT_TRUE(row >> a >> b) << r.out;
+  EXPECT_GT(a, 0);
+  EXPECT_GT(b, 0);
+  EXPECT_NE(r.out.find("this build's view-quality one: "), std::string::npos) << r.out;
+
+  const test::command_result bad =
+      test::run_cli("bench --model-image --size 48 --runs 1 --presets rf-an --tilts 0 --compare /nonexistent/airr");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.out.find("/nonexistent/airr: not an executable airr"), std::string::npos) << bad.out;
 }

@@ -115,11 +115,39 @@ render_snapshot poll_until(const render_session& session, Ready ready) {
 }
 }  // namespace
 
-TEST(Session, ModelImageFirstLookComesFirstThenTheTracer) {
+TEST(Session, TheModelImageAtViewQualityFollowsTheFirstLook) {
   scene a = test::uniform_source_scene(20.0, 64);
   scene b = a;
   b.sheet().pose.pitch_deg = 12;
   render_session session(a, {.threads = 2, .preview_stride = 1, .first_look = true});
+  session.wait_for(0, 1);
+  session.set_paused(true);
+  const std::uint64_t gen = session.edit(b);
+  const render_snapshot view = poll_until(
+      session, [&](const render_snapshot& s) { return s.generation == gen && s.model_image && !s.first_look; });
+  ASSERT_TRUE(view.model_image);
+  EXPECT_FALSE(view.first_look);
+  EXPECT_EQ(estimate_name(view), "model image");
+  EXPECT_EQ(view.spp, 0u);
+  const auto expected = compute_layout_model_image(b, make_sheet_models(b), nullptr, model_image_params::for_view());
+  ASSERT_TRUE(expected);
+  EXPECT_TRUE(*view.rgb == expected->image.rgb);
+  // It is no first look: the first look differs from it.
+  EXPECT_FALSE(*view.rgb == model_image_first_look(b, make_sheet_models(b), nullptr).rgb);
+  // The first look never comes back over it; traced samples replace it.
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  EXPECT_FALSE(session.snapshot().first_look);
+  session.set_paused(false);
+  const render_snapshot traced = session.wait_for(gen, 1);
+  EXPECT_FALSE(traced.model_image);
+  EXPECT_FALSE(traced.first_look);
+}
+
+TEST(Session, ModelImageFirstLookComesFirstThenTheTracer) {
+  scene a = test::uniform_source_scene(20.0, 64);
+  scene b = a;
+  b.sheet().pose.pitch_deg = 12;
+  render_session session(a, {.threads = 2, .preview_stride = 1, .first_look = true, .view_model_image = false});
   session.wait_for(0, 1);
   // Paused, the tracer takes the edit but traces nothing: what appears is the first look alone.
   session.set_paused(true);
@@ -127,6 +155,8 @@ TEST(Session, ModelImageFirstLookComesFirstThenTheTracer) {
   const render_snapshot first =
       poll_until(session, [&](const render_snapshot& s) { return s.generation == gen && s.model_image; });
   ASSERT_TRUE(first.model_image);
+  EXPECT_TRUE(first.first_look);
+  EXPECT_EQ(estimate_name(first), "model image (first look)");
   EXPECT_TRUE(first.preview);
   EXPECT_EQ(first.spp, 0u);
   EXPECT_GT(first.edit_seconds, 0.0);
@@ -137,6 +167,7 @@ TEST(Session, ModelImageFirstLookComesFirstThenTheTracer) {
   const render_snapshot traced = session.wait_for(gen, 1);
   EXPECT_FALSE(traced.model_image);
   EXPECT_GE(traced.spp, 1u);
+  EXPECT_EQ(estimate_name(traced), "tracer at " + std::to_string(traced.spp) + " spp");
 
   // A refused edit shows no first look of the refused layout: the last traced image stays.
   session.set_paused(true);

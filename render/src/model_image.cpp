@@ -52,6 +52,15 @@ model_image_params model_image_params::first_look() {
   return p;
 }
 
+model_image_params model_image_params::for_view() {
+  model_image_params p;
+  p.texel_refine = 1;
+  p.psf_samples = 50000;
+  p.tail_texels = 64;
+  p.path_stride = 4;
+  return p;
+}
+
 void check_model_image_params(const model_image_params& p) {
   if (p.angle_bins < 1 || p.angle_bins > 64 || p.psf_samples < 1000 || p.max_texels < 16 || p.max_texels > 4096 ||
       p.texel_refine < 1 || p.texel_refine > 4 || !(p.core_radius_mm > 0) || p.tail_texels < 4 ||

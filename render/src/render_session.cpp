@@ -107,19 +107,23 @@ void render_session::run_first_look() {
     first_look_.reset();
     first_look_cancel_ = false;
     lock.unlock();
-    image_rgb image;
     try {
       const scene& s = request.layout;
       const std::string path = resolve_scene_path(s, s.source.image);
       const std::shared_ptr<const image_rgb> texture = path.empty() ? nullptr : cached_image_pixels(path);
       const retro_model_list models = request.models.empty() ? make_sheet_models(s) : request.models;
-      image = model_image_first_look(s, models, texture.get(), &first_look_cancel_);
+      const preview_size size{s.observer.width, s.observer.height, make_camera(s).mm_per_pixel};
+      image_rgb first = model_image_first_look(s, models, texture.get(), &first_look_cancel_);
+      if (!first.rgb.empty()) {
+        publish_preview(request.generation, std::move(first.rgb), size, preview_kind::first_look);
+        if (params_.view_model_image && !view_taken_over(request.generation)) {
+          const auto view =
+              compute_layout_model_image(s, models, texture.get(), model_image_params::for_view(), &first_look_cancel_);
+          if (view) publish_preview(request.generation, view->image.rgb, size, preview_kind::model_image);
+        }
+      }
     } catch (const std::exception&) {
       // The tracer's worker reports what is wrong with the edit; its coarse preview serves.
-    }
-    if (!image.rgb.empty()) {
-      const preview_size size{image.width, image.height, make_camera(request.layout).mm_per_pixel};
-      publish_preview(request.generation, std::move(image.rgb), size, true);
     }
     lock.lock();
   }
@@ -150,6 +154,12 @@ render_snapshot render_session::wait_for(std::uint64_t gen, std::uint64_t spp) c
                          (snapshot_.spp >= spp || snapshot_.spp >= target_spp_ || !snapshot_.error.empty()));
   });
   return snapshot_;
+}
+
+std::string estimate_name(const render_snapshot& snap) {
+  if (snap.model_image) return snap.first_look ? "model image (first look)" : "model image";
+  if (snap.preview) return "tracer (preview)";
+  return "tracer at " + std::to_string(snap.spp) + " spp";
 }
 
 void lower_thread_priority(int nice) {
@@ -202,21 +212,31 @@ bool render_session::render_preview(std::vector<float>& rgb, std::uint64_t& rays
   return !cancel_;
 }
 
+bool render_session::view_taken_over(std::uint64_t gen) const {
+  std::lock_guard lock(mutex_);
+  return gen != generation_ || (snapshot_.generation == gen && (!snapshot_.preview || !snapshot_.error.empty()));
+}
+
 void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb, const preview_size& size,
-                                     bool model_image) {
+                                     preview_kind kind) {
   auto shared = std::make_shared<const std::vector<float>>(std::move(rgb));
+  const bool model_image = kind != preview_kind::traced;
   std::lock_guard lock(mutex_);
   if (gen != generation_) return;
   if (snapshot_.generation == gen) {
-    // Traced samples replace previews and are never replaced by one; the model image's first look
-    // replaces the coarse traced preview, not the other way round; a refused edit shows neither.
-    if (!snapshot_.preview || !snapshot_.error.empty() || (snapshot_.model_image && !model_image)) return;
+    // Traced samples replace previews and are never replaced by one; a model image replaces the
+    // coarse traced preview and the first look, not the other way round; a refused edit shows none.
+    if (!snapshot_.preview || !snapshot_.error.empty() || (snapshot_.model_image && !model_image) ||
+        (snapshot_.model_image && !snapshot_.first_look && kind == preview_kind::first_look)) {
+      return;
+    }
   } else {
     if (model_image) before_first_look_ = snapshot_;  // shown again if the tracer refuses this edit
     snapshot_.error.clear();                          // an earlier edit's refusal
   }
   snapshot_.generation = gen;
   snapshot_.model_image = model_image;
+  snapshot_.first_look = kind == preview_kind::first_look;
   snapshot_.edit_seconds = seconds_since_edit();
   snapshot_.spp = 0;
   snapshot_.preview = true;
@@ -273,6 +293,7 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::ve
   snapshot_.components = std::move(components);
   snapshot_.preview = false;
   snapshot_.model_image = false;
+  snapshot_.first_look = false;
   snapshot_.edit_seconds = seconds_since_edit();
   snapshot_.rays = rays;
   snapshot_.seconds = seconds;
@@ -329,7 +350,8 @@ void render_session::run() {
           std::vector<float> preview;
           std::uint64_t preview_rays = 0;
           const preview_size size{scene_.camera.width, scene_.camera.height, scene_.camera.mm_per_pixel};
-          if (render_preview(preview, preview_rays)) publish_preview(gen, std::move(preview), size, false);
+          if (render_preview(preview, preview_rays))
+            publish_preview(gen, std::move(preview), size, preview_kind::traced);
           lock.lock();
         }
         model_pending = error.empty();

@@ -33,15 +33,8 @@ static void upload_snapshot(studio& st, const render_snapshot& snap, float expos
   st.view.uploaded_generation = snap.generation;
   st.view.uploaded_spp = snap.spp;
   st.view.uploaded_model_image = snap.model_image;
+  st.view.uploaded_estimate = estimate_name(snap);
   st.view.uploaded_exposure = exposure;
-}
-
-// Which image the view shows: the model image's first look, the tracer's coarse preview, or the
-// tracer's estimate (which, where the model holds, is the model image corrected by the samples).
-static const char* shown_label(const render_snapshot& snap) {
-  if (snap.model_image) return "  model image (first look)";
-  if (snap.preview) return "  tracer (preview)";
-  return "  tracer";
 }
 
 void draw_render_view(studio& st, double now) {
@@ -51,7 +44,8 @@ void draw_render_view(studio& st, double now) {
 
   if (snap.rgb && (snap.spp > 0 || snap.preview) &&
       (snap.generation != st.view.uploaded_generation || snap.spp != st.view.uploaded_spp ||
-       exposure != st.view.uploaded_exposure || shown_component(st, snap) != st.view.uploaded_component)) {
+       estimate_name(snap) != st.view.uploaded_estimate || exposure != st.view.uploaded_exposure ||
+       shown_component(st, snap) != st.view.uploaded_component)) {
     const bool first_of_edit = snap.generation != st.view.uploaded_generation;
     upload_snapshot(st, snap, exposure);
     if (first_of_edit && st.edit_time >= 0 && snap.generation == st.generation) {
@@ -108,8 +102,8 @@ void draw_render_view(studio& st, double now) {
   const double rays_per_s = snap.seconds > 0 ? double(snap.rays) / snap.seconds : 0.0;
   const int shown = shown_component(st, snap);
   ImGui::Text("%llu spp  %.1f Mrays/s  %.1f s%s%s%s%s", static_cast<unsigned long long>(snap.spp), rays_per_s * 1e-6,
-              snap.seconds, shown_label(snap), shown >= 0 ? ": " : "", shown >= 0 ? component_names[shown] : "",
-              st.view.paused ? "  (paused)" : "");
+              snap.seconds, ("  " + st.view.uploaded_estimate).c_str(), shown >= 0 ? ": " : "",
+              shown >= 0 ? component_names[shown] : "", st.view.paused ? "  (paused)" : "");
   if (!snap.error.empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", snap.error.c_str());
 
   // Image area: fit the image, then zoom about the cursor and pan by dragging.

@@ -51,6 +51,13 @@ struct model_image_params {
   // The designer's first look after an edit: a few milliseconds on one thread, coarser (texels of
   // the display at most 128 on its longer side, two bins, fewer PSF samples).
   static model_image_params first_look();
+
+  // The model image the designer is shown after the first look, until traced samples replace it:
+  // as close to the tracer's converged image as the control variate's (airr bench --model-error),
+  // in about a tenth of its time. Its fine grid is the display's own texels and each bin has 50000
+  // samples; a control variate needs finer nodes (the predictions' texel-sized blur would double
+  // the tracer's noise), so this one is shown, never subtracted.
+  static model_image_params for_view();
 };
 
 // The display's radiance on one grid, with a black margin as wide as the grid's kernel reaches.

@@ -8,6 +8,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -27,8 +28,11 @@ struct session_params {
   // Render threads yield to the rest of the process (the designer's UI): a lower priority.
   bool background_priority = false;
   // After an edit, the model image's first look (model_image_first_look) is shown before any
-  // traced sample, from a thread of its own at normal priority, where the layout has one.
+  // traced sample, from a thread of its own at normal priority, where the layout has one ...
   bool first_look = false;
+  // ... and then, unless traced samples came first, the model image at view quality
+  // (model_image_params::for_view).
+  bool view_model_image = true;
   // The tracer's control variate is the quick model image (model_image_params::for_image), so
   // that tracing starts sooner after an edit.
   bool quick_model_image = false;
@@ -52,7 +56,8 @@ struct render_snapshot {
   double seconds = 0;        // time spent so far in this generation
   std::string error;         // set when the last edit could not be applied
   bool preview = false;      // a coarse first look at this generation (spp is 0)
-  bool model_image = false;  // the preview is the model image's first look, not traced samples
+  bool model_image = false;  // the preview is a model image, not traced samples ...
+  bool first_look = false;   // ... its coarse first look (false: at view quality)
   double edit_seconds = 0;   // from the edit to this snapshot's publication
   // With session_params::components, component_count RGB triples per pixel adding up to rgb
   // (null otherwise, and in previews).
@@ -66,6 +71,10 @@ struct render_snapshot {
   // The mean of the even-numbered samples, derived from rgb and odd_rgb (empty without odd_rgb).
   std::vector<float> even_rgb() const;
 };
+
+// Which estimate a snapshot holds, for people: "model image (first look)", "model image",
+// "tracer (preview)" or "tracer at N spp".
+std::string estimate_name(const render_snapshot& snap);
 
 // Lowers the calling thread's scheduling priority, once per thread (Linux: per-thread nice), for
 // background work that should yield to the designer's window.
@@ -104,9 +113,13 @@ class render_session {
     int width, height;
     double mm_per_pixel;
   };
+  enum class preview_kind { traced, first_look, model_image };
   // From the worker or the first-look thread; neither reads the other's scene.
-  void publish_preview(std::uint64_t gen, std::vector<float> rgb, const preview_size& size, bool model_image);
+  void publish_preview(std::uint64_t gen, std::vector<float> rgb, const preview_size& size, preview_kind kind);
   void run_first_look();
+  // Whether generation `gen` is stale or its traced samples (or a refusal) are out: no model image
+  // of it is worth computing any more.
+  bool view_taken_over(std::uint64_t gen) const;
   double seconds_since_edit() const;  // with mutex_ held
 
   session_params params_;

@@ -37,7 +37,8 @@ struct render_view_state {
   float pan_x = 0, pan_y = 0;
   bool paused = false;
   std::uint64_t uploaded_generation = ~0ull, uploaded_spp = 0;
-  bool uploaded_model_image = false;  // the shown image is the model image's first look
+  bool uploaded_model_image = false;  // the shown image is a model image (render_snapshot::model_image)
+  std::string uploaded_estimate;      // which (estimate_name)
   int component = -1;                 // the image component shown (tracer.hpp); -1: the whole image
   int uploaded_component = -1;
   float uploaded_exposure = -1;
