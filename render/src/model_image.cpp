@@ -55,7 +55,7 @@ model_image_params model_image_params::first_look() {
 model_image_params model_image_params::for_view() {
   model_image_params p;
   p.texel_refine = 1;
-  p.psf_samples = 50000;
+  p.psf_samples = 32768;
   p.tail_texels = 64;
   p.path_stride = 4;
   return p;
@@ -105,18 +105,20 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
   const std::vector<pixel_path> paths = pixel_paths(parts, emission.get(), p, cancel);
   if (paths.empty()) return nullptr;
   m->pixels.resize(paths.size());
-  for (std::size_t i = 0; i < paths.size(); ++i) {
-    if (!paths[i].ok) continue;
-    model_pixel& px = m->pixels[i];
-    for (int g : {model_fine, model_tail}) px.node[g] = maps[g].node(paths[i].display);
-    // Landing outside the tail's padded grid, it is farther from the display than any kernel
-    // offset. (Outside the fine grid, only the fine part sees nothing, in both uses alike.)
-    const glm::dvec2 t = px.node[model_tail];
-    const image_rgb& padded = m->grids[model_tail].padded;
-    px.ok = t.x >= 0 && t.y >= 0 && t.x < padded.width - 1 && t.y < padded.height - 1;
-    px.theta_deg = polar_angle_deg(glm::normalize(paths[i].wi));
-    px.profile = paths[i].profile;
-  }
+  detail::parallel_rows(h, p.threads, [&](int y0, int y1) {
+    for (std::size_t i = std::size_t(y0) * w; i < std::size_t(y1) * w; ++i) {
+      if (!paths[i].ok) continue;
+      model_pixel& px = m->pixels[i];
+      for (int g : {model_fine, model_tail}) px.node[g] = maps[g].node(paths[i].display);
+      // Landing outside the tail's padded grid, it is farther from the display than any kernel
+      // offset. (Outside the fine grid, only the fine part sees nothing, in both uses alike.)
+      const glm::dvec2 t = px.node[model_tail];
+      const image_rgb& padded = m->grids[model_tail].padded;
+      px.ok = t.x >= 0 && t.y >= 0 && t.x < padded.width - 1 && t.y < padded.height - 1;
+      px.theta_deg = polar_angle_deg(glm::normalize(paths[i].wi));
+      px.profile = paths[i].profile;
+    }
+  });
   m->paths_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   double lo = INFINITY, hi = -INFINITY;
   for (const model_pixel& px : m->pixels) {
@@ -124,17 +126,31 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
   }
   if (!(lo <= hi)) return nullptr;
 
-  // One PSF per bin, at the pixel whose angle is nearest the bin's.
+  // One PSF per bin, at the pixel whose angle is nearest the bin's (bin angles are evenly spaced:
+  // each pixel is a candidate for the bin nearest it alone, and the first of equals wins).
   const int bins = hi - lo < 0.1 ? 1 : p.angle_bins;
+  auto want = [&](int k) { return bins == 1 ? 0.5 * (lo + hi) : lo + (hi - lo) * k / (bins - 1); };
+  std::vector<std::size_t> nearest(std::size_t(bins), m->pixels.size());
+  for (std::size_t i = 0; i < m->pixels.size(); ++i) {
+    const model_pixel& px = m->pixels[i];
+    if (!px.ok) continue;
+    const int k =
+        bins == 1 ? 0 : std::clamp(int(std::lround((px.theta_deg - lo) / (hi - lo) * (bins - 1))), 0, bins - 1);
+    std::size_t& best = nearest[std::size_t(k)];
+    if (best == m->pixels.size() || std::abs(px.theta_deg - want(k)) < std::abs(m->pixels[best].theta_deg - want(k))) {
+      best = i;
+    }
+  }
   for (int k = 0; k < bins; ++k) {
-    const double want = bins == 1 ? 0.5 * (lo + hi) : lo + (hi - lo) * k / (bins - 1);
-    std::size_t best = 0;
-    bool found = false;
-    for (std::size_t i = 0; i < m->pixels.size(); ++i) {
-      const model_pixel& px = m->pixels[i];
-      if (px.ok && (!found || std::abs(px.theta_deg - want) < std::abs(m->pixels[best].theta_deg - want))) {
-        best = i;
-        found = true;
+    // A bin no pixel is nearest to (none within half a spacing of it): the nearest pixel overall.
+    std::size_t best = nearest[std::size_t(k)];
+    if (best == m->pixels.size()) {
+      for (std::size_t i = 0; i < m->pixels.size(); ++i) {
+        const model_pixel& px = m->pixels[i];
+        if (px.ok && (best == m->pixels.size() ||
+                      std::abs(px.theta_deg - want(k)) < std::abs(m->pixels[best].theta_deg - want(k)))) {
+          best = i;
+        }
       }
     }
     const double bx = double(best % std::size_t(w)) + 0.5, by = double(best / std::size_t(w)) + 0.5;

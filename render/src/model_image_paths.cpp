@@ -54,6 +54,19 @@ std::vector<pixel_path> pixel_paths(const ideal_parts& parts, const emission_pro
       }
     }
   });
+  // A cell whose corners and their neighbours all miss lies outside the region of paths: paths are
+  // projective, and a region reaching into such a cell would reach past a neighbour too.
+  auto node_ok = [&](int i, int j) {
+    return lattice[std::size_t(std::clamp(j, 0, lh - 1)) * lw + std::clamp(i, 0, lw - 1)].ok;
+  };
+  std::vector<char> near_paths(std::size_t(lw) * lh, 0);
+  for (int j = 0; j < lh; ++j) {
+    for (int i = 0; i < lw; ++i) {
+      for (int dj = -1; dj <= 2 && !near_paths[std::size_t(j) * lw + i]; ++dj) {
+        for (int di = -1; di <= 2; ++di) near_paths[std::size_t(j) * lw + i] |= node_ok(i + di, j + dj);
+      }
+    }
+  }
   detail::parallel_rows(h, p.threads, [&](int y0, int y1) {
     for (int y = y0; y < y1 && !cancelled(); ++y) {
       const int j = std::min(y / n, std::max(0, lh - 2)), ya = at(j, h), yb = at(j + 1, h);
@@ -66,7 +79,7 @@ std::vector<pixel_path> pixel_paths(const ideal_parts& parts, const emission_pro
                                   &lattice[std::size_t(j1) * lw + i], &lattice[std::size_t(j1) * lw + i1]};
         pixel_path& px = out[std::size_t(y) * w + x];
         if (!(c[0]->ok && c[1]->ok && c[2]->ok && c[3]->ok)) {
-          px = pixel_ideal(parts, emission, x + 0.5, y + 0.5);
+          if (near_paths[std::size_t(j) * lw + i]) px = pixel_ideal(parts, emission, x + 0.5, y + 0.5);
           continue;
         }
         const double cw[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};

@@ -54,7 +54,7 @@ struct model_image_params {
 
   // The model image the designer is shown after the first look, until traced samples replace it:
   // as close to the tracer's converged image as the control variate's (airr bench --model-error),
-  // in about a tenth of its time. Its fine grid is the display's own texels and each bin has 50000
+  // in about a tenth of its time. Its fine grid is the display's own texels and each bin has 32768
   // samples; a control variate needs finer nodes (the predictions' texel-sized blur would double
   // the tracer's noise), so this one is shown, never subtracted.
   static model_image_params for_view();
