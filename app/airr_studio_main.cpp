@@ -306,7 +306,13 @@ int main(int argc, char** argv) {
       } else if (screenshot_pending) {
         // A few frames after the last edit was applied, showing the finished plots and at least
         // a few samples of the final layout.
-        st.session->wait_for(st.generation, 4);
+        const airr::render_snapshot settled = st.session->wait_for(st.generation, 4);
+        if (settle_frames == 0 && settled.spp > 0) {
+          // Measured on these samples, not on the first wave's (traced before the control variate
+          // came, and noisier).
+          st.analysis.submit_render(settled, st.doc);
+          st.last_measured_spp = settled.spp;
+        }
         st.analysis.wait_idle();
         if (++settle_frames < 3) {
           glfwSwapBuffers(window);

@@ -20,6 +20,8 @@
 #include "airr/render/render_session.hpp"
 #include "airr/render/tracer.hpp"
 #include "commands.hpp"
+#include "designer_latency_bench.hpp"
+#include "drag_bench.hpp"
 #include "model_error_bench.hpp"
 #include "model_image_bench.hpp"
 #include "noise_bench.hpp"
@@ -78,6 +80,8 @@ void add_bench_command(CLI::App& app) {
     noise_bench_options noise_options;
     bool model_error = false;
     bool model_image = false;
+    bool drag = false;
+    drag_bench_options drag_options;
     int runs = 3;
     std::vector<double> model_error_tilts;
     std::uint64_t prop_triangles = 0;
@@ -98,6 +102,14 @@ void add_bench_command(CLI::App& app) {
   cmd->add_flag("--model-image", opt->model_image,
                 "Instead: where an edit's model image spends its time (paths, bins, spectra, kernels, correlation, "
                 "gathering), quick and full quality, per preset and tilt (default 512 x 512, tilts 0 20 45)");
+  cmd->add_flag("--drag", opt->drag,
+                "Instead: replay a drag of the sheet's tilt (--edits, default 30, at 10 per second, then rest) and "
+                "report each frame's latency and distance from its layout's converged image, and the time to 2% and "
+                "1% after it");
+  cmd->add_option("--rest", opt->drag_options.rest_s, "With --drag: seconds measured after the drag")
+      ->check(CLI::Range(1.0, 600.0))
+      ->capture_default_str();
+  cmd->add_option("--drag-csv", opt->drag_options.csv, "With --drag: write every frame as a CSV row here");
   cmd->add_option("--runs", opt->runs, "With --model-image: runs per case (the median is reported)")
       ->check(CLI::Range(1, 100));
   cmd->add_option("--tilts", opt->model_error_tilts, "With --model-error or --model-image: sheet tilts (deg)");
@@ -112,7 +124,9 @@ void add_bench_command(CLI::App& app) {
                   "With --noise: samples per pixel of the measured render pairs (two or more)")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
-  cmd->add_option("--size", opt->noise_options.size, "With --noise: image width and height")
+  cmd->add_option(
+         "--size", opt->noise_options.size,
+         "Image width and height (default: the scene's; with --noise 512, --model-image 512, --model-error 256)")
       ->check(CLI::Range(8, 4096))
       ->capture_default_str();
   cmd->add_option("--presets", opt->noise_options.presets, "With --noise: sheet presets")->capture_default_str();
@@ -144,6 +158,14 @@ void add_bench_command(CLI::App& app) {
       run_model_image_bench(m);
       return;
     }
+    if (opt->drag) {
+      drag_bench_options d = opt->drag_options;
+      d.scene_path = opt->scene_path;
+      if (cmd->count("--size")) d.size = opt->noise_options.size;
+      if (cmd->count("--edits")) d.edits = opt->edits;
+      run_drag_bench(d);
+      return;
+    }
     if (opt->prop_triangles > 0) {
       run_prop_bench(opt->scene_path, opt->prop_triangles, opt->spp);
       return;
@@ -153,7 +175,8 @@ void add_bench_command(CLI::App& app) {
       run_noise_bench(opt->noise_options);
       return;
     }
-    const airr::scene s = load_scene_noting(opt->scene_path);
+    airr::scene s = load_scene_noting(opt->scene_path);
+    if (cmd->count("--size")) s.observer.width = s.observer.height = opt->noise_options.size;
     airr::embree_device device;
     airr::tracer_scene ts;
     airr::build_tracer_scene(ts, device, s);
@@ -195,6 +218,7 @@ void add_bench_command(CLI::App& app) {
     session.stop();
     std::sort(latencies.begin(), latencies.end());
     std::sort(first_images.begin(), first_images.end());
+    const designer_latencies designer = measure_designer_latencies(s, opt->edits);
 
     std::printf("scene: %s (%dx%d, %llu spp)\n", opt->scene_path.c_str(), w, h,
                 static_cast<unsigned long long>(opt->spp));
@@ -211,5 +235,6 @@ void add_bench_command(CLI::App& app) {
         first_images[first_images.size() / 2], first_images.front(), first_images.back(), first_images.size());
     std::printf("               median %.1f ms, min %.1f ms, max %.1f ms (to the first full-resolution 1-spp image)\n",
                 latencies[latencies.size() / 2], latencies.front(), latencies.back());
+    print_designer_latencies(designer);
   });
 }

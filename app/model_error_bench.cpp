@@ -19,18 +19,6 @@
 
 namespace {
 
-// RMS of a - b over pixels and channels, relative to the mean of `reference`.
-double relative_rms(const std::vector<float>& a, const std::vector<float>& b, const std::vector<float>& reference) {
-  double squares = 0, sum = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    const double d = double(a[i]) - double(b[i]);
-    squares += d * d;
-    sum += reference[i];
-  }
-  const double n = double(a.size());
-  return sum > 0 ? std::sqrt(squares / n) / (sum / n) : 0.0;
-}
-
 // The other build's `airr bench --model-error` on the same cases, each beside this build's view
 // image: its model image's relative RMS difference from its own tracer, raw and with its tracer's
 // noise taken out.
@@ -111,9 +99,9 @@ void run_model_error_bench(const model_error_options& o) {
         rows.push_back({noise, NAN, NAN, NAN});
         continue;
       }
-      const double e_full = relative_rms(*traced.rgb, full->image.rgb, *traced.rgb);
-      const double e_first = relative_rms(*traced.rgb, first.rgb, *traced.rgb);
-      const double e_view = relative_rms(*traced.rgb, view->image.rgb, *traced.rgb);
+      const double e_full = airr::relative_rms_difference(*traced.rgb, full->image.rgb, *traced.rgb);
+      const double e_first = airr::relative_rms_difference(*traced.rgb, first.rgb, *traced.rgb);
+      const double e_view = airr::relative_rms_difference(*traced.rgb, view->image.rgb, *traced.rgb);
       const double e_clean = std::sqrt(std::max(0.0, e_full * e_full - noise * noise));
       const double e_view_clean = std::sqrt(std::max(0.0, e_view * e_view - noise * noise));
       std::printf("%-8s %6.0f %11.2f%% %11.2f%% %11.2f%% %11.2f%% %13.2f%% %13.2f%% %8.2f %8.3f\n", preset.c_str(),

@@ -1,5 +1,6 @@
 // `airr bench --noise` end to end on a small image: pairs rendered through `airr render`, the law,
 // the forecast, and a side-by-side comparison (here with the same build, so the ratio is near 1).
+#include <fstream>
 #include <sstream>
 #include <string>
 
@@ -68,4 +69,34 @@ TEST(BenchModelImage, ComparesWithAnotherBuild) {
       test::run_cli("bench --model-image --size 48 --runs 1 --presets rf-an --tilts 0 --compare /nonexistent/airr");
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.out.find("/nonexistent/airr: not an executable airr"), std::string::npos) << bad.out;
+}
+
+// `airr bench --drag` on a small image: a line per edit, the worst frame, both after-drag figures,
+// and a CSV row per 60 Hz frame of the drag (3 edits at 10 per second: about 18 frames).
+TEST(BenchDrag, ReportsEveryFrameOfTheDrag) {
+  test::temp_dir dir;
+  const std::string csv = dir.file("frames.csv");
+  const test::command_result r = test::run_cli("bench --drag --size 32 --edits 3 --rest 1 --drag-csv " + csv);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("worst frame during the drag: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("after the drag: within 2%"), std::string::npos) << r.out;
+  std::ifstream in(csv);
+  std::string line;
+  int rows = 0;
+  std::getline(in, line);
+  EXPECT_EQ(line, "time_s,edit,shown_edit,estimate,latency_ms,relative_rms");
+  while (std::getline(in, line)) {
+    ++rows;
+    std::istringstream row(line);
+    double t = 0, rms = -1;
+    int edit = 0;
+    char comma = 0;
+    ASSERT_TRUE(row >> t >> comma >> edit) << line;
+    EXPECT_GE(edit, 1);
+    EXPECT_LE(edit, 3);
+    rms = std::stod(line.substr(line.rfind(',') + 1));
+    EXPECT_GE(rms, 0.0) << line;
+  }
+  EXPECT_GE(rows, 12);
+  EXPECT_LE(rows, 18);
 }

@@ -1,10 +1,12 @@
 // The progressive session: bit-identical results at any thread count, after cancellation, and
 // snapshots that are always whole waves.
 #include <chrono>
+#include <cmath>
 #include <thread>
 
 #include <gtest/gtest.h>
 
+#include "airr/core/random.hpp"
 #include "airr/layout/sheet_models.hpp"
 #include "airr/render/layout_model_image.hpp"
 #include "test_helpers.hpp"
@@ -134,13 +136,64 @@ TEST(Session, TheModelImageAtViewQualityFollowsTheFirstLook) {
   EXPECT_TRUE(*view.rgb == expected->image.rgb);
   // It is no first look: the first look differs from it.
   EXPECT_FALSE(*view.rgb == model_image_first_look(b, make_sheet_models(b), nullptr).rgb);
-  // The first look never comes back over it; traced samples replace it.
+  // The first look never comes back over it.
   std::this_thread::sleep_for(std::chrono::milliseconds(100));
   EXPECT_FALSE(session.snapshot().first_look);
+  // Traced samples come, and it is still shown while it is the better estimate: at one sample
+  // always, later as long as the tracer's noise is above its error.
   session.set_paused(false);
-  const render_snapshot traced = session.wait_for(gen, 1);
-  EXPECT_FALSE(traced.model_image);
-  EXPECT_FALSE(traced.first_look);
+  const render_snapshot one = session.wait_for(gen, 1);
+  EXPECT_GE(one.spp, 1u);
+  ASSERT_TRUE(one.rgb && one.shown);
+  if (one.spp == 1) {
+    EXPECT_TRUE(one.model_image);
+    EXPECT_TRUE(*one.shown == *view.rgb);
+    EXPECT_FALSE(*one.rgb == *view.rgb);  // the traced mean is there beside it
+  }
+  const render_snapshot later = session.wait_for(gen, 64);
+  if (later.model_image) {
+    EXPECT_TRUE(*later.shown == *view.rgb);
+    EXPECT_TRUE(model_image_is_better(*view.rgb, *later.rgb, later.odd_rgb.get(), later.spp));
+  } else {
+    EXPECT_TRUE(*later.shown == *later.rgb);
+    EXPECT_EQ(estimate_name(later), "tracer at " + std::to_string(later.spp) + " spp");
+  }
+}
+
+// The model image stays shown while the tracer's noise (from its halves) is above its error: a
+// model 2% off against a tracer whose mean has 5% noise, then 0.5%.
+TEST(Session, TheBetterEstimateIsShown) {
+  const std::size_t pixels = 3 * 4096;
+  const std::uint64_t spp = 16;
+  std::vector<float> truth(pixels), model(pixels);
+  pcg32 rng = sample_rng(1, 2, 3);
+  for (std::size_t i = 0; i < pixels; ++i) {
+    truth[i] = float(1 + rng.next_double());
+    model[i] = truth[i] * (i % 2 ? 1.02f : 0.98f);
+  }
+  auto traced = [&](double sigma, std::vector<float>& odd) {
+    std::vector<float> mean(pixels);
+    odd.assign(pixels, 0.0f);
+    for (std::size_t i = 0; i < pixels; ++i) {
+      double all = 0, odds = 0;
+      for (std::uint64_t k = 0; k < spp; ++k) {
+        // Uniform noise of standard deviation sigma times the value.
+        const double v = truth[i] * (1 + sigma * std::sqrt(12.0) * (rng.next_double() - 0.5));
+        all += v;
+        if (k & 1) odds += v;
+      }
+      mean[i] = float(all / spp);
+      odd[i] = float(odds / (spp / 2));
+    }
+    return mean;
+  };
+  std::vector<float> odd;
+  const std::vector<float> noisy = traced(0.05 * 4, odd);  // 5% noise in the mean of 16
+  EXPECT_TRUE(model_image_is_better(model, noisy, &odd, spp));
+  const std::vector<float> clean = traced(0.005 * 4, odd);  // 0.5%
+  EXPECT_FALSE(model_image_is_better(model, clean, &odd, spp));
+  EXPECT_TRUE(model_image_is_better(model, clean, &odd, 1));  // one sample says nothing of its noise
+  EXPECT_TRUE(model_image_is_better(model, clean, nullptr, spp));
 }
 
 TEST(Session, ModelImageFirstLookComesFirstThenTheTracer) {
@@ -162,12 +215,17 @@ TEST(Session, ModelImageFirstLookComesFirstThenTheTracer) {
   EXPECT_GT(first.edit_seconds, 0.0);
   const image_rgb expected = model_image_first_look(b, make_sheet_models(b), nullptr);
   EXPECT_TRUE(*first.rgb == expected.rgb);
-  // Resumed, traced samples replace it.
+  // Resumed, traced samples replace it once they are the better estimate.
   session.set_paused(false);
-  const render_snapshot traced = session.wait_for(gen, 1);
-  EXPECT_FALSE(traced.model_image);
-  EXPECT_GE(traced.spp, 1u);
-  EXPECT_EQ(estimate_name(traced), "tracer at " + std::to_string(traced.spp) + " spp");
+  const render_snapshot traced = session.wait_for(gen, 64);
+  ASSERT_TRUE(traced.shown && traced.rgb);
+  if (traced.model_image) {
+    EXPECT_TRUE(*traced.shown == expected.rgb);
+    EXPECT_TRUE(model_image_is_better(expected.rgb, *traced.rgb, traced.odd_rgb.get(), traced.spp));
+  } else {
+    EXPECT_TRUE(*traced.shown == *traced.rgb);
+    EXPECT_EQ(estimate_name(traced), "tracer at " + std::to_string(traced.spp) + " spp");
+  }
 
   // A refused edit shows no first look of the refused layout: the last traced image stays.
   session.set_paused(true);
@@ -179,7 +237,8 @@ TEST(Session, ModelImageFirstLookComesFirstThenTheTracer) {
   std::this_thread::sleep_for(std::chrono::milliseconds(200));  // room for a late first look
   const render_snapshot after = session.snapshot();
   EXPECT_FALSE(refused.error.empty());
-  EXPECT_FALSE(after.model_image);
+  EXPECT_FALSE(after.preview);
+  EXPECT_TRUE(*after.shown == *traced.shown || *after.shown == *after.rgb);  // the last good layout's
   EXPECT_FALSE(after.error.empty());
   ASSERT_TRUE(after.rgb);
   EXPECT_GE(after.spp, 1u);  // traced samples of the last good layout, not a first look (spp 0)

@@ -173,6 +173,7 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
   const auto t_spectra = clock_type::now();
   const grid_spectrum spectra[2] = {spectrum_of(m->grids[model_fine].padded), spectrum_of(m->grids[model_tail].padded)};
   m->spectra_seconds = since(t_spectra);
+  if (cancelled()) return nullptr;
   for (model_pixel& px : m->pixels) assign_bin(m->bins, px);
   // Each bin adds its share to the pixels it is the lower bin of, or the upper: no pixel is
   // written by two bins at once, and a bin's correlated grids are dropped as soon as it is done.
@@ -190,9 +191,11 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
       const std::array<cv::Mat, 2> kernels =
           bin_kernels(*m, m->bins[std::size_t(k)], std::size_t(k), p.psf_samples, s.seed, p.threads, cancel);
       bin_seconds[std::size_t(k)][0] = since(t);
+      if (cancelled()) break;
       t = clock_type::now();
-      const correlated_grid correlated[2] = {correlate(spectra[model_fine], kernels[model_fine]),
-                                             correlate(spectra[model_tail], kernels[model_tail])};
+      correlated_grid fine = correlate(spectra[model_fine], kernels[model_fine]);
+      if (cancelled()) break;
+      const correlated_grid correlated[2] = {std::move(fine), correlate(spectra[model_tail], kernels[model_tail])};
       bin_seconds[std::size_t(k)][1] = since(t);
       t = clock_type::now();
       for (std::size_t i = 0; i < m->pixels.size(); ++i) {

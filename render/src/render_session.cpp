@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <future>
 #include <utility>
 
 #include <sys/resource.h>
@@ -72,6 +73,7 @@ void render_session::stop() {
     std::lock_guard lock(mutex_);
     stopping_ = true;
     cancel_ = true;
+    model_cancel_->store(true);
   }
   changed_.notify_all();
   first_look_cancel_ = true;
@@ -83,6 +85,7 @@ std::uint64_t render_session::edit(const scene& s, retro_model_list models) {
   std::lock_guard lock(mutex_);
   ++generation_;
   edit_time_ = std::chrono::steady_clock::now();
+  model_cancel_->store(true);  // the control variate of a layout that is going
   if (params_.first_look) {
     first_look_ = first_look_request{s, models, generation_};
     first_look_cancel_ = true;  // the one in progress, if any, is stale
@@ -126,6 +129,8 @@ void render_session::run_first_look() {
       // The tracer's worker reports what is wrong with the edit; its coarse preview serves.
     }
     lock.lock();
+    models_shown_ = request.generation;
+    changed_.notify_all();
   }
 }
 
@@ -156,10 +161,31 @@ render_snapshot render_session::wait_for(std::uint64_t gen, std::uint64_t spp) c
   return snapshot_;
 }
 
+bool model_image_is_better(const std::vector<float>& model, const std::vector<float>& rgb,
+                           const std::vector<float>* odd, std::uint64_t spp) {
+  if (spp < 2 || !odd || model.size() != rgb.size() || odd->size() != rgb.size()) return true;
+  const double n = double(spp), n_odd = double(spp / 2), n_even = n - n_odd;
+  double halves2 = 0, distance2 = 0;
+  for (std::size_t i = 0; i < rgb.size(); ++i) {
+    const double even = (n * rgb[i] - n_odd * (*odd)[i]) / n_even;
+    halves2 += (double((*odd)[i]) - even) * (double((*odd)[i]) - even);
+    distance2 += (double(rgb[i]) - model[i]) * (double(rgb[i]) - model[i]);
+  }
+  // var(odd - even) = sigma^2 (1 / n_odd + 1 / n_even); var(mean) = sigma^2 / n.
+  const double noise2 = halves2 / (n * (1 / n_odd + 1 / n_even));
+  return noise2 > distance2 - noise2;
+}
+
 std::string estimate_name(const render_snapshot& snap) {
   if (snap.model_image) return snap.first_look ? "model image (first look)" : "model image";
   if (snap.preview) return "tracer (preview)";
   return "tracer at " + std::to_string(snap.spp) + " spp";
+}
+
+render_snapshot render_session::wait_until(const std::function<bool(const render_snapshot&)>& ready) const {
+  std::unique_lock lock(mutex_);
+  changed_.wait(lock, [&] { return stopping_ || ready(snapshot_); });
+  return snapshot_;
 }
 
 void lower_thread_priority(int nice) {
@@ -169,16 +195,17 @@ void lower_thread_priority(int nice) {
   ::setpriority(PRIO_PROCESS, pid_t(::syscall(SYS_gettid)), nice);
 }
 
-bool render_session::render_wave(std::uint64_t first, std::uint64_t count, std::vector<double>& sums,
-                                 std::vector<double>& odd_sums, std::vector<double>* component_sums,
-                                 std::uint64_t& rays) {
+bool render_session::render_wave(std::uint64_t first, std::uint64_t count, accumulation& acc, std::uint64_t& rays) {
   const int h = scene_.camera.height;
   std::atomic<std::uint64_t> total_rays{0};
   std::atomic<bool> complete{true};
   detail::parallel_rows(h, params_.threads, [&](int y0, int y1) {
     if (params_.background_priority) lower_thread_priority();
     std::uint64_t local = 0;
-    if (!trace_rows(scene_, y0, y1, first, count, sums, cancel_, local, &odd_sums, component_sums)) complete = false;
+    if (!trace_rows(scene_, y0, y1, first, count, acc.sums, cancel_, local, &acc.odd_sums,
+                    params_.components ? &acc.component_sums : nullptr, &acc.predictions)) {
+      complete = false;
+    }
     total_rays += local;
   });
   rays += total_rays;
@@ -214,7 +241,8 @@ bool render_session::render_preview(std::vector<float>& rgb, std::uint64_t& rays
 
 bool render_session::view_taken_over(std::uint64_t gen) const {
   std::lock_guard lock(mutex_);
-  return gen != generation_ || (snapshot_.generation == gen && (!snapshot_.preview || !snapshot_.error.empty()));
+  return gen != generation_ ||
+         (snapshot_.generation == gen && (!snapshot_.error.empty() || (!snapshot_.preview && !snapshot_.model_image)));
 }
 
 void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb, const preview_size& size,
@@ -224,10 +252,19 @@ void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb, 
   std::lock_guard lock(mutex_);
   if (gen != generation_) return;
   if (snapshot_.generation == gen) {
-    // Traced samples replace previews and are never replaced by one; a model image replaces the
-    // coarse traced preview and the first look, not the other way round; a refused edit shows none.
-    if (!snapshot_.preview || !snapshot_.error.empty() || (snapshot_.model_image && !model_image) ||
+    // A model image replaces the coarse traced preview and the first look, not the other way
+    // round, and is kept over traced samples while it is the better estimate (publish); a refused
+    // edit shows none.
+    if (!snapshot_.error.empty() || (snapshot_.model_image && !model_image) ||
         (snapshot_.model_image && !snapshot_.first_look && kind == preview_kind::first_look)) {
+      return;
+    }
+    if (!snapshot_.preview) {
+      // Traced samples are out: only a first look kept over them gives way, to the model image.
+      if (!(snapshot_.model_image && snapshot_.first_look && kind == preview_kind::model_image)) return;
+      snapshot_.first_look = false;
+      snapshot_.shown = std::move(shared);
+      changed_.notify_all();
       return;
     }
   } else {
@@ -243,7 +280,8 @@ void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb, 
   snapshot_.width = size.width;
   snapshot_.height = size.height;
   snapshot_.mm_per_pixel = size.mm_per_pixel;
-  snapshot_.rgb = std::move(shared);
+  snapshot_.rgb = shared;
+  snapshot_.shown = std::move(shared);
   snapshot_.odd_rgb.reset();
   snapshot_.components.reset();
   snapshot_.rays = 0;
@@ -251,32 +289,38 @@ void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb, 
   changed_.notify_all();
 }
 
-void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::vector<double>& sums,
-                             const std::vector<double>& odd_sums, const std::vector<double>& component_sums,
-                             std::uint64_t rays, double seconds) {
-  // Each pixel's estimate is the model image's value plus the mean of its samples.
+void render_session::publish(std::uint64_t gen, std::uint64_t spp, const accumulation& acc, std::uint64_t rays,
+                             double seconds) {
+  // Each pixel's estimate is the model image's value plus the mean of its samples less their
+  // predictions.
   const std::vector<float>* model = scene_.model ? &scene_.model->image.rgb : nullptr;
+  const std::vector<double>& sums = acc.sums;
+  const std::vector<double>& predicted = acc.predictions.all;
   auto rgb = std::make_shared<std::vector<float>>(sums.size());
   const double inv = spp ? 1.0 / double(spp) : 0.0;
-  for (std::size_t i = 0; i < sums.size(); ++i) (*rgb)[i] = float(sums[i] * inv + (model ? (*model)[i] : 0.0f));
+  for (std::size_t i = 0; i < sums.size(); ++i) {
+    (*rgb)[i] = float((sums[i] - predicted[i]) * inv + (model ? (*model)[i] : 0.0f));
+  }
   std::shared_ptr<std::vector<float>> odd;
   if (spp >= 2) {
     const double inv_odd = 1.0 / double(spp / 2);  // spp / 2 of samples 0 .. spp-1 are odd-numbered
     odd = std::make_shared<std::vector<float>>(sums.size());
     for (std::size_t i = 0; i < sums.size(); ++i) {
-      (*odd)[i] = float(odd_sums[i] * inv_odd + (model ? (*model)[i] : 0.0f));
+      (*odd)[i] = float((acc.odd_sums[i] - acc.predictions.odd[i]) * inv_odd + (model ? (*model)[i] : 0.0f));
     }
   }
   std::shared_ptr<std::vector<float>> components;
-  if (!component_sums.empty()) {
-    // The model image belongs to the aerial image.
-    components = std::make_shared<std::vector<float>>(component_sums.size());
+  if (!acc.component_sums.empty()) {
+    // The model image and its predictions belong to the aerial image.
+    components = std::make_shared<std::vector<float>>(acc.component_sums.size());
     for (std::size_t p = 0; p < sums.size() / 3; ++p) {
       for (int k = 0; k < component_count; ++k) {
         for (int c = 0; c < 3; ++c) {
           const std::size_t i = 3 * (component_count * p + std::size_t(k)) + std::size_t(c);
-          const float m = model && k == component_aerial ? (*model)[3 * p + std::size_t(c)] : 0.0f;
-          (*components)[i] = float(component_sums[i] * inv + m);
+          const std::size_t j = 3 * p + std::size_t(c);
+          const bool aerial = k == component_aerial;
+          const double v = (acc.component_sums[i] - (aerial ? predicted[j] : 0.0)) * inv;
+          (*components)[i] = float(v + (model && aerial ? (*model)[j] : 0.0f));
         }
       }
     }
@@ -288,12 +332,18 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::ve
   snapshot_.width = scene_.camera.width;
   snapshot_.height = scene_.camera.height;
   snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
+  // The model image shown so far stays while it is the better estimate.
+  const bool keep_model = snapshot_.generation == gen && snapshot_.model_image && snapshot_.shown &&
+                          model_image_is_better(*snapshot_.shown, *rgb, odd.get(), spp);
+  if (!keep_model) {
+    snapshot_.shown = rgb;
+    snapshot_.model_image = false;
+    snapshot_.first_look = false;
+  }
   snapshot_.rgb = std::move(rgb);
   snapshot_.odd_rgb = std::move(odd);
   snapshot_.components = std::move(components);
   snapshot_.preview = false;
-  snapshot_.model_image = false;
-  snapshot_.first_look = false;
   snapshot_.edit_seconds = seconds_since_edit();
   snapshot_.rays = rays;
   snapshot_.seconds = seconds;
@@ -302,14 +352,39 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const std::ve
 
 void render_session::run() {
   using clock = std::chrono::steady_clock;
-  std::vector<double> sums, wave, odd_sums, odd_wave, component_sums, component_wave;
+  accumulation acc, wave;
   std::uint64_t gen = 0, spp = 0, rays = 0, next_wave = 1;
-  bool model_pending = false;  // the model image of the layout in scene_ is still to be computed
   double seconds = 0;
+  // The control variate's model image of the layout in scene_, computed beside the tracer from its
+  // first wave on; the tracer waits for it only before the last wave of its target. The
+  // predictions of the samples traced before it arrives are added then.
+  std::future<std::shared_ptr<const layout_model_image>> model_coming;
+  std::shared_ptr<const layout_model_image> model_arrived;  // not yet in scene_ (its predictions were cut short)
+  bool model_wanted = false;                                // to start after the generation's first wave
+  auto start_model = [&] {                                  // with mutex_ held
+    model_wanted = false;
+    model_cancel_ = std::make_shared<std::atomic<bool>>(false);
+    model_coming = std::async(std::launch::async, [job = control_variate_job(scene_, params_.quick_model_image),
+                                                   cancel = model_cancel_, this] {
+      if (params_.background_priority) lower_thread_priority();
+      return job.run(cancel.get());
+    });
+  };
+  // Cancelled ones still finishing: an edit does not wait for them (they hold copies of what they
+  // read), the worker only before it returns.
+  std::vector<std::future<std::shared_ptr<const layout_model_image>>> dropped;
+  auto drop_model = [&] {
+    model_cancel_->store(true);
+    if (model_coming.valid()) dropped.push_back(std::move(model_coming));
+    std::erase_if(dropped,
+                  [](const auto& f) { return f.wait_for(std::chrono::seconds(0)) == std::future_status::ready; });
+    model_arrived.reset();
+  };
   auto reset_sums = [&] {
-    sums.assign(std::size_t(scene_.camera.width) * scene_.camera.height * 3, 0.0);
-    odd_sums = sums;
-    component_sums.assign(params_.components ? component_count * sums.size() : 0, 0.0);
+    acc.sums.assign(std::size_t(scene_.camera.width) * scene_.camera.height * 3, 0.0);
+    acc.odd_sums = acc.sums;
+    acc.component_sums.assign(params_.components ? component_count * acc.sums.size() : 0, 0.0);
+    acc.predictions = {acc.sums, acc.sums};
   };
   reset_sums();
 
@@ -318,7 +393,12 @@ void render_session::run() {
     {
       std::unique_lock lock(mutex_);
       changed_.wait(lock, [&] { return stopping_ || pending_ || (!paused_ && spp < target_spp_); });
-      if (stopping_) return;
+      if (stopping_) {
+        lock.unlock();
+        drop_model();
+        for (auto& f : dropped) f.wait();
+        return;
+      }
       if (pending_) {
         const scene s = std::move(*pending_);
         retro_model_list models = std::exchange(pending_models_, {});
@@ -326,6 +406,7 @@ void render_session::run() {
         gen = generation_;
         cancel_ = false;
         lock.unlock();
+        drop_model();
         std::string error;
         try {
           build_tracer_scene(scene_, device_, s, std::move(models));
@@ -354,35 +435,63 @@ void render_session::run() {
             publish_preview(gen, std::move(preview), size, preview_kind::traced);
           lock.lock();
         }
-        model_pending = error.empty();
+        if (error.empty() && params_.first_look && params_.view_model_image) {
+          // The model image the designer sees first gets the cores: the tracer waits for it (its
+          // first wave would take as long).
+          changed_.wait(lock, [&] { return stopping_ || pending_ || models_shown_ >= gen; });
+          if (stopping_ || pending_) continue;
+        }
+        model_wanted = error.empty();
         continue;
       }
       cancel_ = false;
-      if (model_pending) {
-        lock.unlock();
-        update_model_image(scene_, &cancel_, params_.quick_model_image);
-        lock.lock();
-        if (cancel_) continue;  // an edit or a pause came first: computed again when the worker resumes
-        model_pending = false;
+      if (model_coming.valid() && model_coming.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
+        model_arrived = model_coming.get();
       }
       count = std::min({next_wave, params_.max_wave_spp, target_spp_ - spp});
+      if (spp + count >= target_spp_ && model_wanted) start_model();  // the first wave is the last
+      if (spp + count >= target_spp_ && model_coming.valid()) {
+        // The last wave: the estimate that stays is the control variate's (an edit cancels the wait).
+        lock.unlock();
+        model_arrived = model_coming.get();
+        lock.lock();
+        if (pending_ || stopping_) continue;
+      }
+    }
+    if (model_arrived) {
+      // The predictions of the samples traced so far (none yet: no model image was there). Cut
+      // short (an edit or a pause), they are dropped and redone.
+      scene_.model = model_arrived;
+      std::atomic<bool> complete{true};
+      detail::parallel_rows(scene_.camera.height, params_.threads, [&](int y0, int y1) {
+        if (params_.background_priority) lower_thread_priority();
+        if (!add_predictions(scene_, y0, y1, 0, spp, acc.predictions, cancel_)) complete = false;
+      });
+      if (!complete || cancel_) {
+        scene_.model.reset();
+        std::fill(acc.predictions.all.begin(), acc.predictions.all.end(), 0.0);
+        std::fill(acc.predictions.odd.begin(), acc.predictions.odd.end(), 0.0);
+        continue;
+      }
+      model_arrived.reset();
+      if (spp > 0) publish(gen, spp, acc, rays, seconds);
+      continue;
     }
     const auto t0 = clock::now();
-    wave = sums;  // a cancelled wave leaves the accumulation untouched
-    odd_wave = odd_sums;
-    component_wave = component_sums;
+    wave = acc;  // a cancelled wave leaves the accumulation untouched
     std::uint64_t wave_rays = 0;
-    const bool done =
-        render_wave(spp, count, wave, odd_wave, params_.components ? &component_wave : nullptr, wave_rays);
-    if (!done) continue;
-    sums.swap(wave);
-    odd_sums.swap(odd_wave);
-    component_sums.swap(component_wave);
+    if (!render_wave(spp, count, wave, wave_rays)) continue;
+    std::swap(acc, wave);
     spp += count;
     rays += wave_rays;
     seconds += std::chrono::duration<double>(clock::now() - t0).count();
     next_wave = std::min(2 * next_wave, params_.max_wave_spp);  // capped: doubling forever would overflow
-    publish(gen, spp, sums, odd_sums, component_sums, rays, seconds);
+    publish(gen, spp, acc, rays, seconds);
+    if (model_wanted) {
+      // After the first wave, which has the cores to itself.
+      std::lock_guard lock(mutex_);
+      start_model();
+    }
   }
 }
 

@@ -71,12 +71,19 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   ts.embree->set_transforms(transforms);
 }
 
+model_image_job control_variate_job(const tracer_scene& ts, bool quick) {
+  return {ts.layout, ts.retro, ts.texture, model_image_params::for_image(ts.camera.width, ts.camera.height, quick),
+          ts.use_model_image && !ts.retro.empty()};
+}
+
+std::shared_ptr<const layout_model_image> model_image_job::run(const std::atomic<bool>* cancel) const {
+  if (!wanted) return nullptr;
+  return compute_layout_model_image(layout, retro, texture.get(), params, cancel);
+}
+
 void update_model_image(tracer_scene& ts, const std::atomic<bool>* cancel, bool quick) {
   ts.model.reset();
-  if (!ts.use_model_image || ts.retro.empty()) return;
-  ts.model =
-      compute_layout_model_image(ts.layout, ts.retro, ts.texture.get(),
-                                 model_image_params::for_image(ts.camera.width, ts.camera.height, quick), cancel);
+  ts.model = control_variate_job(ts, quick).run(cancel);
 }
 
 // Bilinear lookup; local (x, y) in mm from the source centre, image top towards +v. The bezel
@@ -309,9 +316,12 @@ static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, c
   return radiance;
 }
 
+static void add_prediction(const tracer_scene& ts, int x, int y, std::uint64_t i, const sample_numbers& n,
+                           prediction_sums& predictions);
+
 bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
                 std::vector<double>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays,
-                std::vector<double>* odd_sums, std::vector<double>* component_sums) {
+                std::vector<double>* odd_sums, std::vector<double>* component_sums, prediction_sums* predictions) {
   const int w = ts.camera.width;
   std::vector<std::array<double, 6>> rotations(std::size_t(w), std::array<double, 6>{});
   std::array<sample_numbers, camera_stream> numbers;
@@ -336,8 +346,12 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
           const int x = x0 + k;
           double* acc = sums.data() + 3 * (std::size_t(y) * w + x);
           double* odd = odd_sums ? odd_sums->data() + 3 * (std::size_t(y) * w + x) : nullptr;
-          const component_radiance c = estimate_from(ts, x, y, numbers[std::size_t(k)], camera_rays[std::size_t(k)],
-                                                     &hits[std::size_t(k)], rays);
+          const sample_numbers& numbers_k = numbers[std::size_t(k)];
+          const camera_ray& ray_k = camera_rays[std::size_t(k)];
+          const component_radiance c = predictions
+                                           ? trace_path(ts, numbers_k, ray_k, &hits[std::size_t(k)], rays)
+                                           : estimate_from(ts, x, y, numbers_k, ray_k, &hits[std::size_t(k)], rays);
+          if (predictions && ts.model) add_prediction(ts, x, y, i, numbers_k, *predictions);
           const glm::vec3 L = total(c);
           if (component_sums) {
             double* comp = component_sums->data() + 3 * component_count * (std::size_t(y) * w + x);
@@ -356,6 +370,31 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
             odd[2] += L.z;
           }
         }
+      }
+    }
+  }
+  return true;
+}
+
+static void add_prediction(const tracer_scene& ts, int x, int y, std::uint64_t i, const sample_numbers& n,
+                           prediction_sums& predictions) {
+  const glm::vec3 m = model_prediction(*ts.model, x, y, n.jitter, n.first_retro);
+  const std::size_t p = 3 * (std::size_t(y) * ts.camera.width + x);
+  for (int c = 0; c < 3; ++c) {
+    predictions.all[p + std::size_t(c)] += m[c];
+    if (i & 1) predictions.odd[p + std::size_t(c)] += m[c];
+  }
+}
+
+bool add_predictions(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
+                     prediction_sums& predictions, const std::atomic<bool>& cancel) {
+  if (!ts.model) return true;
+  for (int y = y0; y < y1; ++y) {
+    if (cancel.load(std::memory_order_relaxed)) return false;
+    for (int x = 0; x < ts.camera.width; ++x) {
+      const std::array<double, 6> rotation = pixel_sequence_rotation(ts, x, y);
+      for (std::uint64_t i = first; i < first + count; ++i) {
+        add_prediction(ts, x, y, i, draw_sample_numbers(ts, x, y, i, rotation), predictions);
       }
     }
   }

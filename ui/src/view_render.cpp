@@ -16,14 +16,14 @@ namespace airr::ui {
 
 // The component the view shows of this snapshot (-1: the whole image; previews have none).
 static int shown_component(const studio& st, const render_snapshot& snap) {
-  return snap.components ? st.view.component : -1;
+  return snap.components && !snap.model_image ? st.view.component : -1;
 }
 
 static void upload_snapshot(studio& st, const render_snapshot& snap, float exposure) {
   std::vector<std::uint8_t> rgba(std::size_t(snap.width) * snap.height * 4);
   const int component = shown_component(st, snap);
   for (std::size_t i = 0; i < std::size_t(snap.width) * snap.height; ++i) {
-    const float* v = component < 0 ? snap.rgb->data() + 3 * i
+    const float* v = component < 0 ? snap.shown->data() + 3 * i
                                    : snap.components->data() + 3 * (component_count * i + std::size_t(component));
     for (int c = 0; c < 3; ++c) rgba[4 * i + c] = srgb_encode_8bit(v[c] * exposure);
     rgba[4 * i + 3] = 255;
@@ -42,7 +42,7 @@ void draw_render_view(studio& st, double now) {
   const render_snapshot snap = st.session->snapshot();
   const float exposure = float(default_exposure(st.doc) * std::exp2(st.settings.exposure_ev));
 
-  if (snap.rgb && (snap.spp > 0 || snap.preview) &&
+  if (snap.shown && (snap.spp > 0 || snap.preview) &&
       (snap.generation != st.view.uploaded_generation || snap.spp != st.view.uploaded_spp ||
        estimate_name(snap) != st.view.uploaded_estimate || exposure != st.view.uploaded_exposure ||
        shown_component(st, snap) != st.view.uploaded_component)) {
@@ -75,11 +75,11 @@ void draw_render_view(studio& st, double now) {
   ImGui::SetNextItemWidth(8 * ImGui::GetFontSize());
   ImGui::SliderFloat("exposure (EV)", &st.settings.exposure_ev, -6.0f, 6.0f, "%+.1f");
   ImGui::SameLine();
-  if (ImGui::Button("Auto") && snap.rgb) {
+  if (ImGui::Button("Auto") && snap.shown) {
     // The 99th percentile of luminance maps to 90% of white.
     std::vector<float> lum(std::size_t(snap.width) * snap.height);
     for (std::size_t i = 0; i < lum.size(); ++i) {
-      lum[i] = float(rec709_luminance((*snap.rgb)[3 * i], (*snap.rgb)[3 * i + 1], (*snap.rgb)[3 * i + 2]));
+      lum[i] = float(rec709_luminance((*snap.shown)[3 * i], (*snap.shown)[3 * i + 1], (*snap.shown)[3 * i + 2]));
     }
     auto q = lum.begin() + std::ptrdiff_t(0.99 * double(lum.size() - 1));
     std::nth_element(lum.begin(), q, lum.end());
@@ -155,9 +155,9 @@ void draw_render_view(studio& st, double now) {
   std::string readout = "cursor outside the image";
   if (hovered) {
     const double px = (io.MousePos.x - p0.x) / scale, py = (io.MousePos.y - p0.y) / scale;
-    if (px >= 0 && py >= 0 && px < snap.width && py < snap.height && snap.rgb) {
+    if (px >= 0 && py >= 0 && px < snap.width && py < snap.height && snap.shown) {
       const int ix = int(px), iy = int(py);
-      const float* v = snap.rgb->data() + 3 * (std::size_t(iy) * snap.width + ix);
+      const float* v = snap.shown->data() + 3 * (std::size_t(iy) * snap.width + ix);
       const double x_mm = (px - 0.5 * snap.width) * snap.mm_per_pixel;
       const double y_mm = (0.5 * snap.height - py) * snap.mm_per_pixel;
       char buf[160];

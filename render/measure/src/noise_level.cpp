@@ -27,6 +27,21 @@ double pair_relative_noise(const image_rgb& a, const image_rgb& b) {
   return std::sqrt(squares / n / 2) / (sum / n);
 }
 
+double relative_rms_difference(const std::vector<float>& a, const std::vector<float>& b,
+                               const std::vector<float>& reference) {
+  if (a.size() != b.size() || a.size() != reference.size()) {
+    throw input_error("relative RMS difference: images of different sizes");
+  }
+  double squares = 0, sum = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double d = double(a[i]) - double(b[i]);
+    squares += d * d;
+    sum += reference[i];
+  }
+  const double n = double(a.size());
+  return n > 0 && sum > 0 ? std::sqrt(squares / n) / (sum / n) : 0.0;
+}
+
 noise_law fit_noise_law(const std::vector<noise_point>& points) {
   std::set<std::uint64_t> distinct;
   for (const noise_point& p : points) {

@@ -28,9 +28,13 @@ void parallel_rows(int rows, int threads, const Body& body) {
   }
   for (auto& w : workers) w.join();
 #else
+  // Isolated: while it waits, the calling thread runs only this loop's rows, never a long task of
+  // other work sharing the pool (the tracer's waves beside the model image's bins).
   auto run = [&] {
-    tbb::parallel_for(tbb::blocked_range<int>(0, rows, 1),
-                      [&](const tbb::blocked_range<int>& r) { body(r.begin(), r.end()); });
+    tbb::this_task_arena::isolate([&] {
+      tbb::parallel_for(tbb::blocked_range<int>(0, rows, 1),
+                        [&](const tbb::blocked_range<int>& r) { body(r.begin(), r.end()); });
+    });
   };
   if (threads > 0) {
     tbb::task_arena arena(threads);

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -49,6 +50,9 @@ struct render_snapshot {
   int height = 0;
   double mm_per_pixel = 0;
   std::shared_ptr<const std::vector<float>> rgb;  // mean radiance, 3 floats per pixel
+  // What a viewer shows: rgb, or the generation's model image while it is the better estimate
+  // (model_image says so; see model_image_is_better).
+  std::shared_ptr<const std::vector<float>> shown;
   // The mean of the odd-numbered samples alone (null before 2 spp). With even_rgb() it makes two
   // half estimates, for the noise of what is measured on the image.
   std::shared_ptr<const std::vector<float>> odd_rgb;
@@ -56,7 +60,7 @@ struct render_snapshot {
   double seconds = 0;        // time spent so far in this generation
   std::string error;         // set when the last edit could not be applied
   bool preview = false;      // a coarse first look at this generation (spp is 0)
-  bool model_image = false;  // the preview is a model image, not traced samples ...
+  bool model_image = false;  // `shown` is a model image (a preview, or kept over traced samples) ...
   bool first_look = false;   // ... its coarse first look (false: at view quality)
   double edit_seconds = 0;   // from the edit to this snapshot's publication
   // With session_params::components, component_count RGB triples per pixel adding up to rgb
@@ -72,7 +76,14 @@ struct render_snapshot {
   std::vector<float> even_rgb() const;
 };
 
-// Which estimate a snapshot holds, for people: "model image (first look)", "model image",
+// Whether a model image is still a better estimate than traced samples (their mean `rgb`, the
+// odd-numbered samples' mean `odd`, `spp` samples): the tracer's noise, measured from its two
+// halves, is above the model image's own distance from the truth, measured as its distance from
+// the traced mean with that noise taken out. Always with fewer than 2 samples.
+bool model_image_is_better(const std::vector<float>& model, const std::vector<float>& rgb,
+                           const std::vector<float>* odd, std::uint64_t spp);
+
+// Which estimate a snapshot shows, for people: "model image (first look)", "model image",
 // "tracer (preview)" or "tracer at N spp".
 std::string estimate_name(const render_snapshot& snap);
 
@@ -98,16 +109,21 @@ class render_session {
   render_snapshot snapshot() const;
   // Blocks until generation `gen` has at least `spp` samples (or the target is reached).
   render_snapshot wait_for(std::uint64_t gen, std::uint64_t spp) const;
+  // Blocks until `ready` holds for the snapshot (or the session stops).
+  render_snapshot wait_until(const std::function<bool(const render_snapshot&)>& ready) const;
   // Stops the worker; further snapshots stay as they are.
   void stop();
 
  private:
+  // One generation's running sums (trace_rows): the samples' radiance, odd samples alone, by
+  // component, and the model image's predictions of them apart.
+  struct accumulation {
+    std::vector<double> sums, odd_sums, component_sums;
+    prediction_sums predictions;
+  };
   void run();
-  bool render_wave(std::uint64_t first, std::uint64_t count, std::vector<double>& sums, std::vector<double>& odd_sums,
-                   std::vector<double>* component_sums, std::uint64_t& rays);
-  void publish(std::uint64_t gen, std::uint64_t spp, const std::vector<double>& sums,
-               const std::vector<double>& odd_sums, const std::vector<double>& component_sums, std::uint64_t rays,
-               double seconds);
+  bool render_wave(std::uint64_t first, std::uint64_t count, accumulation& acc, std::uint64_t& rays);
+  void publish(std::uint64_t gen, std::uint64_t spp, const accumulation& acc, std::uint64_t rays, double seconds);
   bool render_preview(std::vector<float>& rgb, std::uint64_t& rays);
   struct preview_size {
     int width, height;
@@ -138,6 +154,7 @@ class render_session {
     std::uint64_t generation;
   };
   std::optional<first_look_request> first_look_;  // the latest edit's, not yet taken
+  std::uint64_t models_shown_ = 0;                // the latest generation the first-look thread is done with
   std::atomic<bool> first_look_cancel_{false};
   bool paused_ = false;
   bool stopping_ = false;
@@ -145,6 +162,8 @@ class render_session {
   render_snapshot snapshot_;
   render_snapshot before_first_look_;  // what the latest first look replaced
   std::atomic<bool> cancel_{false};
+  // Cancels the control variate's model image in progress (replaced by the worker, under mutex_).
+  std::shared_ptr<std::atomic<bool>> model_cancel_ = std::make_shared<std::atomic<bool>>(false);
   std::thread worker_;
   std::thread first_look_worker_;
 };

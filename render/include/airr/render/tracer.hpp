@@ -52,8 +52,22 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
 // Computes the model image of every sheet of the built layout (or leaves none when
 // use_model_image is off or no pixel sees a sheet, or `cancel` is set while it runs), at
 // model_image_params::for_image(width, height, quick). Building clears it: it takes longer than
-// the rest (about 4 s at 512 x 512, 1.4 s quick), so the session shows its previews first.
+// the rest (about 0.75 s at 512 x 512, 0.27 s quick), so the session traces meanwhile
+// (control_variate_job, add_predictions).
 void update_model_image(tracer_scene& ts, const std::atomic<bool>* cancel = nullptr, bool quick = false);
+
+// What the control variate's model image needs of a built scene, copied: it can be computed on
+// another thread while the scene is traced (and rebuilt) meanwhile.
+struct model_image_job {
+  scene layout;
+  retro_model_list retro;
+  std::shared_ptr<const image_rgb> texture;
+  model_image_params params;
+  bool wanted = false;  // use_model_image is on and there are sheets
+  // The model image (null: not wanted, no pixel sees a sheet, or cancelled).
+  std::shared_ptr<const layout_model_image> run(const std::atomic<bool>* cancel = nullptr) const;
+};
+model_image_job control_variate_job(const tracer_scene& ts, bool quick = false);
 
 // The components of an image (spec section 8), by what a path met before the display: the aerial
 // image (at least one retroreflection), the display seen directly (no half-mirror reflection, no
@@ -83,13 +97,30 @@ component_radiance estimate_components(const tracer_scene& ts, int px, int py, s
 // The part of the pixel's estimate that needs no samples: the model image's value (0 without one).
 glm::vec3 model_value(const tracer_scene& ts, int px, int py);
 
+// The model image's predictions of a render's samples, summed apart from what the samples traced
+// (RGB per pixel; the odd-numbered samples also alone), so that the predictions of samples traced
+// before the model image arrived can be added when it does, in the same order: the estimate
+// comes out the same to the bit, whenever it arrived.
+struct prediction_sums {
+  std::vector<double> all, odd;
+};
+
 // Accumulates estimate_sample for samples [first, first + count) of every pixel in rows [y0, y1) into `sums`
 // (double RGB per pixel, added in sample order so that splitting into waves changes nothing),
 // and the odd-numbered samples also into `odd_sums` when given (two independent half estimates,
 // whose difference measures the noise), and by component into `component_sums` when given
-// (component_count RGB triples per pixel). Stops early (returns false) when `cancel` becomes true.
+// (component_count RGB triples per pixel). With `predictions`, the sums are of the traced radiance
+// alone and the model image's predictions go there (the estimate: model_value plus the mean of the
+// sums less the predictions). Stops early (returns false) when `cancel` becomes true.
 bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
                 std::vector<double>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays,
-                std::vector<double>* odd_sums = nullptr, std::vector<double>* component_sums = nullptr);
+                std::vector<double>* odd_sums = nullptr, std::vector<double>* component_sums = nullptr,
+                prediction_sums* predictions = nullptr);
+
+// Adds the model image's predictions of samples [first, first + count) of rows [y0, y1): those
+// traced before ts.model arrived. Stops early (returns false, the sums half done) when `cancel`
+// becomes true.
+bool add_predictions(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
+                     prediction_sums& predictions, const std::atomic<bool>& cancel);
 
 }  // namespace airr

@@ -14,6 +14,11 @@ namespace airr {
 // by the mean of (a + b) / 2. Throws input_error for images of different sizes or a zero mean.
 double pair_relative_noise(const image_rgb& a, const image_rgb& b);
 
+// RMS over pixels and channels of a - b, divided by the mean of `reference`; 0 when that mean is
+// not positive. Throws input_error for arrays of different sizes.
+double relative_rms_difference(const std::vector<float>& a, const std::vector<float>& b,
+                               const std::vector<float>& reference);
+
 // One measured pair.
 struct noise_point {
   std::uint64_t spp = 0;
