@@ -17,6 +17,15 @@
 #include "bench_case.hpp"
 #include "other_build.hpp"
 
+std::string model_error_arguments(const model_error_options& o) {
+  std::string args = "bench --model-error " + shell_quoted(o.scene_path) + " --size " + std::to_string(o.size) +
+                     " --spp " + std::to_string(o.spp) + " --threads " + std::to_string(o.threads) + " --presets";
+  for (const std::string& p : o.presets) args += " " + shell_quoted(p);
+  args += " --tilts";
+  for (double t : o.tilts_deg) args += " " + std::to_string(t);
+  return args;
+}
+
 namespace {
 
 // The other build's `airr bench --model-error` on the same cases, each beside this build's view
@@ -24,13 +33,8 @@ namespace {
 // noise taken out.
 void print_other_build(const build_under_test& b, const model_error_options& o,
                        const std::vector<std::array<double, 4>>& rows) {
-  std::string args = "bench --model-error " + shell_quoted(o.scene_path) + " --size " + std::to_string(o.size) +
-                     " --spp " + std::to_string(o.spp) + " --threads " + std::to_string(o.threads) + " --presets";
-  for (const std::string& p : o.presets) args += " " + shell_quoted(p);
-  args += " --tilts";
-  for (double t : o.tilts_deg) args += " " + std::to_string(t);
   std::fflush(stdout);
-  const std::string out = run_build(b, args, "model error bench");
+  const std::string out = run_build(b, model_error_arguments(o), "model error bench");
   std::printf("other build (%s): its model image against its tracer, beside this build's view image\n", b.airr.c_str());
   std::printf("%-8s %6s %12s %12s %14s %12s %14s\n", "preset", "tilt", "its noise", "its model", "its model,",
               "this view", "this view,");

@@ -16,5 +16,8 @@ struct model_error_options {
   std::string compare;  // another build's airr; empty: this build only
 };
 
+// The arguments of `airr bench --model-error` for these options (another build's run).
+std::string model_error_arguments(const model_error_options& o);
+
 // Prints one line per preset and tilt; throws input_error naming what failed.
 void run_model_error_bench(const model_error_options& o);

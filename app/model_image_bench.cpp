@@ -11,6 +11,7 @@
 #include "airr/layout/sheet_models.hpp"
 #include "airr/render/model_image.hpp"
 #include "bench_case.hpp"
+#include "model_error_bench.hpp"
 #include "other_build.hpp"
 
 namespace {
@@ -27,12 +28,13 @@ double median(std::vector<double> v) {
 // its `airr bench --model-error` (which times compute_layout_model_image at for_image's full
 // quality), at two samples per pixel so that its tracer's part is short.
 std::vector<double> other_build_seconds(const build_under_test& b, const model_image_bench_options& o) {
-  std::string args =
-      "bench --model-error " + shell_quoted(o.scene_path) + " --size " + std::to_string(o.size) + " --spp 2 --presets";
-  for (const std::string& p : o.presets) args += " " + shell_quoted(p);
-  args += " --tilts";
-  for (double t : o.tilts_deg) args += " " + std::to_string(t);
-  const std::string out = run_build(b, args, "model image bench");
+  model_error_options m;
+  m.scene_path = o.scene_path;
+  m.size = o.size;
+  m.spp = 2;
+  m.presets = o.presets;
+  m.tilts_deg = o.tilts_deg;
+  const std::string out = run_build(b, model_error_arguments(m), "model image bench");
   std::vector<double> seconds;
   std::istringstream lines(out);
   std::string line;

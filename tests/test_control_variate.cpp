@@ -24,6 +24,17 @@ scene chart_scene(const std::string& preset, int size) {
                                            {"retroreflectors.0.model.preset", "\"" + preset + "\""}});
 }
 
+// RMS of a - b relative to the RMS of b.
+double relative_rms_of_signal(const std::vector<float>& a, const std::vector<float>& b) {
+  double diff2 = 0, sig2 = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double d = double(a[i]) - double(b[i]);
+    diff2 += d * d;
+    sig2 += double(b[i]) * b[i];
+  }
+  return std::sqrt(diff2 / sig2);
+}
+
 // Per-pixel mean and variance of one estimator's samples (green channel).
 struct pixel_stats {
   std::vector<double> mean, variance;
@@ -195,13 +206,7 @@ TEST(ModelImage, FirstLookIsTheModelImageCoarser) {
   ASSERT_TRUE(ts.model);
   const image_rgb first = model_image_first_look(s, ts.retro, ts.texture.get());
   ASSERT_EQ(first.rgb.size(), ts.model->image.rgb.size());
-  double diff2 = 0, sig2 = 0;
-  for (std::size_t i = 0; i < first.rgb.size(); ++i) {
-    const double d = first.rgb[i] - ts.model->image.rgb[i];
-    diff2 += d * d;
-    sig2 += double(ts.model->image.rgb[i]) * ts.model->image.rgb[i];
-  }
-  const double relative = std::sqrt(diff2 / sig2);
+  const double relative = relative_rms_of_signal(first.rgb, ts.model->image.rgb);
   RecordProperty("first_look_relative_rms", std::to_string(relative));
   EXPECT_LT(relative, 0.15);
   EXPECT_GT(relative, 0.0);  // it is a coarser image, not the same one
@@ -219,16 +224,12 @@ TEST(ModelImage, ViewQualityIsCloseToTheFullModelImage) {
   const auto view = compute_layout_model_image(s, ts.retro, ts.texture.get(), model_image_params::for_view());
   ASSERT_TRUE(view);
   ASSERT_EQ(view->image.rgb.size(), ts.model->image.rgb.size());
-  double diff2 = 0, sig2 = 0;
   std::size_t lit_full = 0, lit_both = 0;
   for (std::size_t i = 0; i < view->image.rgb.size(); ++i) {
-    const double d = view->image.rgb[i] - ts.model->image.rgb[i];
-    diff2 += d * d;
-    sig2 += double(ts.model->image.rgb[i]) * ts.model->image.rgb[i];
     lit_full += ts.model->image.rgb[i] > 0;
     lit_both += ts.model->image.rgb[i] > 0 && view->image.rgb[i] > 0;
   }
-  const double relative = std::sqrt(diff2 / sig2);
+  const double relative = relative_rms_of_signal(view->image.rgb, ts.model->image.rgb);
   RecordProperty("view_relative_rms", std::to_string(relative));
   std::printf("view-quality model image against the full one: %.2f%% relative RMS\n", 100 * relative);
   EXPECT_LT(relative, 0.015);
