@@ -31,13 +31,20 @@ TEST(BenchNoise, BadComparisonBuildIsNamed) {
 }
 
 // `airr bench --model-image` on a small image: one line per preset, tilt and quality, whose parts
-// (measured one after another) add up to no more than the total.
+// (measured one after another) add up to no more than the total, and one for the view image moved.
 TEST(BenchModelImage, ReportsWhereTheTimeGoes) {
   const test::command_result r = test::run_cli("bench --model-image --size 48 --runs 1 --presets rf-an --tilts 0 30");
   ASSERT_EQ(r.exit_code, 0) << r.out;
-  int lines = 0;
+  int lines = 0, moved = 0;
   std::istringstream in(r.out);
   for (std::string line; std::getline(in, line);) {
+    std::istringstream moved_row(line);
+    double moved_tilt = 0, moved_ms = 0;
+    std::string word;
+    if (moved_row >> moved_tilt >> word >> moved_ms && word == "moved") {
+      ++moved;  // the view image moved by a drag's step
+      EXPECT_GT(moved_ms, 0) << line;
+    }
     std::istringstream row(line);
     std::string preset, quality;
     double tilt = 0, total = 0, paths = 0, bins = 0, spectra = 0, loop = 0;
@@ -47,6 +54,7 @@ TEST(BenchModelImage, ReportsWhereTheTimeGoes) {
     EXPECT_LE(paths + bins + spectra + loop, total + 1.5) << line;  // rounded to whole ms each
   }
   EXPECT_EQ(lines, 6) << r.out;
+  EXPECT_EQ(moved, 2) << r.out;
 }
 
 // --compare runs the other build's --model-error and reads its model image's time per case (here

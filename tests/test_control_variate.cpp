@@ -17,24 +17,6 @@ using namespace airr;
 
 namespace {
 
-scene chart_scene(const std::string& preset, int size) {
-  return load_scene(default_scene_path(), {{"observer.width", std::to_string(size)},
-                                           {"observer.height", std::to_string(size)},
-                                           {"retroreflectors.0.model.type", "\"sinc_shift\""},
-                                           {"retroreflectors.0.model.preset", "\"" + preset + "\""}});
-}
-
-// RMS of a - b relative to the RMS of b.
-double relative_rms_of_signal(const std::vector<float>& a, const std::vector<float>& b) {
-  double diff2 = 0, sig2 = 0;
-  for (std::size_t i = 0; i < a.size(); ++i) {
-    const double d = double(a[i]) - double(b[i]);
-    diff2 += d * d;
-    sig2 += double(b[i]) * b[i];
-  }
-  return std::sqrt(diff2 / sig2);
-}
-
 // Per-pixel mean and variance of one estimator's samples (green channel).
 struct pixel_stats {
   std::vector<double> mean, variance;
@@ -71,7 +53,7 @@ pixel_stats sample_pixels(const tracer_scene& ts, int spp) {
 class ControlVariate : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(ControlVariate, SameMeanAsThePlainTracerAndLessVariance) {
-  scene s = chart_scene(GetParam(), 40);
+  scene s = test::chart_scene(GetParam(), 40);
   embree_device device;
   tracer_scene plain, with_model;
   plain.use_model_image = false;
@@ -155,7 +137,7 @@ TEST(ModelImage, UniformDisplayIdealSheetIsRTmuL) {
 TEST(ModelImage, InterpolatedPathsMatchTracedOnes) {
   // The pixel-to-display map is projective: traced on every 8th pixel and interpolated, the image
   // differs from one traced at every pixel by far less than a texel's contrast.
-  const scene s = chart_scene("rf-ay", 96);
+  const scene s = test::chart_scene("rf-ay", 96);
   embree_device device;
   tracer_scene ts;
   build_tracer_scene(ts, device, s);
@@ -175,7 +157,7 @@ TEST(ModelImage, InterpolatedPathsMatchTracedOnes) {
 }
 
 TEST(ModelImage, CancelledComputationGivesNothing) {
-  const scene s = chart_scene("rf-an", 64);
+  const scene s = test::chart_scene("rf-an", 64);
   embree_device device;
   tracer_scene ts;
   build_tracer_scene(ts, device, s);
@@ -198,7 +180,7 @@ TEST(ModelImage, FirstLookIsTheModelImageCoarser) {
   EXPECT_EQ(flat.at(0, 0)[1], 0.0f);
 
   // The chart through RF-AN: close to the full model image (coarser texels, fewer PSF samples).
-  const scene s = chart_scene("rf-an", 256);
+  const scene s = test::chart_scene("rf-an", 256);
   embree_device device;
   tracer_scene ts;
   build_tracer_scene(ts, device, s);
@@ -206,7 +188,7 @@ TEST(ModelImage, FirstLookIsTheModelImageCoarser) {
   ASSERT_TRUE(ts.model);
   const image_rgb first = model_image_first_look(s, ts.retro, ts.texture.get());
   ASSERT_EQ(first.rgb.size(), ts.model->image.rgb.size());
-  const double relative = relative_rms_of_signal(first.rgb, ts.model->image.rgb);
+  const double relative = test::relative_rms_of_signal(first.rgb, ts.model->image.rgb);
   RecordProperty("first_look_relative_rms", std::to_string(relative));
   EXPECT_LT(relative, 0.15);
   EXPECT_GT(relative, 0.0);  // it is a coarser image, not the same one
@@ -215,7 +197,7 @@ TEST(ModelImage, FirstLookIsTheModelImageCoarser) {
 // The model image the designer is shown after the first look: the full model image within 1.5% (each is about 1% from
 // the converged tracer: airr bench --model-error), and all of it.
 TEST(ModelImage, ViewQualityIsCloseToTheFullModelImage) {
-  const scene s = chart_scene("rf-ay", 256);
+  const scene s = test::chart_scene("rf-ay", 256);
   embree_device device;
   tracer_scene ts;
   build_tracer_scene(ts, device, s);
@@ -229,7 +211,7 @@ TEST(ModelImage, ViewQualityIsCloseToTheFullModelImage) {
     lit_full += ts.model->image.rgb[i] > 0;
     lit_both += ts.model->image.rgb[i] > 0 && view->image.rgb[i] > 0;
   }
-  const double relative = relative_rms_of_signal(view->image.rgb, ts.model->image.rgb);
+  const double relative = test::relative_rms_of_signal(view->image.rgb, ts.model->image.rgb);
   RecordProperty("view_relative_rms", std::to_string(relative));
   std::printf("view-quality model image against the full one: %.2f%% relative RMS\n", 100 * relative);
   EXPECT_LT(relative, 0.015);
@@ -243,7 +225,7 @@ TEST(ModelImage, ViewQualityIsCloseToTheFullModelImage) {
 TEST(ControlVariate, StreamedCameraRaysGiveTheSamplesOfSingleRays) {
   embree_device device;
   tracer_scene ts;
-  build_tracer_scene(ts, device, chart_scene("rf-an", 100));
+  build_tracer_scene(ts, device, test::chart_scene("rf-an", 100));
   update_model_image(ts);
   ASSERT_TRUE(ts.model);
   const int w = ts.camera.width, y0 = 40, y1 = 44;

@@ -42,6 +42,25 @@ static std::pair<double, double> pitch_yaw_of(const glm::dvec3& n) {
   return {degrees(std::asin(std::clamp(n.y, -1.0, 1.0))), degrees(std::atan2(n.x, n.z))};
 }
 
+scene chart_scene(const std::string& preset, int size, std::optional<double> tilt_deg) {
+  std::vector<scene_override> overrides = {{"observer.width", std::to_string(size)},
+                                           {"observer.height", std::to_string(size)},
+                                           {"retroreflectors.0.model.type", "\"sinc_shift\""},
+                                           {"retroreflectors.0.model.preset", "\"" + preset + "\""}};
+  if (tilt_deg) overrides.push_back({"retroreflectors.0.pose.pitch_deg", std::to_string(*tilt_deg)});
+  return load_scene(default_scene_path(), overrides);
+}
+
+double relative_rms_of_signal(const std::vector<float>& a, const std::vector<float>& b) {
+  double diff2 = 0, sig2 = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    const double d = double(a[i]) - double(b[i]);
+    diff2 += d * d;
+    sig2 += double(b[i]) * b[i];
+  }
+  return std::sqrt(diff2 / sig2);
+}
+
 scene posed_layout(double alpha, const glm::dvec3& aerial, double display_tilt, double source_mm) {
   scene s = uniform_source_scene(source_mm, 96);
   s.half_mirror.pose.pitch_deg = alpha;

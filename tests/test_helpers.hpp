@@ -2,6 +2,7 @@
 // Shared by the tests: scenes built in code, temporary directories, running the CLI.
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -37,6 +38,13 @@ struct temp_dir {
 // The default layout with absolute mesh paths, a uniform white source of the given size and a
 // small camera image; valid without any scene file.
 scene uniform_source_scene(double source_mm, int resolution = 96);
+
+// The default scene (its chart on the display) at size x size pixels, its sheet the sinc-shift
+// model with the given preset, tilted to `tilt_deg` when given.
+scene chart_scene(const std::string& preset, int size, std::optional<double> tilt_deg = std::nullopt);
+
+// RMS of a - b relative to the RMS of b.
+double relative_rms_of_signal(const std::vector<float>& a, const std::vector<float>& b);
 
 // A layout with the half mirror at `alpha`, the aerial image at `aerial`, the display mirrored
 // from it and facing the half mirror, then tilted by `display_tilt`; large mirror and sheet.

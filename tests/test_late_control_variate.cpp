@@ -17,14 +17,6 @@ using namespace airr;
 
 namespace {
 
-scene chart_scene(int size, double tilt) {
-  return load_scene(default_scene_path(), {{"observer.width", std::to_string(size)},
-                                           {"observer.height", std::to_string(size)},
-                                           {"retroreflectors.0.model.type", "\"sinc_shift\""},
-                                           {"retroreflectors.0.model.preset", "\"rf-an\""},
-                                           {"retroreflectors.0.pose.pitch_deg", std::to_string(tilt)}});
-}
-
 // Largest |a - b| over the values, relative to the largest |a|.
 double relative_max_difference(const std::vector<double>& a, const std::vector<double>& b) {
   double diff = 0, scale = 0;
@@ -63,7 +55,7 @@ struct accumulation {
 }  // namespace
 
 TEST(LateControlVariate, PredictionsAddedLaterAreThoseOfTheControlVariate) {
-  const scene s = chart_scene(48, 20);
+  const scene s = test::chart_scene("rf-an", 48, 20);
   embree_device device;
   tracer_scene with_model, late;
   build_tracer_scene(with_model, device, s);
@@ -106,7 +98,7 @@ TEST(LateControlVariate, PredictionsAddedLaterAreThoseOfTheControlVariate) {
 // A session traces at once after an edit, before its control variate exists; the image at its
 // target is the control variate's estimate all the same, to the bit.
 TEST(LateControlVariate, SessionImageAtItsTargetIsTheControlVariates) {
-  const scene a = chart_scene(48, 0), b = chart_scene(48, 20);
+  const scene a = test::chart_scene("rf-an", 48, 0), b = test::chart_scene("rf-an", 48, 20);
   const std::uint64_t spp = 8;
   render_session session(a, {.threads = 2, .target_spp = spp, .preview_stride = 1});
   session.wait_for(0, spp);

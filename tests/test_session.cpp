@@ -160,6 +160,31 @@ TEST(Session, TheModelImageAtViewQualityFollowsTheFirstLook) {
   }
 }
 
+// While a part is dragged, an edit's first look is the last view-quality model image moved to the
+// new placement; the opening layout's view image is computed for the first edit, even though the
+// opening layout is traced at once.
+TEST(Session, ADragsFirstLookIsTheLastModelImageMoved) {
+  const scene a = test::chart_scene("rf-ay", 96, 20);
+  scene b = a;
+  b.sheet().pose.pitch_deg += 0.5;
+  render_session session(a, {.threads = 2, .preview_stride = 1, .first_look = true});
+  session.wait_for(0, 1);
+  session.set_paused(true);
+  // Until the first edit, nothing says when the opening layout's view image is done: it is
+  // computed within a second, and the first look of a move costs a few milliseconds.
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  const std::uint64_t gen = session.edit(b);
+  const render_snapshot first =
+      session.wait_until([&](const render_snapshot& snap) { return snap.generation == gen && snap.model_image; });
+  ASSERT_TRUE(first.first_look) << "the view image came before the first look was seen";
+  const auto display = cached_image_pixels(resolve_scene_path(a, a.source.image));
+  const auto from = compute_layout_model_image(a, make_sheet_models(a), display.get(), model_image_params::for_view());
+  ASSERT_TRUE(from);
+  const image_rgb moved = remap_layout_model_image(*from, b, model_image_params::for_view());
+  ASSERT_FALSE(moved.rgb.empty());
+  EXPECT_TRUE(*first.shown == moved.rgb);
+}
+
 // The model image stays shown while the tracer's noise (from its halves) is above its error: a
 // model 2% off against a tracer whose mean has 5% noise, then 0.5%.
 TEST(Session, TheBetterEstimateIsShown) {

@@ -38,6 +38,7 @@ std::shared_ptr<const layout_model_image> compute_layout_model_image(const scene
     out->sheets.push_back(std::move(m));
   }
   if (out->sheets.empty()) return nullptr;
+  out->layout = s;
   out->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }
@@ -47,6 +48,22 @@ glm::vec3 model_prediction(const layout_model_image& m, int px, int py, const gl
   glm::vec3 sum(0.0f);
   for (const auto& sheet : m.sheets) sum += model_prediction(*sheet, px, py, jitter, u);
   return sum;
+}
+
+image_rgb remap_layout_model_image(const layout_model_image& from, const scene& s, const model_image_params& p,
+                                   const std::atomic<bool>* cancel) {
+  if (!from.left_out.empty() || !differ_in_placement_alone(from.layout, s)) return {};
+  image_rgb out;
+  for (const auto& sheet : from.sheets) {
+    image_rgb one = remap_model_image(*sheet, s, p, cancel);
+    if (one.rgb.empty()) return {};
+    if (out.rgb.empty()) {
+      out = std::move(one);
+    } else {
+      for (std::size_t k = 0; k < out.rgb.size(); ++k) out.rgb[k] += one.rgb[k];
+    }
+  }
+  return out;
 }
 
 image_rgb model_image_first_look(const scene& s, const retro_model_list& models, const image_rgb* display,

@@ -16,8 +16,7 @@ namespace airr {
 
 using namespace model_image_steps;
 
-// The two bins around a pixel's angle (bin angles ascend) and its weight on the upper one.
-static void assign_bin(const std::vector<model_bin>& bins, model_pixel& px) {
+void model_image_steps::assign_bin(const std::vector<model_bin>& bins, model_pixel& px) {
   if (!px.ok) return;
   const int n = int(bins.size());
   int k = 0;
@@ -58,6 +57,7 @@ model_image_params model_image_params::for_view() {
   p.psf_samples = 32768;
   p.tail_texels = 64;
   p.path_stride = 4;
+  p.keep_correlations = true;
   return p;
 }
 
@@ -77,10 +77,7 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
   const auto t0 = std::chrono::steady_clock::now();
   const ideal_parts parts(s, sheet);
   const int w = parts.cam.width, h = parts.cam.height;
-  std::shared_ptr<const emission_profile> emission;
-  if (!s.source.emission_profile.empty()) {
-    emission = load_emission_profile(resolve_scene_path(s, s.source.emission_profile));
-  }
+  const std::shared_ptr<const emission_profile> emission = scene_emission(s);
 
   auto m = std::make_shared<model_image>();
   m->model = std::move(model);
@@ -104,21 +101,7 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
 
   const std::vector<pixel_path> paths = pixel_paths(parts, emission.get(), p, cancel);
   if (paths.empty()) return nullptr;
-  m->pixels.resize(paths.size());
-  detail::parallel_rows(h, p.threads, [&](int y0, int y1) {
-    for (std::size_t i = std::size_t(y0) * w; i < std::size_t(y1) * w; ++i) {
-      if (!paths[i].ok) continue;
-      model_pixel& px = m->pixels[i];
-      for (int g : {model_fine, model_tail}) px.node[g] = maps[g].node(paths[i].display);
-      // Landing outside the tail's padded grid, it is farther from the display than any kernel
-      // offset. (Outside the fine grid, only the fine part sees nothing, in both uses alike.)
-      const glm::dvec2 t = px.node[model_tail];
-      const image_rgb& padded = m->grids[model_tail].padded;
-      px.ok = t.x >= 0 && t.y >= 0 && t.x < padded.width - 1 && t.y < padded.height - 1;
-      px.theta_deg = polar_angle_deg(glm::normalize(paths[i].wi));
-      px.profile = paths[i].profile;
-    }
-  });
+  m->pixels = map_pixels(paths, maps, m->grids[model_tail], w, h, p.threads);
   m->paths_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   double lo = INFINITY, hi = -INFINITY;
   for (const model_pixel& px : m->pixels) {
@@ -158,6 +141,7 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
     const auto right = trace_ideal(parts, bx + 0.5, by), left = trace_ideal(parts, bx - 0.5, by);
     const auto down = trace_ideal(parts, bx, by + 0.5), up = trace_ideal(parts, bx, by - 0.5);
     model_bin b;
+    b.pixel = {bx, by};
     b.theta_deg = centre->theta_deg;
     b.chief = chief_ray_through(s, centre->aerial, sheet);
     b.sampler = m->model->at_incidence(b.chief.wi);
@@ -183,6 +167,13 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
     share.height = h;
     share.rgb.assign(std::size_t(w) * h * 3, 0.0f);
   }
+  std::shared_ptr<model_correlations> kept;
+  if (p.keep_correlations) {
+    kept = std::make_shared<model_correlations>();
+    kept->maps[model_fine] = maps[model_fine];
+    kept->maps[model_tail] = maps[model_tail];
+    kept->bins.resize(std::size_t(bins));
+  }
   std::vector<std::array<double, 3>> bin_seconds(std::size_t(bins), {0.0, 0.0, 0.0});
   const auto t_loop = clock_type::now();
   detail::parallel_rows(bins, p.threads, [&](int k0, int k1) {
@@ -195,7 +186,8 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
       t = clock_type::now();
       correlated_grid fine = correlate(spectra[model_fine], kernels[model_fine]);
       if (cancelled()) break;
-      const correlated_grid correlated[2] = {std::move(fine), correlate(spectra[model_tail], kernels[model_tail])};
+      std::array<correlated_grid, 2> correlated = {std::move(fine),
+                                                   correlate(spectra[model_tail], kernels[model_tail])};
       bin_seconds[std::size_t(k)][1] = since(t);
       t = clock_type::now();
       for (std::size_t i = 0; i < m->pixels.size(); ++i) {
@@ -203,12 +195,12 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
         if (!px.ok || (px.bin != k && px.bin + 1 != k)) continue;
         const bool upper = px.bin + 1 == k;
         const float weight = float((upper ? px.mix : 1 - px.mix) * px.profile);
-        glm::vec3 v(0.0f);
-        for (int g : {model_fine, model_tail}) v += correlated[g].at(px.node[g]);
+        const glm::vec3 v = gather(correlated, px);
         float* out = shares[upper ? 1 : 0].rgb.data() + 3 * i;
         for (int c = 0; c < 3; ++c) out[c] = v[c] * weight;
       }
       bin_seconds[std::size_t(k)][2] = since(t);
+      if (kept) kept->bins[std::size_t(k)] = std::move(correlated);
     }
   });
   if (cancelled()) return nullptr;
@@ -218,6 +210,7 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
     m->correlate_seconds += b[1];
     m->gather_seconds += b[2];
   }
+  m->correlations = std::move(kept);
   m->image = std::move(shares[0]);
   for (std::size_t i = 0; i < m->image.rgb.size(); ++i) m->image.rgb[i] += shares[1].rgb[i];
   m->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

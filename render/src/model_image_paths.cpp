@@ -98,4 +98,28 @@ std::vector<pixel_path> pixel_paths(const ideal_parts& parts, const emission_pro
   return cancelled() ? std::vector<pixel_path>{} : out;
 }
 
+std::shared_ptr<const emission_profile> scene_emission(const scene& s) {
+  if (s.source.emission_profile.empty()) return nullptr;
+  return load_emission_profile(resolve_scene_path(s, s.source.emission_profile));
+}
+
+std::vector<model_pixel> map_pixels(const std::vector<pixel_path>& paths, const grid_mapping (&maps)[2],
+                                    const model_grid& tail, int w, int h, int threads) {
+  std::vector<model_pixel> pixels(paths.size());
+  detail::parallel_rows(h, threads, [&](int y0, int y1) {
+    for (std::size_t i = std::size_t(y0) * w; i < std::size_t(y1) * w; ++i) {
+      if (!paths[i].ok) continue;
+      model_pixel& px = pixels[i];
+      for (int g : {model_fine, model_tail}) px.node[g] = maps[g].node(paths[i].display);
+      // Landing outside the tail's padded grid, it is farther from the display than any kernel
+      // offset. (Outside the fine grid, only the fine part sees nothing, in both uses alike.)
+      const glm::dvec2 t = px.node[model_tail];
+      px.ok = t.x >= 0 && t.y >= 0 && t.x < tail.padded.width - 1 && t.y < tail.padded.height - 1;
+      px.theta_deg = polar_angle_deg(glm::normalize(paths[i].wi));
+      px.profile = paths[i].profile;
+    }
+  });
+  return pixels;
+}
+
 }  // namespace airr::model_image_steps

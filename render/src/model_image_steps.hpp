@@ -57,6 +57,9 @@ struct pixel_path {
 std::vector<pixel_path> pixel_paths(const ideal_parts& parts, const emission_profile* emission,
                                     const model_image_params& p, const std::atomic<bool>* cancel);
 
+// The scene's emission profile (null: Lambertian).
+std::shared_ptr<const emission_profile> scene_emission(const scene& s);
+
 // The display's radiance on a grid of at most max_texels on its longer side (area-averaged down
 // from the texture; uniform: a grid of that size).
 cv::Mat display_texels(const scene& s, const image_rgb* display, int max_texels);
@@ -105,6 +108,21 @@ struct grid_mapping {
 
 grid_mapping make_grid(model_grid& grid, const cv::Mat& texels, int refine, double reach_mm, const part_frame& src);
 
+// The pixels of a w x h image on the grids: where their paths land, their angles and profiles
+// (not yet their bins). A pixel landing beyond the tail's padded grid is not ok.
+std::vector<model_pixel> map_pixels(const std::vector<pixel_path>& paths, const grid_mapping (&maps)[2],
+                                    const model_grid& tail, int w, int h, int threads);
+
+// The two bins around the pixel's angle (bin angles ascend) and its weight on the upper one.
+void assign_bin(const std::vector<model_bin>& bins, model_pixel& px);
+
+// One bin's correlated grids, read at a pixel's nodes.
+inline glm::vec3 gather(const std::array<correlated_grid, 2>& bin, const model_pixel& px) {
+  glm::vec3 v(0.0f);
+  for (int g : {model_fine, model_tail}) v += bin[g].at(px.node[g]);
+  return v;
+}
+
 // The bin's kernels from its samples (a rotated R6 sequence for jitter, lobe and shift, as the
 // tracer's pixels use); blocks run in parallel and are summed in order, so the result does not
 // depend on the number of threads.
@@ -112,3 +130,12 @@ std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std
                                    std::uint64_t seed, int threads, const std::atomic<bool>* cancel);
 
 }  // namespace airr::model_image_steps
+
+namespace airr {
+
+struct model_correlations {
+  model_image_steps::grid_mapping maps[2];
+  std::vector<std::array<model_image_steps::correlated_grid, 2>> bins;
+};
+
+}  // namespace airr

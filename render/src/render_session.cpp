@@ -63,7 +63,12 @@ render_session::render_session(const scene& s, session_params p) : params_(p), t
   snapshot_.height = scene_.camera.height;
   snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
   worker_ = std::thread([this] { run(); });
-  if (params_.first_look) first_look_worker_ = std::thread([this] { run_first_look(); });
+  if (params_.first_look) {
+    // The opening layout is traced at once; its view-quality model image is wanted all the same,
+    // as the first edit's first look (run_first_look).
+    first_look_ = first_look_request{s, {}, 0};
+    first_look_worker_ = std::thread([this] { run_first_look(); });
+  }
 }
 
 render_session::~render_session() { stop(); }
@@ -102,6 +107,10 @@ double render_session::seconds_since_edit() const {
 }
 
 void render_session::run_first_look() {
+  // The last view-quality model image and its display: while a part is dragged, the next first
+  // look moves it to the new placement (remap_layout_model_image).
+  std::shared_ptr<const layout_model_image> last_view;
+  std::shared_ptr<const image_rgb> last_texture;
   std::unique_lock lock(mutex_);
   while (true) {
     changed_.wait(lock, [&] { return stopping_ || first_look_; });
@@ -116,13 +125,23 @@ void render_session::run_first_look() {
       const std::shared_ptr<const image_rgb> texture = path.empty() ? nullptr : cached_image_pixels(path);
       const retro_model_list models = request.models.empty() ? make_sheet_models(s) : request.models;
       const preview_size size{s.observer.width, s.observer.height, make_camera(s).mm_per_pixel};
-      image_rgb first = model_image_first_look(s, models, texture.get(), &first_look_cancel_);
-      if (!first.rgb.empty()) {
-        publish_preview(request.generation, std::move(first.rgb), size, preview_kind::first_look);
-        if (params_.view_model_image && !view_taken_over(request.generation)) {
-          const auto view =
-              compute_layout_model_image(s, models, texture.get(), model_image_params::for_view(), &first_look_cancel_);
-          if (view) publish_preview(request.generation, view->image.rgb, size, preview_kind::model_image);
+      const model_image_params view_params = model_image_params::for_view();
+      const bool opening = request.generation == 0;
+      image_rgb first;
+      if (!opening && last_view && last_texture == texture) {
+        first = remap_layout_model_image(*last_view, s, view_params, &first_look_cancel_);
+      }
+      if (!opening && first.rgb.empty()) first = model_image_first_look(s, models, texture.get(), &first_look_cancel_);
+      const bool has_model_image = !first.rgb.empty();
+      if (has_model_image) publish_preview(request.generation, std::move(first.rgb), size, preview_kind::first_look);
+      // Computed also when traced samples came first, if there is none to move yet.
+      if (params_.view_model_image && (opening || has_model_image) &&
+          (!last_view || !view_taken_over(request.generation))) {
+        auto view = compute_layout_model_image(s, models, texture.get(), view_params, &first_look_cancel_);
+        if (view) {
+          publish_preview(request.generation, view->image.rgb, size, preview_kind::model_image);
+          last_view = std::move(view);
+          last_texture = texture;
         }
       }
     } catch (const std::exception&) {

@@ -40,6 +40,9 @@ struct model_image_params {
   // have one (1: every pixel); the path from a pixel to the display is smooth (projective).
   int path_stride = 1;
   int threads = 0;  // 0: all cores; 1: the calling thread alone
+  // Keep every bin's correlated grids, so that the image can be moved to other placements of its
+  // layout (remap_model_image); they take the display's texels times 12 bytes per bin and channel.
+  bool keep_correlations = false;
 
   // The tracer's control variate for an image of this size. `quick`, or below 256 x 256 pixels:
   // the fine grid is twice the texels and reaches 4 mm (a third of the time; RF-AN's variance per
@@ -56,7 +59,7 @@ struct model_image_params {
   // as close to the tracer's converged image as the control variate's (airr bench --model-error),
   // in about a tenth of its time. Its fine grid is the display's own texels and each bin has 32768
   // samples; a control variate needs finer nodes (the predictions' texel-sized blur would double
-  // the tracer's noise), so this one is shown, never subtracted.
+  // the tracer's noise), so this one is shown, never subtracted. It keeps its correlations.
   static model_image_params for_view();
 };
 
@@ -73,6 +76,7 @@ inline constexpr int model_fine = 0, model_tail = 1;
 
 // One angle bin: the model's PSF at the incidence angle of one representative pixel.
 struct model_bin {
+  glm::dvec2 pixel{0};  // the representative pixel's centre
   double theta_deg = 0;
   psf_chief_ray chief;
   std::shared_ptr<const retro_at_incidence> sampler;  // the model at the chief ray's incidence
@@ -89,12 +93,16 @@ struct model_pixel {
   double mix = 0;
 };
 
+// The bins' correlated grids and the grids' mappings (kept with keep_correlations).
+struct model_correlations;
+
 struct model_image {
   image_rgb image;  // the model image itself
   std::vector<model_pixel> pixels;
   std::vector<model_bin> bins;
   model_grid grids[2];
-  double hm_factor = 0;  // R x T of the half mirror, once each way
+  double hm_factor = 0;                                    // R x T of the half mirror, once each way
+  std::shared_ptr<const model_correlations> correlations;  // null unless kept
   std::shared_ptr<const retro_model> model;
   std::size_t sheet = 0;     // the scene's sheet this is the share of
   double seconds = 0;        // to compute
@@ -117,6 +125,16 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
                                                        const image_rgb* display, const model_image_params& p = {},
                                                        const std::atomic<bool>* cancel = nullptr,
                                                        std::size_t sheet = 0);
+
+// Sheet `sheet`'s model image `from`, moved to `s`, a placement of the layout it was computed for
+// (differ_in_placement_alone): the pixels' ideal paths are traced anew (`p`'s path stride and
+// threads) and read the same bins' correlated grids at their new landing points and angles. For a
+// small move (a drag's step), this is the new placement's model image up to the PSFs' change with
+// it. Empty when `from` kept no correlations, when cancelled, or when the move took a pixel's angle
+// beyond the bins, or changed a bin's angle by more than 1 deg, its path from the sheet to the
+// display by more than 2% or its pixel's footprint on the display by more than 10%.
+image_rgb remap_model_image(const model_image& from, const scene& s, const model_image_params& p,
+                            const std::atomic<bool>* cancel = nullptr);
 
 // The model's prediction for one tracer sample of pixel (px, py), from its pixel jitter in
 // [0, 1)^2 and its first retroreflection's samples: the same numbers sent through both of the

@@ -28,8 +28,10 @@ struct session_params {
   int preview_stride = 4;
   // Render threads yield to the rest of the process (the designer's UI): a lower priority.
   bool background_priority = false;
-  // After an edit, the model image's first look (model_image_first_look) is shown before any
-  // traced sample, from a thread of its own at normal priority, where the layout has one ...
+  // After an edit, the model image's first look is shown before any traced sample, from a thread
+  // of its own at normal priority, where the layout has one: the last view-quality model image
+  // moved to the new placement (remap_layout_model_image) when the edit only moved parts a
+  // little, else the coarse model_image_first_look ...
   bool first_look = false;
   // ... and then, unless traced samples came first, the model image at view quality
   // (model_image_params::for_view).
@@ -61,7 +63,7 @@ struct render_snapshot {
   std::string error;         // set when the last edit could not be applied
   bool preview = false;      // a coarse first look at this generation (spp is 0)
   bool model_image = false;  // `shown` is a model image (a preview, or kept over traced samples) ...
-  bool first_look = false;   // ... its coarse first look (false: at view quality)
+  bool first_look = false;   // ... its first look (false: at view quality)
   double edit_seconds = 0;   // from the edit to this snapshot's publication
   // With session_params::components, component_count RGB triples per pixel adding up to rgb
   // (null otherwise, and in previews).

@@ -157,4 +157,8 @@ struct scene {
 // Resolves a path from the scene file against the scene's directory.
 std::string resolve_scene_path(const scene& s, const std::string& path);
 
+// True when the two scenes differ at most in where things are: the parts' and props' poses and
+// the observer's placement (orbit angles and distance, position and aim), as while a designer drags.
+bool differ_in_placement_alone(const scene& a, const scene& b);
+
 }  // namespace airr
