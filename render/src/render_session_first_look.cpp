@@ -1,0 +1,111 @@
+// The designer's session: what is shown before traced samples (the first look, the model image
+// at view quality) and how it is published.
+#include <memory>
+#include <string>
+
+#include "airr/formats/image.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/layout/sheet_models.hpp"
+#include "airr/render/layout_model_image.hpp"
+#include "airr/render/render_session.hpp"
+
+namespace airr {
+
+void render_session::run_first_look() {
+  // The last view-quality model image and its display: while a part is dragged, the next first
+  // look moves it to the new placement (remap_layout_model_image).
+  std::shared_ptr<const layout_model_image> last_view;
+  std::shared_ptr<const image_rgb> last_texture;
+  std::unique_lock lock(mutex_);
+  while (true) {
+    changed_.wait(lock, [&] { return stopping_ || first_look_; });
+    if (stopping_) return;
+    const first_look_request request = std::move(*first_look_);
+    first_look_.reset();
+    first_look_cancel_ = false;
+    lock.unlock();
+    try {
+      const scene& s = request.layout;
+      const std::string path = resolve_scene_path(s, s.source.image);
+      const std::shared_ptr<const image_rgb> texture = path.empty() ? nullptr : cached_image_pixels(path);
+      const retro_model_list models = request.models.empty() ? make_sheet_models(s) : request.models;
+      const preview_size size{s.observer.width, s.observer.height, make_camera(s).mm_per_pixel};
+      const model_image_params view_params = model_image_params::for_view();
+      const bool opening = request.generation == 0;
+      image_rgb first;
+      if (!opening && last_view && last_texture == texture) {
+        first = remap_layout_model_image(*last_view, s, view_params, &first_look_cancel_);
+      }
+      if (!opening && first.rgb.empty()) first = model_image_first_look(s, models, texture.get(), &first_look_cancel_);
+      const bool has_model_image = !first.rgb.empty();
+      if (has_model_image) publish_preview(request.generation, std::move(first.rgb), size, preview_kind::first_look);
+      // Computed also when traced samples came first, if there is none to move yet.
+      if (params_.view_model_image && (opening || has_model_image) &&
+          (!last_view || !view_taken_over(request.generation))) {
+        auto view = compute_layout_model_image(s, models, texture.get(), view_params, &first_look_cancel_);
+        if (view) {
+          publish_preview(request.generation, view->image.rgb, size, preview_kind::model_image);
+          last_view = std::move(view);
+          last_texture = texture;
+        }
+      }
+    } catch (const std::exception&) {
+      // The tracer's worker reports what is wrong with the edit; its coarse preview serves.
+    }
+    lock.lock();
+    models_shown_ = request.generation;
+    changed_.notify_all();
+  }
+}
+
+bool render_session::view_taken_over(std::uint64_t gen) const {
+  std::lock_guard lock(mutex_);
+  return gen != generation_ ||
+         (snapshot_.generation == gen && (!snapshot_.error.empty() || (!snapshot_.preview && !snapshot_.model_image)));
+}
+
+void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb, const preview_size& size,
+                                     preview_kind kind) {
+  auto shared = std::make_shared<const std::vector<float>>(std::move(rgb));
+  const bool model_image = kind != preview_kind::traced;
+  std::lock_guard lock(mutex_);
+  if (gen != generation_) return;
+  if (snapshot_.generation == gen) {
+    // A model image replaces the coarse traced preview and the first look, not the other way
+    // round, and is kept over traced samples while it is the better estimate (publish); a refused
+    // edit shows none.
+    if (!snapshot_.error.empty() || (snapshot_.model_image && !model_image) ||
+        (snapshot_.model_image && !snapshot_.first_look && kind == preview_kind::first_look)) {
+      return;
+    }
+    if (!snapshot_.preview) {
+      // Traced samples are out: only a first look kept over them gives way, to the model image.
+      if (!(snapshot_.model_image && snapshot_.first_look && kind == preview_kind::model_image)) return;
+      snapshot_.first_look = false;
+      snapshot_.shown = std::move(shared);
+      changed_.notify_all();
+      return;
+    }
+  } else {
+    if (model_image) before_first_look_ = snapshot_;  // shown again if the tracer refuses this edit
+    snapshot_.error.clear();                          // an earlier edit's refusal
+  }
+  snapshot_.generation = gen;
+  snapshot_.model_image = model_image;
+  snapshot_.first_look = kind == preview_kind::first_look;
+  snapshot_.edit_seconds = seconds_since_edit();
+  snapshot_.spp = 0;
+  snapshot_.preview = true;
+  snapshot_.width = size.width;
+  snapshot_.height = size.height;
+  snapshot_.mm_per_pixel = size.mm_per_pixel;
+  snapshot_.rgb = shared;
+  snapshot_.shown = std::move(shared);
+  snapshot_.odd_rgb.reset();
+  snapshot_.components.reset();
+  snapshot_.rays = 0;
+  snapshot_.seconds = 0;
+  changed_.notify_all();
+}
+
+}  // namespace airr
