@@ -36,15 +36,6 @@
 namespace airr {
 namespace {
 
-// Refracts the propagation direction d at a surface with normal m facing against d;
-// ratio = n_incident / n_transmitted. Empty on total internal reflection.
-std::optional<glm::dvec3> refract(const glm::dvec3& d, const glm::dvec3& m, double ratio) {
-  const double cos_i = -glm::dot(d, m);
-  const double sin2_t = ratio * ratio * std::max(0.0, 1 - cos_i * cos_i);
-  if (sin2_t >= 1) return std::nullopt;
-  return ratio * d + (ratio * cos_i - std::sqrt(1 - sin2_t)) * m;
-}
-
 double erf_inv(double y) {
   y = std::clamp(y, -1 + 1e-15, 1 - 1e-15);
   // A closed-form approximation (relative error ~2e-3) refined by Newton steps on erf.
@@ -147,16 +138,6 @@ double era(double x_deg, double phi_deg) {
   const double upper = std::max(0.0, -0.353394 * std::atan(0.055244 * x_deg - 1.632606) + 0.322462);
   const double lower = std::max(0.0, -0.480967 * std::atan(0.085856 * x_deg - 2.860831) + 0.084810);
   return w * upper + (1 - w) * lower;
-}
-
-double fresnel_dielectric(double cos_i, double eta) {
-  cos_i = std::clamp(cos_i, 0.0, 1.0);
-  const double sin2_t = (1 - cos_i * cos_i) / (eta * eta);
-  if (sin2_t >= 1) return 1;
-  const double cos_t = std::sqrt(1 - sin2_t);
-  const double rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-  const double rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-  return 0.5 * (rs * rs + rp * rp);
 }
 
 const retro_model_kind& microfacet_retro_kind() {

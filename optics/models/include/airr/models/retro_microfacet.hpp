@@ -4,6 +4,7 @@
 // retroreflected by three rough mirror faces and refracts out, or leaves in a Lambertian lobe.
 #include <glm/glm.hpp>
 
+#include "airr/models/dielectric.hpp"
 #include "airr/models/model_params.hpp"
 #include "airr/models/retro_model.hpp"
 
@@ -30,10 +31,6 @@ glm::dvec3 sample_beckmann_visible(const glm::dvec3& wi, double alpha, double u1
 // Effective retroreflective area ERA(x, phi) of the prism sheet: x is the internal incidence
 // angle and phi the azimuth, both in degrees.
 double era(double x_deg, double phi_deg);
-
-// Unpolarised Fresnel reflectance of a dielectric interface; cos_i is the cosine of the incidence
-// angle and eta = n_transmitted / n_incident. Total internal reflection gives 1.
-double fresnel_dielectric(double cos_i, double eta);
 
 // Which path a sample took; a path that was absorbed on the way still reports it (weight 0).
 enum class microfacet_branch { none, surface, retro, diffuse };

@@ -1,0 +1,25 @@
+#include "airr/models/dielectric.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace airr {
+
+double fresnel_dielectric(double cos_i, double eta) {
+  cos_i = std::clamp(cos_i, 0.0, 1.0);
+  const double sin2_t = (1 - cos_i * cos_i) / (eta * eta);
+  if (sin2_t >= 1) return 1;
+  const double cos_t = std::sqrt(1 - sin2_t);
+  const double rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+  const double rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+  return 0.5 * (rs * rs + rp * rp);
+}
+
+std::optional<glm::dvec3> refract(const glm::dvec3& d, const glm::dvec3& m, double ratio) {
+  const double cos_i = -glm::dot(d, m);
+  const double sin2_t = ratio * ratio * std::max(0.0, 1 - cos_i * cos_i);
+  if (sin2_t >= 1) return std::nullopt;
+  return ratio * d + (ratio * cos_i - std::sqrt(1 - sin2_t)) * m;
+}
+
+}  // namespace airr

@@ -1,0 +1,265 @@
+#include "airr/models/prism_sheet.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+
+#include "airr/core/error.hpp"
+#include "airr/core/geometry.hpp"
+#include "airr/models/dielectric.hpp"
+
+namespace airr {
+
+double prism_sheet_geometry::triangle_side_mm() const { return 2 * pitch_mm / std::sqrt(3.0); }
+double prism_sheet_geometry::cube_edge_mm() const { return triangle_side_mm() / std::sqrt(2.0); }
+double prism_sheet_geometry::depth_mm() const { return std::sqrt(2.0) * pitch_mm / 3; }
+
+namespace {
+
+constexpr int max_events = 256;
+constexpr int max_steps = 100000;  // triangles crossed by one straight stretch
+
+// The three groove families' in-plane unit normals, 120 deg apart (they sum to zero): family k's
+// ridges are the lines e_k . x = j pitch for every integer j, all three meeting at the array's
+// vertices.
+std::array<glm::dvec2, 3> groove_normals(const prism_sheet_geometry& g) {
+  std::array<glm::dvec2, 3> e;
+  for (int k = 0; k < 3; ++k) {
+    const double a = radians(g.azimuth_deg + 90 + 120.0 * k);
+    e[std::size_t(k)] = {std::cos(a), std::sin(a)};
+  }
+  return e;
+}
+
+// Where a straight stretch ends: on a face (its normal pointing into the plate) or leaving the
+// structure's slab (above the ridges inside the plate, below the apexes outside it).
+struct stretch_end {
+  glm::dvec3 point{0};
+  std::optional<glm::dvec3> face_normal;
+};
+
+// Follows the ray from p along d through the aperture triangles until it meets the grooved
+// surface or leaves the slab between the ridges and the apexes. In one triangle, with f_k the
+// ray's position across family k's strip (0 at one ridge, 1 at the next), the surface is the
+// highest of three planes: face k at depth sqrt(2) pitch f_k (a triangle whose f's sum to 1) or
+// sqrt(2) pitch (1 - f_k) (sum 2). g_k = z - plane_k is linear along the ray; the surface is
+// min_k g_k = 0, positive inside the plate.
+stretch_end follow(const prism_sheet_geometry& g, const std::array<glm::dvec2, 3>& e, glm::dvec3 p, const glm::dvec3& d,
+                   bool in_plate) {
+  const double h = g.pitch_mm, top = -g.plate_mm, bottom = top - g.depth_mm(), s2 = std::sqrt(2.0);
+  const double eps = 1e-12 * h;
+  std::array<double, 3> f{}, i{}, a{};
+  double sum = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double u = glm::dot(e[std::size_t(k)], glm::dvec2(p)) / h;
+    i[std::size_t(k)] = std::floor(u);
+    f[std::size_t(k)] = u - i[std::size_t(k)];
+    a[std::size_t(k)] = glm::dot(e[std::size_t(k)], glm::dvec2(d)) / h;  // df_k per unit of ray length
+    sum += f[std::size_t(k)];
+  }
+  bool low = sum < 1.5;  // the triangle whose f's sum to 1: its edges at f_k = 0
+  for (int step = 0; step < max_steps; ++step) {
+    // Leaving the triangle across an edge, or the slab.
+    double t_exit = std::numeric_limits<double>::infinity();
+    int k_exit = -1;
+    for (int k = 0; k < 3; ++k) {
+      const double ak = a[std::size_t(k)];
+      const double t =
+          low ? (ak < 0 ? -f[std::size_t(k)] / ak : INFINITY) : (ak > 0 ? (1 - f[std::size_t(k)]) / ak : INFINITY);
+      if (t < t_exit) t_exit = t, k_exit = k;
+    }
+    double t_slab = INFINITY;
+    if (in_plate && d.z > 0) t_slab = (top - p.z) / d.z;
+    if (!in_plate && d.z < 0) t_slab = (bottom - p.z) / d.z;
+    // The faces: g_k(t) = g0 + t slope.
+    double t_hit = INFINITY;
+    int k_hit = -1;
+    std::array<double, 3> g0{}, slope{};
+    for (int k = 0; k < 3; ++k) {
+      const double across = low ? f[std::size_t(k)] : 1 - f[std::size_t(k)];
+      g0[std::size_t(k)] = p.z - top + s2 * h * across;
+      slope[std::size_t(k)] = d.z + s2 * h * (low ? a[std::size_t(k)] : -a[std::size_t(k)]);
+    }
+    if (in_plate) {
+      // The first face the ray comes down to.
+      for (int k = 0; k < 3; ++k) {
+        if (slope[std::size_t(k)] >= 0) continue;
+        const double t = -g0[std::size_t(k)] / slope[std::size_t(k)];
+        if (t > eps && t < t_hit) t_hit = t, k_hit = k;
+      }
+    } else {
+      // From below, the surface is reached when the last face still above the ray comes down to it.
+      double t_last = 0;
+      bool reachable = true;
+      for (int k = 0; k < 3; ++k) {
+        if (g0[std::size_t(k)] >= 0) continue;
+        if (slope[std::size_t(k)] <= 0) {
+          reachable = false;
+          break;
+        }
+        const double t = -g0[std::size_t(k)] / slope[std::size_t(k)];
+        if (t >= t_last) t_last = t, k_hit = k;
+      }
+      if (reachable && k_hit >= 0 && t_last > eps) t_hit = t_last;
+      if (!reachable) k_hit = -1;
+    }
+    if (k_hit >= 0 && t_hit <= t_exit && t_hit <= t_slab) {
+      const glm::dvec2 ek = e[std::size_t(k_hit)] * (low ? s2 : -s2);
+      return {p + t_hit * d, glm::dvec3(ek, 1.0) / std::sqrt(3.0)};
+    }
+    if (t_slab <= t_exit) return {p + t_slab * d, std::nullopt};
+    // Into the neighbouring triangle: across family k_exit's ridge.
+    p += t_exit * d;
+    for (int k = 0; k < 3; ++k) f[std::size_t(k)] += t_exit * a[std::size_t(k)];
+    const std::size_t k = std::size_t(k_exit);
+    if (low) {
+      i[k] -= 1;
+      f[k] = 1;
+    } else {
+      i[k] += 1;
+      f[k] = 0;
+    }
+    low = !low;
+  }
+  return {p, std::nullopt};  // a ray running along the grooves for ever: left to the event limit
+}
+
+}  // namespace
+
+glm::dvec2 prism_cell_point(const prism_sheet_geometry& g, const glm::dvec2& u) {
+  // The cell's sides run along two ridge families (perpendicular to their normals), one
+  // triangle side long.
+  const auto e = groove_normals(g);
+  const double side = g.triangle_side_mm();
+  const glm::dvec2 v1 = side * glm::dvec2(-e[0].y, e[0].x), v2 = side * glm::dvec2(-e[1].y, e[1].x);
+  return u.x * v1 + u.y * v2;
+}
+
+prism_path trace_prism_sheet(const prism_sheet_geometry& g, const glm::dvec3& wi, const glm::dvec2& entry,
+                             double u_front, pcg32& rng) {
+  prism_path out;
+  if (!(wi.z > 0)) return out;
+  const glm::dvec3 front_normal(0, 0, 1);
+  if (u_front < fresnel_dielectric(wi.z, g.index)) {
+    out.fate = prism_fate::front_reflection;
+    out.wo = glm::dvec3(-wi.x, -wi.y, wi.z);
+    out.weight = 1;
+    return out;
+  }
+  const auto e = groove_normals(g);
+  glm::dvec3 d = *refract(-wi, front_normal, 1 / g.index);
+  glm::dvec3 p(entry, 0.0);
+  bool in_plate = true;
+  double weight = 1;
+  for (int event = 0; event < max_events; ++event) {
+    out.events = event;
+    if (in_plate && d.z > 0 && p.z >= -g.plate_mm - 1e-12 * g.pitch_mm) {
+      // Up through the plate to the front surface.
+      p += ((0 - p.z) / d.z) * d;
+      const double reflectance = fresnel_dielectric(d.z, 1 / g.index);
+      if (rng.next_double() < reflectance) {
+        d.z = -d.z;
+        ++out.front_reflections;
+        continue;
+      }
+      out.wo = glm::normalize(*refract(d, -front_normal, g.index));
+      out.shift_mm = glm::dvec2(p) - entry;
+      out.weight = weight;
+      out.fate = glm::length(out.wo - wi) < 1e-9 ? prism_fate::retroreflected : prism_fate::stray;
+      return out;
+    }
+    if (in_plate && d.z < 0 && p.z > -g.plate_mm) p += ((-g.plate_mm - p.z) / d.z) * d;  // down to the ridges
+    const stretch_end end = follow(g, e, p, d, in_plate);
+    p = end.point;
+    if (!end.face_normal) {
+      if (in_plate) continue;  // above the ridges: on to the front surface
+      if (d.z < 0) {
+        out.fate = prism_fate::transmitted;
+        out.wo = d;
+        out.shift_mm = glm::dvec2(p) - entry;
+        out.weight = weight;
+        return out;
+      }
+      break;  // no surface where one must be: numerically lost
+    }
+    const glm::dvec3 n = *end.face_normal;  // into the plate
+    if (in_plate) {
+      ++out.face_reflections;
+      if (g.metallised) {
+        weight *= g.face_reflectance;
+        d = reflect(d, n);
+        continue;
+      }
+      if (rng.next_double() < fresnel_dielectric(-glm::dot(d, n), 1 / g.index)) {
+        d = reflect(d, n);
+      } else {
+        d = glm::normalize(*refract(d, n, g.index));
+        in_plate = false;
+      }
+    } else {
+      if (rng.next_double() < fresnel_dielectric(glm::dot(d, n), g.index)) {
+        d = reflect(d, n);
+      } else {
+        d = glm::normalize(*refract(d, -n, 1 / g.index));
+        in_plate = true;
+      }
+    }
+  }
+  out.fate = prism_fate::lost;
+  out.weight = 0;
+  return out;
+}
+
+prism_sheet_retro::prism_sheet_retro(const prism_sheet_geometry& g) : g_(g) {
+  const auto check = [](const char* name, double v, double lo, double hi) {
+    if (!(v >= lo && v <= hi)) {
+      throw input_error(std::string("prism_sheet model: ") + name + ": " + number_text(v) + " is outside [" +
+                        number_text(lo) + ", " + number_text(hi) + "]");
+    }
+  };
+  check("pitch_mm", g.pitch_mm, 1e-4, 10);
+  check("index", g.index, 1, 3);
+  check("plate_mm", g.plate_mm, 0, 20);
+  check("face_reflectance", g.face_reflectance, 0, 1);
+  check("azimuth_deg", g.azimuth_deg, -360, 360);
+}
+
+retro_sample prism_sheet_retro::sample(const glm::dvec3& wi, retro_samples u) const {
+  const prism_path path = trace_prism_sheet(g_, wi, prism_cell_point(g_, u.lobe), u.shift.x, u.more);
+  return {path.wo, path.shift_mm, path.weight};
+}
+
+const retro_model_kind& prism_sheet_retro_kind() {
+  static const retro_model_kind kind = [] {
+    retro_model_kind k;
+    k.name = "prism_sheet";
+    k.help = "Prism sheet traced as geometry: triangular cube corners behind a clear plate";
+    k.fields = {
+        number_field("pitch_mm", "mm", 1e-4, 10, 0.1, "Spacing of parallel grooves (height of the aperture triangles)",
+                     1),
+        number_field("index", "", 1, 3, 1.5, "Refractive index of the plate"),
+        number_field("plate_mm", "mm", 0, 20, 0.1, "Plate thickness above the grooves' ridges", 2),
+        choice_field("coating", {"tir", "metal"},
+                     "Faces reflect by total internal reflection (Fresnel loss where it fails) or by a metal coat"),
+        number_field("face_reflectance", "", 0, 1, 0.85, "Reflectance of the metal coat, per face"),
+        number_field("azimuth_deg", "deg", -360, 360, 0, "Rotation of the grooves about the sheet normal"),
+    };
+    k.make = [](const model_values& v, const model_setting&) -> std::unique_ptr<retro_model> {
+      prism_sheet_geometry g;
+      g.pitch_mm = v.number("pitch_mm");
+      g.index = v.number("index");
+      g.plate_mm = v.number("plate_mm");
+      g.metallised = v.text("coating") == "metal";
+      g.face_reflectance = v.number("face_reflectance");
+      g.azimuth_deg = v.number("azimuth_deg");
+      return std::make_unique<prism_sheet_retro>(g);
+    };
+    return k;
+  }();
+  return kind;
+}
+
+}  // namespace airr
