@@ -115,6 +115,27 @@ render_snapshot poll_until(const render_session& session, Ready ready) {
   }
   return s;
 }
+// A snapshot with traced samples shows the best mix of them and `model` (model_image_weight),
+// and says so.
+void expect_best_mix(const render_snapshot& snap, const std::vector<float>& model) {
+  ASSERT_TRUE(snap.rgb && snap.shown);
+  const double w = model_image_weight(model, *snap.rgb, snap.odd_rgb.get(), snap.spp);
+  EXPECT_EQ(snap.model_weight, w);
+  EXPECT_EQ(snap.model_image, w > 0);
+  const std::string traced = "tracer at " + std::to_string(snap.spp) + " spp";
+  if (w == 0) {
+    EXPECT_TRUE(*snap.shown == *snap.rgb);
+    EXPECT_EQ(estimate_name(snap), traced);
+  } else if (w == 1) {
+    EXPECT_TRUE(*snap.shown == model);
+  } else {
+    for (std::size_t i = 0; i < model.size(); ++i) {
+      ASSERT_EQ((*snap.shown)[i], float(w * model[i] + (1 - w) * (*snap.rgb)[i])) << i;
+    }
+    EXPECT_EQ(estimate_name(snap).rfind(traced + " with the model image", 0), 0u) << estimate_name(snap);
+  }
+}
+
 }  // namespace
 
 TEST(Session, TheModelImageAtViewQualityFollowsTheFirstLook) {
@@ -139,8 +160,8 @@ TEST(Session, TheModelImageAtViewQualityFollowsTheFirstLook) {
   // The first look never comes back over it.
   std::this_thread::sleep_for(std::chrono::milliseconds(100));
   EXPECT_FALSE(session.snapshot().first_look);
-  // Traced samples come, and it is still shown while it is the better estimate: at one sample
-  // always, later as long as the tracer's noise is above its error.
+  // Traced samples come, and it is still shown at one sample, later mixed with them as much as
+  // it helps.
   session.set_paused(false);
   const render_snapshot one = session.wait_for(gen, 1);
   EXPECT_GE(one.spp, 1u);
@@ -150,14 +171,7 @@ TEST(Session, TheModelImageAtViewQualityFollowsTheFirstLook) {
     EXPECT_TRUE(*one.shown == *view.rgb);
     EXPECT_FALSE(*one.rgb == *view.rgb);  // the traced mean is there beside it
   }
-  const render_snapshot later = session.wait_for(gen, 64);
-  if (later.model_image) {
-    EXPECT_TRUE(*later.shown == *view.rgb);
-    EXPECT_TRUE(model_image_is_better(*view.rgb, *later.rgb, later.odd_rgb.get(), later.spp));
-  } else {
-    EXPECT_TRUE(*later.shown == *later.rgb);
-    EXPECT_EQ(estimate_name(later), "tracer at " + std::to_string(later.spp) + " spp");
-  }
+  expect_best_mix(session.wait_for(gen, 64), *view.rgb);
 }
 
 // While a part is dragged, an edit's first look is the last view-quality model image moved to the
@@ -185,9 +199,10 @@ TEST(Session, ADragsFirstLookIsTheLastModelImageMoved) {
   EXPECT_TRUE(*first.shown == moved.rgb);
 }
 
-// The model image stays shown while the tracer's noise (from its halves) is above its error: a
-// model 2% off against a tracer whose mean has 5% noise, then 0.5%.
-TEST(Session, TheBetterEstimateIsShown) {
+// The model image's share in what is shown: a model 2% off against a tracer whose mean has 5%
+// noise counts for about 25 / (25 + 4), against 0.5% noise about 0.25 / (0.25 + 4); either way the
+// mix is closer to the truth than the model image and than the traced mean.
+TEST(Session, TheBestMixIsShown) {
   const std::size_t pixels = 3 * 4096;
   const std::uint64_t spp = 16;
   std::vector<float> truth(pixels), model(pixels);
@@ -212,13 +227,25 @@ TEST(Session, TheBetterEstimateIsShown) {
     }
     return mean;
   };
+  auto rms_error = [&](const std::vector<float>& v) {
+    double e2 = 0;
+    for (std::size_t i = 0; i < pixels; ++i) e2 += std::pow(double(v[i]) - truth[i], 2);
+    return std::sqrt(e2 / double(pixels));
+  };
   std::vector<float> odd;
-  const std::vector<float> noisy = traced(0.05 * 4, odd);  // 5% noise in the mean of 16
-  EXPECT_TRUE(model_image_is_better(model, noisy, &odd, spp));
-  const std::vector<float> clean = traced(0.005 * 4, odd);  // 0.5%
-  EXPECT_FALSE(model_image_is_better(model, clean, &odd, spp));
-  EXPECT_TRUE(model_image_is_better(model, clean, &odd, 1));  // one sample says nothing of its noise
-  EXPECT_TRUE(model_image_is_better(model, clean, nullptr, spp));
+  for (const double sigma : {0.05, 0.005}) {
+    const std::vector<float> mean = traced(sigma * 4, odd);  // sigma: the noise in the mean of 16
+    const double w = model_image_weight(model, mean, &odd, spp);
+    const double expected = sigma * sigma / (sigma * sigma + 0.02 * 0.02);
+    EXPECT_NEAR(w, expected, 0.1 * expected) << sigma;
+    std::vector<float> mix(pixels);
+    for (std::size_t i = 0; i < pixels; ++i) mix[i] = float(w * model[i] + (1 - w) * mean[i]);
+    EXPECT_LT(rms_error(mix), rms_error(model)) << sigma;
+    EXPECT_LT(rms_error(mix), rms_error(mean)) << sigma;
+  }
+  EXPECT_EQ(model_image_weight(model, odd, &odd, 1), 1.0);  // one sample says nothing of its noise
+  EXPECT_EQ(model_image_weight(model, odd, nullptr, spp), 1.0);
+  EXPECT_EQ(model_image_weight(odd, odd, &odd, spp), 1.0);  // the same images
 }
 
 TEST(Session, ModelImageFirstLookComesFirstThenTheTracer) {
@@ -240,17 +267,10 @@ TEST(Session, ModelImageFirstLookComesFirstThenTheTracer) {
   EXPECT_GT(first.edit_seconds, 0.0);
   const image_rgb expected = model_image_first_look(b, make_sheet_models(b), nullptr);
   EXPECT_TRUE(*first.rgb == expected.rgb);
-  // Resumed, traced samples replace it once they are the better estimate.
+  // Resumed, traced samples join it, as much as it helps.
   session.set_paused(false);
   const render_snapshot traced = session.wait_for(gen, 64);
-  ASSERT_TRUE(traced.shown && traced.rgb);
-  if (traced.model_image) {
-    EXPECT_TRUE(*traced.shown == expected.rgb);
-    EXPECT_TRUE(model_image_is_better(expected.rgb, *traced.rgb, traced.odd_rgb.get(), traced.spp));
-  } else {
-    EXPECT_TRUE(*traced.shown == *traced.rgb);
-    EXPECT_EQ(estimate_name(traced), "tracer at " + std::to_string(traced.spp) + " spp");
-  }
+  expect_best_mix(traced, expected.rgb);
 
   // A refused edit shows no first look of the refused layout: the last traced image stays.
   session.set_paused(true);

@@ -133,9 +133,9 @@ render_snapshot render_session::wait_for(std::uint64_t gen, std::uint64_t spp) c
   return snapshot_;
 }
 
-bool model_image_is_better(const std::vector<float>& model, const std::vector<float>& rgb,
-                           const std::vector<float>* odd, std::uint64_t spp) {
-  if (spp < 2 || !odd || model.size() != rgb.size() || odd->size() != rgb.size()) return true;
+double model_image_weight(const std::vector<float>& model, const std::vector<float>& rgb, const std::vector<float>* odd,
+                          std::uint64_t spp) {
+  if (spp < 2 || !odd || model.size() != rgb.size() || odd->size() != rgb.size()) return 1;
   const double n = double(spp), n_odd = double(spp / 2), n_even = n - n_odd;
   double halves2 = 0, distance2 = 0;
   for (std::size_t i = 0; i < rgb.size(); ++i) {
@@ -145,11 +145,38 @@ bool model_image_is_better(const std::vector<float>& model, const std::vector<fl
   }
   // var(odd - even) = sigma^2 (1 / n_odd + 1 / n_even); var(mean) = sigma^2 / n.
   const double noise2 = halves2 / (n * (1 / n_odd + 1 / n_even));
-  return noise2 > distance2 - noise2;
+  const double error2 = std::max(0.0, distance2 - noise2);
+  if (!(noise2 + error2 > 0)) return 1;  // the same images
+  const double w = noise2 / (noise2 + error2);
+  return w < 1e-3 ? 0.0 : w > 1 - 1e-3 ? 1.0 : w;
+}
+
+void render_session::show_best() {
+  const bool have_model = model_shown_ && model_generation_ == snapshot_.generation;
+  const double w =
+      have_model ? model_image_weight(*model_shown_, *snapshot_.rgb, snapshot_.odd_rgb.get(), snapshot_.spp) : 0.0;
+  snapshot_.model_weight = w;
+  snapshot_.model_image = w > 0;
+  snapshot_.first_look = w > 0 && model_shown_first_look_;
+  if (w == 0) {
+    snapshot_.shown = snapshot_.rgb;
+  } else if (w == 1) {
+    snapshot_.shown = model_shown_;
+  } else {
+    auto mix = std::make_shared<std::vector<float>>(snapshot_.rgb->size());
+    const std::vector<float>&model = *model_shown_, &traced = *snapshot_.rgb;
+    for (std::size_t i = 0; i < mix->size(); ++i) (*mix)[i] = float(w * model[i] + (1 - w) * traced[i]);
+    snapshot_.shown = std::move(mix);
+  }
 }
 
 std::string estimate_name(const render_snapshot& snap) {
-  if (snap.model_image) return snap.first_look ? "model image (first look)" : "model image";
+  const std::string model = snap.first_look ? "model image (first look)" : "model image";
+  if (snap.model_image && snap.spp > 0 && snap.model_weight < 1) {
+    return "tracer at " + std::to_string(snap.spp) + " spp with the " + model + " (" +
+           std::to_string(int(std::lround(100 * snap.model_weight))) + "%)";
+  }
+  if (snap.model_image) return model;
   if (snap.preview) return "tracer (preview)";
   return "tracer at " + std::to_string(snap.spp) + " spp";
 }
@@ -254,16 +281,9 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const accumul
   snapshot_.width = scene_.camera.width;
   snapshot_.height = scene_.camera.height;
   snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
-  // The model image shown so far stays while it is the better estimate.
-  const bool keep_model = snapshot_.generation == gen && snapshot_.model_image && snapshot_.shown &&
-                          model_image_is_better(*snapshot_.shown, *rgb, odd.get(), spp);
-  if (!keep_model) {
-    snapshot_.shown = rgb;
-    snapshot_.model_image = false;
-    snapshot_.first_look = false;
-  }
   snapshot_.rgb = std::move(rgb);
   snapshot_.odd_rgb = std::move(odd);
+  show_best();
   snapshot_.components = std::move(components);
   snapshot_.preview = false;
   snapshot_.edit_seconds = seconds_since_edit();

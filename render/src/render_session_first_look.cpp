@@ -72,17 +72,20 @@ void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb, 
   if (gen != generation_) return;
   if (snapshot_.generation == gen) {
     // A model image replaces the coarse traced preview and the first look, not the other way
-    // round, and is kept over traced samples while it is the better estimate (publish); a refused
-    // edit shows none.
+    // round, and is mixed with traced samples as long as it helps (show_best); a refused edit
+    // shows none.
+    const bool view_shown = model_shown_ && model_generation_ == gen && !model_shown_first_look_;
     if (!snapshot_.error.empty() || (snapshot_.model_image && !model_image) ||
-        (snapshot_.model_image && !snapshot_.first_look && kind == preview_kind::first_look)) {
+        (view_shown && kind == preview_kind::first_look)) {
       return;
     }
-    if (!snapshot_.preview) {
-      // Traced samples are out: only a first look kept over them gives way, to the model image.
-      if (!(snapshot_.model_image && snapshot_.first_look && kind == preview_kind::model_image)) return;
-      snapshot_.first_look = false;
-      snapshot_.shown = std::move(shared);
+    if (!snapshot_.preview && snapshot_.rgb) {
+      // Traced samples are out: a model image joins them.
+      if (!model_image) return;
+      model_shown_ = std::move(shared);
+      model_generation_ = gen;
+      model_shown_first_look_ = kind == preview_kind::first_look;
+      show_best();
       changed_.notify_all();
       return;
     }
@@ -90,8 +93,14 @@ void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb, 
     if (model_image) before_first_look_ = snapshot_;  // shown again if the tracer refuses this edit
     snapshot_.error.clear();                          // an earlier edit's refusal
   }
+  if (model_image) {
+    model_shown_ = shared;
+    model_generation_ = gen;
+    model_shown_first_look_ = kind == preview_kind::first_look;
+  }
   snapshot_.generation = gen;
   snapshot_.model_image = model_image;
+  snapshot_.model_weight = model_image ? 1 : 0;
   snapshot_.first_look = kind == preview_kind::first_look;
   snapshot_.edit_seconds = seconds_since_edit();
   snapshot_.spp = 0;

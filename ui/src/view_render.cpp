@@ -14,9 +14,10 @@
 
 namespace airr::ui {
 
-// The component the view shows of this snapshot (-1: the whole image; previews have none).
+// The component the view shows of this snapshot (-1: the whole image, the best estimate shown;
+// a component is the tracer's alone, and previews have none).
 static int shown_component(const studio& st, const render_snapshot& snap) {
-  return snap.components && !snap.model_image ? st.view.component : -1;
+  return snap.components ? st.view.component : -1;
 }
 
 static void upload_snapshot(studio& st, const render_snapshot& snap, float exposure) {

@@ -52,8 +52,8 @@ struct render_snapshot {
   int height = 0;
   double mm_per_pixel = 0;
   std::shared_ptr<const std::vector<float>> rgb;  // mean radiance, 3 floats per pixel
-  // What a viewer shows: rgb, or the generation's model image while it is the better estimate
-  // (model_image says so; see model_image_is_better).
+  // What a viewer shows: the best estimate there is, the generation's model image and the traced
+  // mean rgb mixed with model_weight (see model_image_weight).
   std::shared_ptr<const std::vector<float>> shown;
   // The mean of the odd-numbered samples alone (null before 2 spp). With even_rgb() it makes two
   // half estimates, for the noise of what is measured on the image.
@@ -62,8 +62,9 @@ struct render_snapshot {
   double seconds = 0;        // time spent so far in this generation
   std::string error;         // set when the last edit could not be applied
   bool preview = false;      // a coarse first look at this generation (spp is 0)
-  bool model_image = false;  // `shown` is a model image (a preview, or kept over traced samples) ...
+  bool model_image = false;  // `shown` is, or holds, a model image (a preview, or mixed with traced samples) ...
   bool first_look = false;   // ... its first look (false: at view quality)
+  double model_weight = 0;   // the model image's share of `shown`: 1 alone, 0 not at all
   double edit_seconds = 0;   // from the edit to this snapshot's publication
   // With session_params::components, component_count RGB triples per pixel adding up to rgb
   // (null otherwise, and in previews).
@@ -78,15 +79,17 @@ struct render_snapshot {
   std::vector<float> even_rgb() const;
 };
 
-// Whether a model image is still a better estimate than traced samples (their mean `rgb`, the
-// odd-numbered samples' mean `odd`, `spp` samples): the tracer's noise, measured from its two
-// halves, is above the model image's own distance from the truth, measured as its distance from
-// the traced mean with that noise taken out. Always with fewer than 2 samples.
-bool model_image_is_better(const std::vector<float>& model, const std::vector<float>& rgb,
-                           const std::vector<float>* odd, std::uint64_t spp);
+// The model image's share in the best mix of it and traced samples (their mean `rgb`, the
+// odd-numbered samples' mean `odd`, `spp` samples): with s^2 the tracer's noise, measured from its
+// two halves, and e^2 the model image's own error, measured as its squared distance from the traced
+// mean less that noise, s^2 / (s^2 + e^2), which minimises the mix's expected squared error
+// (w^2 e^2 + (1 - w)^2 s^2). 1 with fewer than 2 samples; shares within 0.001 of 0 or 1 are
+// rounded to them.
+double model_image_weight(const std::vector<float>& model, const std::vector<float>& rgb, const std::vector<float>* odd,
+                          std::uint64_t spp);
 
 // Which estimate a snapshot shows, for people: "model image (first look)", "model image",
-// "tracer (preview)" or "tracer at N spp".
+// "tracer (preview)", "tracer at N spp" or, mixed, "tracer at N spp with the model image (W%)".
 std::string estimate_name(const render_snapshot& snap);
 
 // Lowers the calling thread's scheduling priority, once per thread (Linux: per-thread nice), for
@@ -135,6 +138,9 @@ class render_session {
   // From the worker or the first-look thread; neither reads the other's scene.
   void publish_preview(std::uint64_t gen, std::vector<float> rgb, const preview_size& size, preview_kind kind);
   void run_first_look();
+  // With mutex_ held and snapshot_ holding traced samples: shows the best mix of them and the
+  // generation's model image.
+  void show_best();
   // Whether generation `gen` is stale or its traced samples (or a refusal) are out: no model image
   // of it is worth computing any more.
   bool view_taken_over(std::uint64_t gen) const;
@@ -163,6 +169,10 @@ class render_session {
   std::uint64_t target_spp_;
   render_snapshot snapshot_;
   render_snapshot before_first_look_;  // what the latest first look replaced
+  // The latest model image published for generation model_generation_ (and whether it is a first look).
+  std::shared_ptr<const std::vector<float>> model_shown_;
+  std::uint64_t model_generation_ = 0;
+  bool model_shown_first_look_ = false;
   std::atomic<bool> cancel_{false};
   // Cancels the control variate's model image in progress (replaced by the worker, under mutex_).
   std::shared_ptr<std::atomic<bool>> model_cancel_ = std::make_shared<std::atomic<bool>>(false);
