@@ -208,3 +208,19 @@ TEST(PrismSheet, NoLightIsLostByALosslessSheet) {
     EXPECT_GT(f.transmitted, 0) << theta;  // where total internal reflection fails
   }
 }
+
+// The model's own effective aperture (the polygon diffraction uses) has the effective area worked
+// out here.
+TEST(PrismSheet, EffectiveApertureHasTheEffectiveArea) {
+  prism_sheet_geometry g;
+  g.pitch_mm = 0.3;
+  const double triangle = g.triangle_side_mm() * g.pitch_mm / 2;
+  pcg32 rng(4, 4);
+  for (int i = 0; i < 50; ++i) {
+    const glm::dvec3 d = -direction(40 * rng.next_double(), 360 * rng.next_double());
+    // The array's triangles of pointing +1 point along +y at azimuth 0, the others along -y.
+    const double up = effective_area({d.y, -d.x, d.z}), down = effective_area({-d.y, d.x, d.z});
+    EXPECT_NEAR(polygon_area(effective_aperture(g, d, 1)) / triangle, up, 1e-9);
+    EXPECT_NEAR(polygon_area(effective_aperture(g, d, -1)) / triangle, down, 1e-9);
+  }
+}

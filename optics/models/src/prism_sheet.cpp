@@ -10,6 +10,7 @@
 #include "airr/core/error.hpp"
 #include "airr/core/geometry.hpp"
 #include "airr/models/dielectric.hpp"
+#include "airr/models/diffraction.hpp"
 
 namespace airr {
 
@@ -39,6 +40,7 @@ std::array<glm::dvec2, 3> groove_normals(const prism_sheet_geometry& g) {
 struct stretch_end {
   glm::dvec3 point{0};
   std::optional<glm::dvec3> face_normal;
+  int pointing = 1;  // the triangle of the face: +1 whose f's sum to 1, -1 the others
 };
 
 // Follows the ray from p along d through the aperture triangles until it meets the grooved
@@ -108,7 +110,7 @@ stretch_end follow(const prism_sheet_geometry& g, const std::array<glm::dvec2, 3
     }
     if (k_hit >= 0 && t_hit <= t_exit && t_hit <= t_slab) {
       const glm::dvec2 ek = e[std::size_t(k_hit)] * (low ? s2 : -s2);
-      return {p + t_hit * d, glm::dvec3(ek, 1.0) / std::sqrt(3.0)};
+      return {p + t_hit * d, glm::dvec3(ek, 1.0) / std::sqrt(3.0), low ? 1 : -1};
     }
     if (t_slab <= t_exit) return {p + t_slab * d, std::nullopt};
     // Into the neighbouring triangle: across family k_exit's ridge.
@@ -128,6 +130,17 @@ stretch_end follow(const prism_sheet_geometry& g, const std::array<glm::dvec2, 3
 }
 
 }  // namespace
+
+polygon2 effective_aperture(const prism_sheet_geometry& g, const glm::dvec3& d, int pointing) {
+  // In a triangle whose f's sum to 1 the vertex opposite edge k lies along +e_k, 2/3 of the
+  // height from the centroid (the apex is under the centroid).
+  const auto e = groove_normals(g);
+  polygon2 triangle, image;
+  const glm::dvec2 q = glm::dvec2(d) * (g.depth_mm() / d.z);  // apex (0, 0, -depth) + s d at the ridges
+  for (const glm::dvec2& ek : e) triangle.push_back(double(pointing) * 2 * g.pitch_mm / 3 * ek);
+  for (const glm::dvec2& v : triangle) image.push_back(2.0 * q - v);
+  return clip_convex_polygon(image, triangle);
+}
 
 glm::dvec2 prism_cell_point(const prism_sheet_geometry& g, const glm::dvec2& u) {
   // The cell's sides run along two ridge families (perpendicular to their normals), one
@@ -151,6 +164,8 @@ prism_path trace_prism_sheet(const prism_sheet_geometry& g, const glm::dvec3& wi
   }
   const auto e = groove_normals(g);
   glm::dvec3 d = *refract(-wi, front_normal, 1 / g.index);
+  const glm::dvec3 inside = d;
+  int first_pointing = 0;  // the cube corner of the first face met
   glm::dvec3 p(entry, 0.0);
   bool in_plate = true;
   double weight = 1;
@@ -169,6 +184,19 @@ prism_path trace_prism_sheet(const prism_sheet_geometry& g, const glm::dvec3& wi
       out.shift_mm = glm::dvec2(p) - entry;
       out.weight = weight;
       out.fate = glm::length(out.wo - wi) < 1e-9 ? prism_fate::retroreflected : prism_fate::stray;
+      if (out.fate == prism_fate::retroreflected && out.face_reflections == 3 && out.front_reflections == 0 &&
+          g.wavelength_nm > 0) {
+        // One cube corner's three faces: the beam leaves through the part of its aperture that
+        // retroreflects, and spreads by its far field.
+        const aperture used{effective_aperture(g, inside, first_pointing)};
+        if (used.polygon.empty()) return out;
+        const auto spread = diffracted(out.wo, sample_far_field(used, rng), g.wavelength_nm * 1e-6);
+        if (spread) {
+          out.wo = *spread;
+        } else {
+          out.weight = 0;  // evanescent
+        }
+      }
       return out;
     }
     if (in_plate && d.z < 0 && p.z > -g.plate_mm) p += ((-g.plate_mm - p.z) / d.z) * d;  // down to the ridges
@@ -187,6 +215,7 @@ prism_path trace_prism_sheet(const prism_sheet_geometry& g, const glm::dvec3& wi
     }
     const glm::dvec3 n = *end.face_normal;  // into the plate
     if (in_plate) {
+      if (out.face_reflections == 0) first_pointing = end.pointing;
       ++out.face_reflections;
       if (g.metallised) {
         weight *= g.face_reflectance;
@@ -225,6 +254,7 @@ prism_sheet_retro::prism_sheet_retro(const prism_sheet_geometry& g) : g_(g) {
   check("plate_mm", g.plate_mm, 0, 20);
   check("face_reflectance", g.face_reflectance, 0, 1);
   check("azimuth_deg", g.azimuth_deg, -360, 360);
+  check("wavelength_nm", g.wavelength_nm, 0, 20000);
 }
 
 retro_sample prism_sheet_retro::sample(const glm::dvec3& wi, retro_samples u) const {
@@ -246,6 +276,8 @@ const retro_model_kind& prism_sheet_retro_kind() {
                      "Faces reflect by total internal reflection (Fresnel loss where it fails) or by a metal coat"),
         number_field("face_reflectance", "", 0, 1, 0.85, "Reflectance of the metal coat, per face"),
         number_field("azimuth_deg", "deg", -360, 360, 0, "Rotation of the grooves about the sheet normal"),
+        number_field("wavelength_nm", "nm", 0, 20000, 550,
+                     "Wavelength of the diffraction by each cube corner's aperture (0: none)", 1000),
     };
     k.make = [](const model_values& v, const model_setting&) -> std::unique_ptr<retro_model> {
       prism_sheet_geometry g;
@@ -255,6 +287,7 @@ const retro_model_kind& prism_sheet_retro_kind() {
       g.metallised = v.text("coating") == "metal";
       g.face_reflectance = v.number("face_reflectance");
       g.azimuth_deg = v.number("azimuth_deg");
+      g.wavelength_nm = v.number("wavelength_nm");
       return std::make_unique<prism_sheet_retro>(g);
     };
     return k;

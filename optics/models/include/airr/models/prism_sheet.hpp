@@ -12,6 +12,7 @@
 // depth sqrt(2) times the distance from its edge, so adjacent faces of a cube are perpendicular.
 #include <glm/glm.hpp>
 
+#include "airr/core/polygon.hpp"
 #include "airr/core/random.hpp"
 #include "airr/models/retro_model.hpp"
 
@@ -24,6 +25,9 @@ struct prism_sheet_geometry {
   bool metallised = false;         // faces: a metal coat (true) or total internal reflection with Fresnel loss
   double face_reflectance = 0.85;  // of the metal coat, per reflection
   double azimuth_deg = 0;          // of the grooves about the sheet normal (0: one family along x)
+  // Light a cube corner retroreflects spreads by the Fraunhofer pattern of the part of its
+  // aperture it used (diffraction.hpp) at this wavelength; 0: no diffraction.
+  double wavelength_nm = 550;
 
   double triangle_side_mm() const;  // 2 pitch / sqrt(3)
   double cube_edge_mm() const;      // triangle side / sqrt(2): the shift tables' unit
@@ -54,6 +58,14 @@ struct prism_path {
 // choice draws from rng.
 prism_path trace_prism_sheet(const prism_sheet_geometry& g, const glm::dvec3& wi, const glm::dvec2& entry,
                              double u_front, pcg32& rng);
+
+// The part of a cube corner's aperture that retroreflects light going along d inside the plate
+// (d.z < 0): the aperture triangle's overlap with its image mirrored through the point where the
+// line through the apex along d meets the aperture plane (a ray entering at x leaves at that
+// mirror image of x). `pointing` is +1 for the triangles whose vertex lies along the first groove
+// family's normal, -1 for the others. Sheet-plane mm about the triangle's centroid; empty when
+// nothing retroreflects.
+polygon2 effective_aperture(const prism_sheet_geometry& g, const glm::dvec3& d, int pointing);
 
 // A point of the front surface, uniform over one cell of the array as u runs over [0, 1)^2 (one
 // cell holds two aperture triangles, one of each orientation).

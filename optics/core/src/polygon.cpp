@@ -1,0 +1,40 @@
+#include "airr/core/polygon.hpp"
+
+#include <cmath>
+
+namespace airr {
+
+double polygon_area(const polygon2& p) {
+  double a = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const glm::dvec2 &u = p[i], &v = p[(i + 1) % p.size()];
+    a += u.x * v.y - u.y * v.x;
+  }
+  return 0.5 * std::abs(a);
+}
+
+double polygon_perimeter(const polygon2& p) {
+  double l = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) l += glm::length(p[(i + 1) % p.size()] - p[i]);
+  return l;
+}
+
+polygon2 clip_convex_polygon(const polygon2& subject, const polygon2& clip) {
+  polygon2 out = subject;
+  for (std::size_t i = 0; i < clip.size() && !out.empty(); ++i) {
+    const glm::dvec2 a = clip[i], b = clip[(i + 1) % clip.size()];
+    auto side = [&](const glm::dvec2& p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); };
+    polygon2 next;
+    for (std::size_t j = 0; j < out.size(); ++j) {
+      const glm::dvec2 p = out[j], q = out[(j + 1) % out.size()];
+      const double sp = side(p), sq = side(q);
+      if (sp >= 0) next.push_back(p);
+      if ((sp >= 0) != (sq >= 0)) next.push_back(p + (q - p) * (sp / (sp - sq)));
+    }
+    out = std::move(next);
+  }
+  if (out.size() < 3) out.clear();
+  return out;
+}
+
+}  // namespace airr

@@ -1,0 +1,41 @@
+#pragma once
+// Fraunhofer diffraction by a flat aperture: a beam that leaves through it spreads over spatial
+// frequencies f (cycles per mm, in the aperture's plane) with density |F(f)|^2 / area, F the
+// aperture's Fourier transform, integral over the aperture of exp(-2 pi i f . x). A ray of
+// wavelength lambda leaving in direction w has its in-plane direction cosines moved by lambda f.
+#include <optional>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "airr/core/polygon.hpp"
+#include "airr/core/random.hpp"
+
+namespace airr {
+
+// A convex polygon (counter-clockwise, mm) or, with no vertices, a circle of `diameter_mm`.
+struct aperture {
+  polygon2 polygon;
+  double diameter_mm = 0;
+
+  double area() const;
+  double perimeter() const;
+};
+
+// F(f) in closed form: the polygon's sum over its edges (from the divergence theorem), the
+// circle's Airy amplitude.
+double far_field_intensity(const aperture& a, const glm::dvec2& f);
+
+// A spatial frequency drawn from |F(f)|^2 over |f| < f_max (0: 64 / sqrt(area), past which less
+// than about 1% of the light goes), by rejection from min(area^2, (perimeter / (2 pi |f|))^2),
+// which bounds it.
+glm::dvec2 sample_far_field(const aperture& a, pcg32& rng, double f_max = 0);
+
+// The default cut-off of sample_far_field.
+double far_field_reach(const aperture& a);
+
+// `w` (a unit direction, z > 0 the side it leaves to) moved by the spread: its x, y direction
+// cosines shifted by wavelength_mm f. Empty when that would leave no direction (evanescent).
+std::optional<glm::dvec3> diffracted(const glm::dvec3& w, const glm::dvec2& f, double wavelength_mm);
+
+}  // namespace airr

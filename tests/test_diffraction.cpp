@@ -1,0 +1,150 @@
+// Fraunhofer diffraction by an aperture: the polygon's far field in closed form is the square's
+// sinc^2 x sinc^2, the sampled far fields of a square and a circle follow the analytic sinc^2 and
+// Airy patterns (chi-square), and a prism sheet's retroreflected spread scales with wavelength
+// over pitch.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "airr/core/geometry.hpp"
+#include "airr/models/diffraction.hpp"
+#include "airr/models/prism_sheet.hpp"
+#include "chi_square.hpp"
+
+using namespace airr;
+
+namespace {
+
+double sinc(double u) { return std::abs(u) < 1e-12 ? 1.0 : std::sin(u) / u; }
+
+// The square of side a about the origin: |F|^2 = a^4 sinc^2(pi a fx) sinc^2(pi a fy).
+aperture square(double a) { return {{{-a / 2, -a / 2}, {a / 2, -a / 2}, {a / 2, a / 2}, {-a / 2, a / 2}}}; }
+
+double square_intensity(double a, const glm::dvec2& f) {
+  return std::pow(a, 4) * std::pow(sinc(pi * a * f.x) * sinc(pi * a * f.y), 2);
+}
+
+// Integral of sinc^2(pi a x) dx over [x0, x1], by Simpson's rule on 200 intervals.
+double sinc2_integral(double a, double x0, double x1) {
+  const int n = 200;
+  const double h = (x1 - x0) / n;
+  double s = 0;
+  for (int i = 0; i <= n; ++i) {
+    const double w = i == 0 || i == n ? 1 : (i % 2 ? 4 : 2);
+    s += w * std::pow(sinc(pi * a * (x0 + i * h)), 2);
+  }
+  return s * h / 3;
+}
+
+}  // namespace
+
+TEST(Diffraction, PolygonFarFieldIsTheSquaresSincSquared) {
+  const double a = 0.3;
+  pcg32 rng(1, 1);
+  for (int i = 0; i < 1000; ++i) {
+    const glm::dvec2 f((rng.next_double() - 0.5) * 40, (rng.next_double() - 0.5) * 40);
+    const double expected = square_intensity(a, f);
+    EXPECT_NEAR(far_field_intensity(square(a), f), expected, 1e-9 * std::pow(a, 4)) << f.x << " " << f.y;
+  }
+  EXPECT_DOUBLE_EQ(far_field_intensity(square(a), {0, 0}), std::pow(a, 4));
+  // A triangle's far field carries its area (Parseval): the integral of |F|^2 over a wide grid.
+  const aperture triangle{{{0, 0}, {0.2, 0}, {0.05, 0.15}}};
+  double sum = 0;
+  const double h = 0.25, reach = 400;
+  for (double fx = -reach; fx < reach; fx += h) {
+    for (double fy = -reach; fy < reach; fy += h) sum += far_field_intensity(triangle, {fx + h / 2, fy + h / 2});
+  }
+  EXPECT_NEAR(sum * h * h / triangle.area(), 1.0, 0.01);
+}
+
+// Samples within the central 6 x 6 lobes, binned by half lobes, against the analytic masses.
+TEST(Diffraction, SampledSquareFarFieldFollowsSincSquared) {
+  const double a = 0.2;
+  const aperture sq = square(a);
+  const int cells = 12;
+  const double lo = -3 / a, width = 6 / a / cells;
+  std::vector<double> counts(std::size_t(cells * cells), 0.0);
+  pcg32 rng(7, 3);
+  for (int i = 0; i < 200000; ++i) {
+    const glm::dvec2 f = sample_far_field(sq, rng);
+    const int x = int(std::floor((f.x - lo) / width)), y = int(std::floor((f.y - lo) / width));
+    if (x >= 0 && y >= 0 && x < cells && y < cells) counts[std::size_t(y * cells + x)] += 1;
+  }
+  double inside = 0;
+  for (double c : counts) inside += c;
+  std::vector<double> mass(static_cast<std::size_t>(cells), 0.0), expected;
+  for (int k = 0; k < cells; ++k) mass[std::size_t(k)] = sinc2_integral(a, lo + k * width, lo + (k + 1) * width);
+  double total = 0;
+  for (double mx : mass) {
+    for (double my : mass) total += mx * my;
+  }
+  for (int y = 0; y < cells; ++y) {
+    for (int x = 0; x < cells; ++x) expected.push_back(inside * mass[std::size_t(x)] * mass[std::size_t(y)] / total);
+  }
+  const test::chi_square_result r = test::chi_square(counts, expected);
+  std::printf("square: %.0f of 200000 in the central lobes, chi-square %.1f on %d dof, p = %.3f\n", inside, r.statistic,
+              r.dof, r.p_value);
+  EXPECT_GT(r.p_value, 1e-3);
+}
+
+// Rings of |f| within the Airy pattern's third dark ring, against the encircled energy
+// 1 - J0(x)^2 - J1(x)^2, x = pi D |f|.
+TEST(Diffraction, SampledCircleFarFieldFollowsAiry) {
+  const double d = 0.15;
+  const aperture circle{{}, d};
+  auto encircled = [&](double r) {
+    const double x = pi * d * r;
+    return 1 - std::pow(std::cyl_bessel_j(0.0, x), 2) - std::pow(std::cyl_bessel_j(1.0, x), 2);
+  };
+  const double reach = 3.24 / d;  // third dark ring: x = 10.17
+  const int rings = 40;
+  std::vector<double> counts(std::size_t(rings), 0.0), expected;
+  pcg32 rng(5, 9);
+  double inside = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const double r = glm::length(sample_far_field(circle, rng));
+    if (r >= reach) continue;
+    counts[std::size_t(r / reach * rings)] += 1;
+    inside += 1;
+  }
+  for (int k = 0; k < rings; ++k) {
+    expected.push_back(inside * (encircled(reach * (k + 1) / rings) - encircled(reach * k / rings)) / encircled(reach));
+  }
+  const test::chi_square_result r = test::chi_square(counts, expected);
+  std::printf("circle: %.0f of 200000 inside the third dark ring (Airy: %.4f), chi-square %.1f on %d dof, p = %.3f\n",
+              inside, encircled(reach), r.statistic, r.dof, r.p_value);
+  EXPECT_GT(r.p_value, 1e-3);
+  EXPECT_NEAR(inside / 200000, encircled(reach), 0.005);
+}
+
+// The median angle between a retroreflected ray and the exact reversal: doubling the pitch halves
+// it, doubling the wavelength doubles it.
+TEST(Diffraction, PrismSheetSpreadScalesWithWavelengthOverPitch) {
+  auto median_spread = [](double pitch, double wavelength) {
+    prism_sheet_geometry g;
+    g.pitch_mm = pitch;
+    g.wavelength_nm = wavelength;
+    pcg32 rng(2, 8);
+    const glm::dvec3 wi = glm::normalize(glm::dvec3(0.1, 0.05, 1));
+    std::vector<double> angles;
+    while (angles.size() < 20000) {
+      const prism_path p =
+          trace_prism_sheet(g, wi, prism_cell_point(g, {rng.next_double(), rng.next_double()}), rng.next_double(), rng);
+      if (p.fate == prism_fate::retroreflected && p.face_reflections == 3 && p.front_reflections == 0) {
+        angles.push_back(std::acos(std::min(1.0, glm::dot(p.wo, wi))));
+      }
+    }
+    std::nth_element(angles.begin(), angles.begin() + angles.size() / 2, angles.end());
+    return angles[angles.size() / 2];
+  };
+  const double base = median_spread(0.1, 550), coarse = median_spread(0.2, 550), red = median_spread(0.1, 1100);
+  std::printf("median spread: %.3f mrad at 0.1 mm and 550 nm, %.3f at 0.2 mm, %.3f at 1100 nm (lambda / pitch %.1f)\n",
+              1e3 * base, 1e3 * coarse, 1e3 * red, 550e-6 / 0.1 * 1e3);
+  EXPECT_NEAR(coarse / base, 0.5, 0.03);
+  EXPECT_NEAR(red / base, 2.0, 0.1);
+  EXPECT_GT(base, 0.3 * 550e-6 / 0.1);  // of the order of lambda / pitch
+  EXPECT_LT(base, 3 * 550e-6 / 0.1);
+}
