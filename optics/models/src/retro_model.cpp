@@ -1,6 +1,7 @@
 #include "airr/models/retro_model.hpp"
 
 #include "airr/core/error.hpp"
+#include "airr/models/bead_sheet.hpp"
 #include "airr/models/prism_sheet.hpp"
 #include "airr/models/retro_microfacet.hpp"
 #include "airr/models/retro_sinc_shift.hpp"
@@ -43,7 +44,8 @@ const retro_model_kind& ideal_retro_kind() {
 // The registration: every model the scene file can name, in the order the designer lists them.
 const std::vector<const retro_model_kind*>& retro_model_kinds() {
   static const std::vector<const retro_model_kind*> kinds = {&ideal_retro_kind(), &sinc_shift_retro_kind(),
-                                                             &microfacet_retro_kind(), &prism_sheet_retro_kind()};
+                                                             &microfacet_retro_kind(), &prism_sheet_retro_kind(),
+                                                             &bead_sheet_retro_kind()};
   return kinds;
 }
 
