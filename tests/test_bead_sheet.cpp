@@ -10,15 +10,11 @@
 #include "airr/core/geometry.hpp"
 #include "airr/models/bead_sheet.hpp"
 #include "airr/models/prism_sheet.hpp"
+#include "test_helpers.hpp"
 
 using namespace airr;
 
 namespace {
-
-glm::dvec3 direction(double theta_deg, double phi_deg) {
-  const double t = radians(theta_deg), p = radians(phi_deg);
-  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
-}
 
 // The share of light returned within `cone` (rad) of the exact reversal.
 template <typename Trace>
@@ -42,8 +38,8 @@ TEST(BeadSheet, NoLightIsLostByALosslessMirrorSheet) {
     double sum = 0, lost = 0;
     const int n = 20000;
     for (int i = 0; i < n; ++i) {
-      const bead_path p =
-          trace_bead_sheet(g, direction(theta, 11), bead_cell_point(g, {rng.next_double(), rng.next_double()}), rng);
+      const bead_path p = trace_bead_sheet(g, test::unit_direction(theta, 11),
+                                           bead_cell_point(g, {rng.next_double(), rng.next_double()}), rng);
       sum += p.weight;
       lost += p.lost;
       if (!p.lost) EXPECT_GT(p.wo.z, 0.0);
@@ -100,7 +96,7 @@ TEST(BeadSheet, ReturnsLightOverAWiderRangeOfIncidenceThanAPrismSheet) {
   const double cone = radians(2);
   double bead_half = -1, prism_half = -1, bead_5 = 0, prism_5 = 0;
   for (double theta = 0; theta <= 80; theta += 5) {
-    const glm::dvec3 wi = direction(theta, 7);
+    const glm::dvec3 wi = test::unit_direction(theta, 7);
     const double b = returned_within(wi, cone, 20000, bead_trace), p = returned_within(wi, cone, 20000, prism_trace);
     if (theta == 5) bead_5 = b, prism_5 = p;
     if (theta > 5 && bead_half < 0 && b < 0.5 * bead_5) bead_half = theta;

@@ -94,6 +94,23 @@ render_snapshot render_to(const scene& s, std::uint64_t spp, int threads) {
   return session.wait_for(0, spp);
 }
 
+double centre_mean(const render_snapshot& snap, int half, int channel) {
+  double sum = 0;
+  int n = 0;
+  for (int y = snap.height / 2 - half; y < snap.height / 2 + half; ++y) {
+    for (int x = snap.width / 2 - half; x < snap.width / 2 + half; ++x) {
+      sum += (*snap.rgb)[3 * (std::size_t(y) * snap.width + x) + std::size_t(channel)];
+      ++n;
+    }
+  }
+  return sum / n;
+}
+
+glm::dvec3 unit_direction(double theta_deg, double phi_deg) {
+  const double t = radians(theta_deg), p = radians(phi_deg);
+  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
+}
+
 centroid luminance_centroid(const render_snapshot& snap) {
   centroid c;
   for (int y = 0; y < snap.height; ++y) {

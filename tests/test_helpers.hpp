@@ -57,6 +57,12 @@ scene random_general_layout(pcg32& rng, double source_mm = 4.0);
 // Renders to exactly `spp` samples per pixel.
 render_snapshot render_to(const scene& s, std::uint64_t spp, int threads = 0);
 
+// The mean of one channel over the (2 half)^2 pixels around the image's centre.
+double centre_mean(const render_snapshot& snap, int half, int channel = 1);
+
+// The unit direction at polar angle theta and azimuth phi (degrees) about +z.
+glm::dvec3 unit_direction(double theta_deg, double phi_deg);
+
 struct centroid {
   double x = 0, y = 0, total = 0;
 };

@@ -6,22 +6,6 @@
 
 using namespace airr;
 
-namespace {
-
-double centre_radiance(const render_snapshot& snap, int half) {
-  double sum = 0;
-  int n = 0;
-  for (int y = snap.height / 2 - half; y < snap.height / 2 + half; ++y) {
-    for (int x = snap.width / 2 - half; x < snap.width / 2 + half; ++x) {
-      sum += (*snap.rgb)[3 * (std::size_t(y) * snap.width + x) + 1];
-      ++n;
-    }
-  }
-  return sum / n;
-}
-
-}  // namespace
-
 TEST(PresetsRender, BrightnessFallsWithTiltAsMuDoes) {
   for (const char* name : {"rf-ay", "rf-an"}) {
     const sheet_preset preset = load_preset(name);
@@ -33,7 +17,7 @@ TEST(PresetsRender, BrightnessFallsWithTiltAsMuDoes) {
       s.sheet().pose.pitch_deg = preset.theta_deg[i];
       s.sheet().model.type = "sinc_shift";
       airr::set_model_value(s.sheet().model, "preset", name);
-      const double l = centre_radiance(test::render_to(s, 32), 3);
+      const double l = test::centre_mean(test::render_to(s, 32), 3);
       const double expected = s.source.intensity * 0.25 * preset.mu[i];
       EXPECT_NEAR(l, expected, 0.03 * expected) << name << " tilt " << preset.theta_deg[i];
       EXPECT_LT(l, previous) << name << " tilt " << preset.theta_deg[i];

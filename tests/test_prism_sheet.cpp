@@ -13,21 +13,13 @@
 #include "airr/models/prism_sheet.hpp"
 #include "airr/models/shift_table.hpp"
 #include "chi_square.hpp"
+#include "test_helpers.hpp"
 
 using namespace airr;
 
 namespace {
 
-using polygon = std::vector<glm::dvec2>;
-
-double area(const polygon& p) {
-  double a = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    const glm::dvec2 &u = p[i], &v = p[(i + 1) % p.size()];
-    a += u.x * v.y - u.y * v.x;
-  }
-  return 0.5 * std::abs(a);
-}
+using polygon = polygon2;
 
 // The part of convex `subject` inside convex, counter-clockwise `clip` (Sutherland-Hodgman).
 polygon clip_convex(polygon subject, const polygon& clip) {
@@ -61,12 +53,7 @@ double effective_area(const glm::dvec3& d) {
   const glm::dvec2 q = glm::dvec2(d) * (depth / d.z);  // apex (0, 0, -depth) + s d at z = 0
   polygon image;
   for (const glm::dvec2& p : t) image.push_back(2.0 * q - p);
-  return area(clip_convex(image, t)) / area(t);
-}
-
-glm::dvec3 direction(double theta_deg, double phi_deg) {
-  const double t = radians(theta_deg), p = radians(phi_deg);
-  return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
+  return polygon_area(clip_convex(image, t)) / polygon_area(t);
 }
 
 struct fates {
@@ -114,7 +101,8 @@ TEST(PrismSheet, EffectiveAreaOfTheCubeCorner) {
     // The table's cube in air: the ray's angle to the sheet normal is its internal angle.
     double mean = 0;
     const int steps = 720;
-    for (int k = 0; k < steps; ++k) mean += effective_area(-direction(table.theta_deg[i], 360.0 * (k + 0.5) / steps));
+    for (int k = 0; k < steps; ++k)
+      mean += effective_area(-test::unit_direction(table.theta_deg[i], 360.0 * (k + 0.5) / steps));
     mean /= steps;
     EXPECT_NEAR(mean, table.retro_fraction[i], 0.004) << table.theta_deg[i] << " deg";
   }
@@ -135,7 +123,7 @@ TEST(PrismSheet, RetroreflectedFractionIsTheEffectiveArea) {
     g.face_reflectance = 1;
     for (const double theta : {0.0, 10.0, 25.0, 40.0}) {
       for (const double phi : {0.0, 17.0, 30.0, 90.0}) {
-        const glm::dvec3 wi = direction(theta, phi);
+        const glm::dvec3 wi = test::unit_direction(theta, phi);
         const int n = 20000;
         const fates f = trace_many(g, wi, n, std::uint64_t(theta * 100 + phi));
         // Inside: the refracted direction; out again, the front surface passes 1 - F of it.
@@ -177,7 +165,7 @@ TEST(PrismSheet, ShiftsFollowTheCornerCubeShiftTable) {
     std::vector<double> counts(std::size_t(bins), 0.0);
     double kept = 0;
     while (kept < 20000) {
-      const glm::dvec3 wi = direction(table.theta_deg[row], 360 * rng.next_double());
+      const glm::dvec3 wi = test::unit_direction(table.theta_deg[row], 360 * rng.next_double());
       const glm::dvec2 entry = prism_cell_point(g, {rng.next_double(), rng.next_double()});
       const prism_path p = trace_prism_sheet(g, wi, entry, rng.next_double(), rng);
       if (p.fate != prism_fate::retroreflected) continue;
@@ -199,7 +187,7 @@ TEST(PrismSheet, ShiftsFollowTheCornerCubeShiftTable) {
 TEST(PrismSheet, NoLightIsLostByALosslessSheet) {
   prism_sheet_geometry g;  // index 1.5, TIR faces
   for (const double theta : {0.0, 20.0, 40.0, 60.0}) {
-    const fates f = trace_many(g, direction(theta, 13), 20000, 5);
+    const fates f = trace_many(g, test::unit_direction(theta, 13), 20000, 5);
     const double total = (f.front + f.retro + f.stray + f.transmitted) / f.n;
     std::printf("theta %g: front %.3f retro %.3f stray %.3f transmitted %.3f lost %.0f\n", theta, f.front / f.n,
                 f.retro / f.n, f.stray / f.n, f.transmitted / f.n, f.lost);
@@ -217,7 +205,7 @@ TEST(PrismSheet, EffectiveApertureHasTheEffectiveArea) {
   const double triangle = g.triangle_side_mm() * g.pitch_mm / 2;
   pcg32 rng(4, 4);
   for (int i = 0; i < 50; ++i) {
-    const glm::dvec3 d = -direction(40 * rng.next_double(), 360 * rng.next_double());
+    const glm::dvec3 d = -test::unit_direction(40 * rng.next_double(), 360 * rng.next_double());
     // The array's triangles of pointing +1 point along +y at azimuth 0, the others along -y.
     const double up = effective_area({d.y, -d.x, d.z}), down = effective_area({-d.y, d.x, d.z});
     EXPECT_NEAR(polygon_area(effective_aperture(g, d, 1)) / triangle, up, 1e-9);

@@ -13,22 +13,10 @@ using namespace airr;
 
 namespace {
 
-double centre_green(const render_snapshot& snap, int half) {
-  double sum = 0;
-  int n = 0;
-  for (int y = snap.height / 2 - half; y < snap.height / 2 + half; ++y) {
-    for (int x = snap.width / 2 - half; x < snap.width / 2 + half; ++x) {
-      sum += (*snap.rgb)[3 * (std::size_t(y) * snap.width + x) + 1];
-      ++n;
-    }
-  }
-  return sum / n;
-}
-
 // Centroid of the pixels brighter than half the centre's: the aerial image without the stray
 // light around it.
 glm::dvec2 image_centroid(const render_snapshot& snap) {
-  const double half = 0.5 * centre_green(snap, 3);
+  const double half = 0.5 * test::centre_mean(snap, 3);
   glm::dvec2 sum(0);
   double n = 0;
   for (int y = 0; y < snap.height; ++y) {
@@ -67,7 +55,7 @@ TEST(PrismSheetRender, TheAerialImageFormsAtTheMirrorImageAsBrightAsTheSheetRetu
     const prism_path p = trace_prism_sheet(g, wi, entry, rng.next_double(), rng);
     if (p.fate == prism_fate::retroreflected) returned += p.weight;
   }
-  const double ratio = centre_green(b, 3) / centre_green(a, 3);
+  const double ratio = test::centre_mean(b, 3) / test::centre_mean(a, 3);
   std::printf("prism sheet at %.1f deg: centre %.4f of the ideal sheet's; it retroreflects %.4f\n",
               degrees(std::acos(wi.z)), ratio, returned / n);
   EXPECT_NEAR(ratio, returned / n, 0.02);

@@ -159,10 +159,7 @@ bead_path trace_bead_sheet(const bead_sheet_geometry& g, const glm::dvec3& wi, c
 
 bead_sheet_retro::bead_sheet_retro(const bead_sheet_geometry& g) : g_(g) {
   const auto check = [](const char* name, double v, double lo, double hi) {
-    if (!(v >= lo && v <= hi)) {
-      throw input_error(std::string("bead_sheet model: ") + name + ": " + number_text(v) + " is outside [" +
-                        number_text(lo) + ", " + number_text(hi) + "]");
-    }
+    check_model_number("bead_sheet", name, v, lo, hi);
   };
   check("diameter_mm", g.diameter_mm, 1e-4, 10);
   check("index", g.index, 1, 3);

@@ -179,4 +179,11 @@ void model_value_from_json(retro_model_params& p, const model_fields& fields, co
   set_model_value(p, fields, key, v.get<std::string>());
 }
 
+void check_model_number(const std::string& model, const std::string& name, double v, double lo, double hi) {
+  if (!(v >= lo && v <= hi)) {
+    throw input_error(model + " model: " + name + ": " + number_text(v) + " is outside [" + number_text(lo) + ", " +
+                      number_text(hi) + "]");
+  }
+}
+
 }  // namespace airr

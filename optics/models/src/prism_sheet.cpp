@@ -244,10 +244,7 @@ prism_path trace_prism_sheet(const prism_sheet_geometry& g, const glm::dvec3& wi
 
 prism_sheet_retro::prism_sheet_retro(const prism_sheet_geometry& g) : g_(g) {
   const auto check = [](const char* name, double v, double lo, double hi) {
-    if (!(v >= lo && v <= hi)) {
-      throw input_error(std::string("prism_sheet model: ") + name + ": " + number_text(v) + " is outside [" +
-                        number_text(lo) + ", " + number_text(hi) + "]");
-    }
+    check_model_number("prism_sheet", name, v, lo, hi);
   };
   check("pitch_mm", g.pitch_mm, 1e-4, 10);
   check("index", g.index, 1, 3);

@@ -173,9 +173,7 @@ microfacet_retro::microfacet_retro(const microfacet_params& p)
       eta_(p.eta),
       mu_(p.mu) {
   const auto check = [](const char* name, double v, double lo, double hi) {
-    if (!(v >= lo && v <= hi))
-      throw input_error(std::string("microfacet model: ") + name + ": " + number_text(v) + " is outside [" +
-                        number_text(lo) + ", " + number_text(hi) + "]");
+    check_model_number("microfacet", name, v, lo, hi);
   };
   check("alpha_surface", alpha_surface_, 0, 1);
   check("alpha_internal", alpha_internal_, 0, 1);

@@ -67,6 +67,10 @@ class model_values {
 void set_model_value(retro_model_params& p, const model_fields& fields, const std::string& key,
                      std::optional<param_value> value);
 
+// A model's constructor's check of one number, for models built without a field table; throws
+// input_error "<model> model: <name>: <v> is outside [lo, hi]".
+void check_model_number(const std::string& model, const std::string& name, double v, double lo, double hi);
+
 // Range and choice checks of every stored value; throws input_error "<where>.<key>: <problem>".
 void validate_model_values(const retro_model_params& p, const model_fields& fields, const std::string& where);
 
