@@ -138,16 +138,12 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
     }
     const double bx = double(best % std::size_t(w)) + 0.5, by = double(best / std::size_t(w)) + 0.5;
     const auto centre = trace_ideal(parts, bx, by);
-    const auto right = trace_ideal(parts, bx + 0.5, by), left = trace_ideal(parts, bx - 0.5, by);
-    const auto down = trace_ideal(parts, bx, by + 0.5), up = trace_ideal(parts, bx, by - 0.5);
     model_bin b;
     b.pixel = {bx, by};
     b.theta_deg = centre->theta_deg;
     b.chief = chief_ray_through(s, centre->aerial, sheet);
     b.sampler = m->model->at_incidence(b.chief.wi);
-    if (right && left && down && up) {
-      b.jitter_mm = glm::dmat2(right->display - left->display, down->display - up->display);
-    }
+    b.jitter_mm = pixel_footprint(parts, bx, by);
     m->bins.push_back(std::move(b));
   }
   auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };

@@ -20,6 +20,13 @@ std::optional<ideal_path> trace_ideal(const ideal_parts& parts, double px, doubl
   return ideal_path{part_local(parts.src, r.landing), *p, r.towards_display, wi, polar_angle_deg(wi)};
 }
 
+glm::dmat2 pixel_footprint(const ideal_parts& parts, double px, double py) {
+  const auto right = trace_ideal(parts, px + 0.5, py), left = trace_ideal(parts, px - 0.5, py);
+  const auto down = trace_ideal(parts, px, py + 0.5), up = trace_ideal(parts, px, py - 0.5);
+  if (!(right && left && down && up)) return glm::dmat2(0.0);
+  return glm::dmat2(right->display - left->display, down->display - up->display);
+}
+
 static pixel_path pixel_ideal(const ideal_parts& parts, const emission_profile* emission, double x, double y) {
   const auto path = trace_ideal(parts, x, y);
   if (!path) return {};

@@ -35,11 +35,7 @@ bool bin_still_holds(const scene& s, const ideal_parts& parts, const model_bin& 
   if (std::abs(chief.rr_distance_mm - b.chief.rr_distance_mm) > max_distance_change * b.chief.rr_distance_mm) {
     return false;
   }
-  const auto right = trace_ideal(parts, b.pixel.x + 0.5, b.pixel.y),
-             left = trace_ideal(parts, b.pixel.x - 0.5, b.pixel.y);
-  const auto down = trace_ideal(parts, b.pixel.x, b.pixel.y + 0.5), up = trace_ideal(parts, b.pixel.x, b.pixel.y - 0.5);
-  glm::dmat2 jitter(0.0);
-  if (right && left && down && up) jitter = glm::dmat2(right->display - left->display, down->display - up->display);
+  const glm::dmat2 jitter = pixel_footprint(parts, b.pixel.x, b.pixel.y);
   return frobenius(jitter - b.jitter_mm) <= max_footprint_change * frobenius(b.jitter_mm);
 }
 

@@ -43,6 +43,10 @@ struct ideal_path {
 
 std::optional<ideal_path> trace_ideal(const ideal_parts& parts, double px, double py);
 
+// The display-plane offset (u, v) per unit of pixel jitter at pixel point (px, py) (columns: x, y),
+// from the ideal paths half a pixel either side; zero where one of them misses.
+glm::dmat2 pixel_footprint(const ideal_parts& parts, double px, double py);
+
 // What a pixel needs of its ideal path.
 struct pixel_path {
   bool ok = false;

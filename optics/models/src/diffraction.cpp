@@ -13,8 +13,11 @@ double aperture::perimeter() const { return polygon.empty() ? pi * diameter_mm :
 
 double far_field_reach(const aperture& a) { return 64 / std::sqrt(a.area()); }
 
-double far_field_intensity(const aperture& a, const glm::dvec2& f) {
-  const double area = a.area(), f2 = glm::dot(f, f);
+namespace {
+
+// |F(f)|^2 of an aperture of the given area (worked out once per draw, not per trial).
+double intensity(const aperture& a, double area, const glm::dvec2& f) {
+  const double f2 = glm::dot(f, f);
   if (a.polygon.empty()) {
     const double x = pi * a.diameter_mm * std::sqrt(f2);
     const double amplitude = x < 1e-9 ? 1.0 : 2 * std::cyl_bessel_j(1.0, x) / x;
@@ -35,6 +38,10 @@ double far_field_intensity(const aperture& a, const glm::dvec2& f) {
   return std::norm(sum) / (4 * pi * pi * f2 * f2);
 }
 
+}  // namespace
+
+double far_field_intensity(const aperture& a, const glm::dvec2& f) { return intensity(a, a.area(), f); }
+
 glm::dvec2 sample_far_field(const aperture& a, pcg32& rng, double f_max) {
   const double area = a.area(), perimeter = a.perimeter();
   if (!(f_max > 0)) f_max = far_field_reach(a);
@@ -50,7 +57,7 @@ glm::dvec2 sample_far_field(const aperture& a, pcg32& rng, double f_max) {
     const double angle = 2 * pi * rng.next_double();
     const glm::dvec2 f(r * std::cos(angle), r * std::sin(angle));
     const double bound = r <= f0 ? area * area : std::pow(perimeter / (2 * pi * r), 2);
-    if (rng.next_double() * bound < far_field_intensity(a, f)) return f;
+    if (rng.next_double() * bound < intensity(a, area, f)) return f;
   }
 }
 
