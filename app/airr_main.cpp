@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   add_psf_command(app);
   add_sweep_command(app);
   add_fit_command(app);
+  add_predict_preset_command(app);
   add_viewzone_command(app);
   add_export_gltf_command(app);
   try {

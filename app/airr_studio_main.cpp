@@ -29,6 +29,8 @@ struct options {
   int bench_edits = 0;
   int threads = 0;
   std::string fit_dir;
+  bool predict_preset = false;
+  std::uint64_t predict_samples = 1000000;
   std::string save_as;
   std::string export_bokeh;        // after a scripted run, the Bokeh tab's pictures (and the plot data beside them)
   std::vector<std::string> edits;  // applied as one designer edit after the scripted frames
@@ -89,8 +91,15 @@ int main(int argc, char** argv) {
   cli.add_option("--bench-edits", opt.bench_edits, "Measure edit-to-image latency over this many edits, then exit")
       ->check(CLI::Range(1, 100000));
   cli.add_option("--threads", opt.threads, "Tracer threads (0: all cores)")->check(CLI::Range(0, 1024));
-  cli.add_option("--fit", opt.fit_dir,
-                 "Open the fit window and fit this data directory (scripted runs apply the result)");
+  auto* fit_option = cli.add_option("--fit", opt.fit_dir,
+                                    "Open the fit window and fit this data directory (scripted runs apply the result)");
+  cli.add_flag("--predict-preset", opt.predict_preset,
+               "Open the fit window and predict a preset from the first sheet's model (scripted runs apply the "
+               "result)")
+      ->excludes(fit_option);
+  cli.add_option("--predict-samples", opt.predict_samples,
+                 "Samples per measurement of --predict-preset (default 1000000; fewer: quicker and rougher)")
+      ->check(CLI::Range(std::uint64_t(10000), std::uint64_t(100000000)));
   cli.add_option("--save-as", opt.save_as, "After a scripted run, save the scene to this file");
   cli.add_option("--export-bokeh", opt.export_bokeh,
                  "After a scripted run, export the bokeh views as PNG to this file and siblings, and the plot data "
@@ -200,6 +209,15 @@ int main(int argc, char** argv) {
       st.fit_job_ = std::make_unique<airr::ui::fit_job>(opt.fit_dir);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "error: %s\n", e.what());
+      return 1;
+    }
+  }
+  if (opt.predict_preset) {
+    st.show_fit = true;
+    st.predict_samples = opt.predict_samples;
+    airr::ui::start_preset_prediction(st);
+    if (!st.fit_job_) {
+      std::fprintf(stderr, "error: %s\n", st.fit_error.c_str());
       return 1;
     }
   }

@@ -261,6 +261,32 @@ TEST(Gui, FitFromTheDesignerAppliesThePreset) {
   EXPECT_NEAR(preset.at("mu")[9].get<double>(), 0.10973, 0.05 * 0.10973);
 }
 
+TEST(Gui, PredictedPresetFromTheSheetsModelIsApplied) {
+  // The designer predicts a preset for a prism sheet traced as geometry (the shipped RF-AN-like
+  // sheet, fewer samples than the default), applies it and saves the scene: the sheet's model is
+  // now the sinc-shift model with the predicted preset, whose a at tilt 0 lies near the 1.25 per mm
+  // `airr predict-preset` gives with its default samples.
+  test::temp_dir dir;
+  const std::string scene_out = dir.file("predicted.json"), shot = dir.file("studio.png");
+  const std::string sheet =
+      " --set retroreflectors.0.model.type=prism_sheet --set retroreflectors.0.model.pitch_mm=0.16"
+      " --set retroreflectors.0.model.index=1.5046 --set retroreflectors.0.model.coating=metal"
+      " --set retroreflectors.0.model.face_reflectance=0.83";
+  const studio_run run = run_studio(dir, default_scene_path() + sheet +
+                                             " --predict-preset --predict-samples 100000 --frames 5 --save-as " +
+                                             scene_out + " --screenshot " + shot);
+  ASSERT_EQ(run.status, 0) << run.log;
+  const auto scene_json = nlohmann::json::parse(std::ifstream(scene_out));
+  const auto& model = scene_json.at("retroreflectors").at(0).at("model");
+  EXPECT_EQ(model.at("type"), "sinc_shift");
+  const auto preset = nlohmann::json::parse(std::ifstream(model.at("preset").get<std::string>()));
+  EXPECT_EQ(preset.at("provenance").at("source"), "airr predict-preset");
+  EXPECT_EQ(preset.at("provenance").at("sheet").at("model").at("pitch_mm"), 0.16);
+  EXPECT_NEAR(preset.at("a_per_mm")[0].get<double>(), 1.25, 0.15);
+  EXPECT_TRUE(std::filesystem::exists(dir.file("config/airr-studio/predictions/prism_sheet_bench/fit.json")));
+  EXPECT_GT(read_png(shot).width, 0);
+}
+
 // A housing prop (an open box around the device) appears in the side and top views as its box and
 // in the 3D view, which shows the parts shaded (the sheet's green) and the light paths (yellow).
 TEST(Gui, HousingPropShowsInTheLayoutViews) {

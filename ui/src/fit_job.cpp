@@ -6,9 +6,22 @@ namespace airr::ui {
 
 fit_job::fit_job(const std::string& data_dir) : dir_(data_dir) {
   analysis::fit_data data = analysis::load_fit_data(data_dir);
-  worker_ = std::thread([this, data = std::move(data)] {
+  start([data = std::move(data)](const analysis::fit_progress_callback& progress) {
+    return analysis::fit_sheet(data, {}, progress);
+  });
+}
+
+fit_job::fit_job(const sheet_description& sheet, const std::string& data_dir, const analysis::prediction_params& p)
+    : dir_(data_dir) {
+  start([sheet, data_dir, p](const analysis::fit_progress_callback& progress) {
+    return analysis::predict_preset(sheet, analysis::synthesis_bench(scene{}), data_dir, p, progress);
+  });
+}
+
+void fit_job::start(work w) {
+  worker_ = std::thread([this, w = std::move(w)] {
     try {
-      auto r = analysis::fit_sheet(data, {}, [this](const analysis::fit_progress& p) {
+      auto r = w([this](const analysis::fit_progress& p) {
         std::lock_guard lock(mutex_);
         progress_ = p;
         return !cancel_.load();

@@ -1,5 +1,7 @@
-// The fit window: a sheet preset from measurements (the same fit as `airr fit`), run in the
-// background, saved as a preset file and applied to the scene.
+// The fit window: a sheet preset from measurements (the same fit as `airr fit`) or predicted from
+// the sheet's model (as `airr predict-preset`), run in the background, saved as a preset file and
+// applied to the scene.
+#include <algorithm>
 #include <filesystem>
 
 #include <imgui.h>
@@ -18,6 +20,33 @@ static void start_fit(studio& st) {
     st.fit_job_ = std::make_unique<fit_job>(st.fit_dir);
     st.fit_saved_path.clear();
     st.status = "fitting " + st.fit_dir;
+  } catch (const std::exception& e) {
+    st.fit_job_.reset();
+    st.fit_error = e.what();
+  }
+}
+
+void start_preset_prediction(studio& st) {
+  const retro_model_params& model = st.doc.sheet().model;
+  if (model.type == "sinc_shift") {
+    st.fit_error =
+        "the sheet's model is the sinc-shift model already; choose a sheet model to predict from "
+        "(prism_sheet, bead_sheet, ...) in the layout panel";
+    return;
+  }
+  try {
+    const sheet_description sheet{.name = "predicted " + model.type,
+                                  .note = "the designer's sheet model, predicted in the fit window",
+                                  .model = model,
+                                  .base_dir = st.doc.base_dir};
+    const std::string data_dir = (fs::path(config_dir()) / "predictions" / (model.type + "_bench")).string();
+    analysis::prediction_params p;
+    p.synthesis.samples = st.predict_samples;
+    p.fit.psf_samples = std::max<std::uint64_t>(1000, st.predict_samples / 5);
+    st.fit_job_ = std::make_unique<fit_job>(sheet, data_dir, p);
+    st.fit_saved_path.clear();
+    st.fit_dir = data_dir;
+    st.status = "predicting a preset for the sheet's " + model.type + " model";
   } catch (const std::exception& e) {
     st.fit_job_.reset();
     st.fit_error = e.what();
@@ -90,6 +119,21 @@ void draw_fit_window(studio& st) {
     }
     ImGui::SameLine();
     if (ImGui::Button("Use the example data")) st.fit_dir = asset_dir() + "/fit_example";
+    ImGui::Separator();
+    ImGui::TextWrapped(
+        "Or predict a preset from the sheet's own model (a prism or bead sheet traced as geometry): the "
+        "model is measured on the simulated bench and the preset fitted to it, as `airr predict-preset` does.");
+    const std::string& type = st.doc.sheet().model.type;
+    ImGui::BeginDisabled(type == "sinc_shift");
+    if (ImGui::Button(("Predict a preset for the " + type + " model").c_str())) {
+      st.fit_error.clear();
+      start_preset_prediction(st);
+    }
+    ImGui::EndDisabled();
+    int samples_k = int(st.predict_samples / 1000);
+    ImGui::SetNextItemWidth(8 * ImGui::GetFontSize());
+    if (ImGui::InputInt("thousand samples per measurement", &samples_k, 100, 1000))
+      st.predict_samples = std::uint64_t(std::clamp(samples_k, 10, 100000)) * 1000;
   }
   if (!st.fit_error.empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", st.fit_error.c_str());
   if (st.fit_job_ && !running) {

@@ -114,6 +114,12 @@ void draw_menu(studio& st) {
     }
     ImGui::Separator();
     if (ImGui::MenuItem("Fit a sheet preset...")) st.show_fit = true;
+    if (ImGui::MenuItem("Predict a preset from the sheet's model", nullptr, false,
+                        st.doc.sheet().model.type != "sinc_shift" && !(st.fit_job_ && st.fit_job_->running()))) {
+      st.show_fit = true;
+      st.fit_error.clear();
+      start_preset_prediction(st);
+    }
     ImGui::Separator();
     if (ImGui::MenuItem("Quit", "Ctrl+Q")) ask_or_run(st, studio::pending_action::quit);
     ImGui::EndMenu();

@@ -19,6 +19,17 @@ namespace airr {
 
 using nlohmann::json;
 
+void rebase_model_paths(retro_model_params& m, const std::string& old_dir, const std::string& new_dir) {
+  const retro_model_kind& kind = find_retro_model_kind(m.type);
+  for (auto& [key, value] : m.values) {
+    const model_field* f = find_field(kind.fields, key);
+    auto* text = std::get_if<std::string>(&value);
+    if (!f || !text) continue;
+    if (f->kind == field_kind::path || (f->kind == field_kind::preset && is_preset_path(*text)))
+      *text = rebase_path(*text, old_dir, new_dir);
+  }
+}
+
 scene rebase_scene_paths(const scene& s, const std::string& new_dir) {
   scene out = s;
   auto rebase = [&](std::string& p) { p = rebase_path(p, s.base_dir, new_dir); };
@@ -29,13 +40,7 @@ scene rebase_scene_paths(const scene& s, const std::string& new_dir) {
   for (auto& p : out.props) rebase(p.mesh);
   for (auto& r : out.retroreflectors) {
     rebase(r.mesh);
-    const retro_model_kind& kind = find_retro_model_kind(r.model.type);
-    for (auto& [key, value] : r.model.values) {
-      const model_field* f = find_field(kind.fields, key);
-      auto* text = std::get_if<std::string>(&value);
-      if (!f || !text) continue;
-      if (f->kind == field_kind::path || (f->kind == field_kind::preset && is_preset_path(*text))) rebase(*text);
-    }
+    rebase_model_paths(r.model, s.base_dir, new_dir);
   }
   out.base_dir = new_dir;
   return out;
@@ -133,8 +138,7 @@ static void read_part(json_reader& r, part_params& p) {
   if (r.has("pose")) read_pose(r.child("pose"), p.pose);
 }
 
-// `where` is the model's dotted path, e.g. "retroreflectors[0].model".
-static void read_model(json_reader r, const json& j, const std::string& where, retro_model_params& m) {
+void read_model(json_reader r, const json& j, const std::string& where, retro_model_params& m) {
   std::string type = m.type;
   r.string("type", type);
   const retro_model_kind* kind = nullptr;

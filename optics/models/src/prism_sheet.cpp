@@ -131,13 +131,18 @@ stretch_end follow(const prism_sheet_geometry& g, const std::array<glm::dvec2, 3
 
 }  // namespace
 
-polygon2 effective_aperture(const prism_sheet_geometry& g, const glm::dvec3& d, int pointing) {
+polygon2 aperture_triangle(const prism_sheet_geometry& g, int pointing) {
   // In a triangle whose f's sum to 1 the vertex opposite edge k lies along +e_k, 2/3 of the
   // height from the centroid (the apex is under the centroid).
-  const auto e = groove_normals(g);
-  polygon2 triangle, image;
+  polygon2 triangle;
+  for (const glm::dvec2& ek : groove_normals(g)) triangle.push_back(double(pointing) * 2 * g.pitch_mm / 3 * ek);
+  return triangle;
+}
+
+polygon2 effective_aperture(const prism_sheet_geometry& g, const glm::dvec3& d, int pointing) {
+  const polygon2 triangle = aperture_triangle(g, pointing);
+  polygon2 image;
   const glm::dvec2 q = glm::dvec2(d) * (g.depth_mm() / d.z);  // apex (0, 0, -depth) + s d at the ridges
-  for (const glm::dvec2& ek : e) triangle.push_back(double(pointing) * 2 * g.pitch_mm / 3 * ek);
   for (const glm::dvec2& v : triangle) image.push_back(2.0 * q - v);
   return clip_convex_polygon(image, triangle);
 }
@@ -184,12 +189,15 @@ prism_path trace_prism_sheet(const prism_sheet_geometry& g, const glm::dvec3& wi
       out.shift_mm = glm::dvec2(p) - entry;
       out.weight = weight;
       out.fate = glm::length(out.wo - wi) < 1e-9 ? prism_fate::retroreflected : prism_fate::stray;
-      if (out.fate == prism_fate::retroreflected && out.face_reflections == 3 && out.front_reflections == 0 &&
-          g.wavelength_nm > 0) {
+      if (out.face_reflections > 0 && g.wavelength_nm > 0) {
         // One cube corner's three faces: the beam leaves through the part of its aperture that
-        // retroreflects, and spreads by its far field.
-        const aperture used{effective_aperture(g, inside, first_pointing)};
-        if (used.polygon.empty()) return out;
+        // retroreflects, and spreads by its far field. Any other path's beam is narrower than
+        // the aperture triangle of the first cube corner it met: that triangle bounds its spread
+        // from below.
+        aperture used;
+        if (out.fate == prism_fate::retroreflected && out.face_reflections == 3 && out.front_reflections == 0)
+          used.polygon = effective_aperture(g, inside, first_pointing);
+        if (used.polygon.empty()) used.polygon = aperture_triangle(g, first_pointing);
         const auto spread = diffracted(out.wo, sample_far_field(used, rng), g.wavelength_nm * 1e-6);
         if (spread) {
           out.wo = *spread;

@@ -3,6 +3,7 @@
 // files, and what the panels show. The panels edit `doc`; once per frame the studio validates the
 // edit and hands it to the render session and the analysis worker.
 #include <array>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -95,6 +96,9 @@ struct studio {
   std::string fit_saved_path;
   std::unique_ptr<fit_job> fit_job_;
   bool fit_applied = false;  // scripted runs apply a finished fit once
+  // A preset predicted from the sheet's own model: the bench's samples per measurement (the fit
+  // simulates with a fifth of them).
+  std::uint64_t predict_samples = 1000000;
 
   // The viewing zone's map: 0 the visible fraction (geometric, every edit); 1 brightness, 2 mean
   // MTF, 3 stray light from the full pass, run on demand for one layout generation.
@@ -177,6 +181,9 @@ void draw_bokeh_tab(studio& st);
 // (false while the predicted plots are not yet those of the current layout).
 bool start_full_zone(studio& st);
 void draw_fit_window(studio& st);
+// Starts predicting a preset for the first sheet's model in the background (the fit window shows
+// it); sets fit_error when the model cannot be measured (a sinc-shift sheet already has a preset).
+void start_preset_prediction(studio& st);
 void save_fitted_preset(studio& st, const std::string& path);
 // Saves the preset (to config_dir()/presets unless saved already) and points the model at it.
 void apply_fitted_preset(studio& st, const sheet_preset& preset);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "airr/core/files.hpp"
+#include "airr/core/json_reader.hpp"
 #include "airr/layout/scene.hpp"
 #include "airr/layout/sheet_models.hpp"
 #include "airr/models/retro_model.hpp"
@@ -68,5 +69,11 @@ void save_scene(const scene& s, const std::string& path);
 
 // The scene with its relative paths rewritten to count from new_dir (for saving it there).
 scene rebase_scene_paths(const scene& s, const std::string& new_dir);
+// A model's path and preset-file values rewritten from old_dir to new_dir.
+void rebase_model_paths(retro_model_params& m, const std::string& old_dir, const std::string& new_dir);
+
+// Reads a model object (`j` is what `r` reads; "type" and the model's fields) into m, strictly.
+// `where` is the model's dotted path in errors, e.g. "retroreflectors[0].model".
+void read_model(json_reader r, const nlohmann::json& j, const std::string& where, retro_model_params& m);
 
 }  // namespace airr

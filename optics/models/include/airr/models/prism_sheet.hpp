@@ -26,7 +26,8 @@ struct prism_sheet_geometry {
   double face_reflectance = 0.85;  // of the metal coat, per reflection
   double azimuth_deg = 0;          // of the grooves about the sheet normal (0: one family along x)
   // Light a cube corner retroreflects spreads by the Fraunhofer pattern of the part of its
-  // aperture it used (diffraction.hpp) at this wavelength; 0: no diffraction.
+  // aperture it used (diffraction.hpp) at this wavelength, other light that met the grooves by
+  // that of the first cube corner's aperture triangle; 0: no diffraction.
   double wavelength_nm = 550;
 
   double triangle_side_mm() const;  // 2 pitch / sqrt(3)
@@ -58,6 +59,10 @@ struct prism_path {
 // choice draws from rng.
 prism_path trace_prism_sheet(const prism_sheet_geometry& g, const glm::dvec3& wi, const glm::dvec2& entry,
                              double u_front, pcg32& rng);
+
+// A cube corner's aperture triangle in the sheet plane about its centroid (mm); `pointing` as
+// below.
+polygon2 aperture_triangle(const prism_sheet_geometry& g, int pointing);
 
 // The part of a cube corner's aperture that retroreflects light going along d inside the plate
 // (d.z < 0): the aperture triangle's overlap with its image mirrored through the point where the

@@ -1,0 +1,82 @@
+#include "airr/analysis/preset_prediction.hpp"
+
+#include <filesystem>
+
+#include "airr/analysis/fit_data.hpp"
+#include "airr/analysis/fit_simulation.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/layout/psf.hpp"
+#include "airr/layout/sheet_models.hpp"
+
+namespace airr::analysis {
+
+namespace {
+
+// The share of the whole prediction the synthesis takes (it simulates the explicit sheet).
+constexpr double synthesis_share = 0.3;
+
+fit_progress_callback scaled(const fit_progress_callback& progress, double from, double to) {
+  if (!progress) return {};
+  return [=](const fit_progress& f) {
+    return progress({.stage = f.stage, .fraction = from + (to - from) * f.fraction, .eta_seconds = 0});
+  };
+}
+
+// Mean MTF over (0, 1] lp/mm of a PSF as the bench measures it (its pixel, its LSF window).
+double bench_mean_mtf(const psf_samples& psf, double lsf_window_mm) {
+  const int n = 200;
+  const auto c =
+      measured_like_mtf(psf, {.max_lp_per_mm = 1.0, .points = n + 1, .pixel_mm = 0.25}, lsf_window_mm, false);
+  double sum = 0;
+  for (int i = 1; i <= n; ++i) sum += c.mtf[i];
+  return sum / n;
+}
+
+}  // namespace
+
+fit_result predict_preset(const sheet_description& sheet, const scene& bench, const std::string& data_dir,
+                          const prediction_params& p, const fit_progress_callback& progress) {
+  synthesise_fit_data(data_dir, bench,
+                      {.model = sheet.model,
+                       .base_dir = sheet.base_dir,
+                       .name = sheet.name,
+                       .note = "the sheet " + sheet.name + " (" + sheet.model.type + ") on the simulated bench"},
+                      p.synthesis, scaled(progress, 0, synthesis_share));
+  fit_result r = fit_sheet(load_fit_data(data_dir), p.fit, scaled(progress, synthesis_share, 1));
+  r.preset.name = sheet.name;
+  r.preset.provenance["source"] = "airr predict-preset";
+  r.preset.provenance["sheet"] = {
+      {"name", sheet.name},
+      {"note", sheet.note},
+      {"model", model_values_to_json(sheet.model, find_retro_model_kind(sheet.model.type).fields)}};
+  r.preset.provenance["lsf_window_mm"] = p.synthesis.lsf_window_mm;
+  return r;
+}
+
+std::vector<prediction_agreement> compare_prediction(const sheet_description& sheet, const sheet_preset& preset,
+                                                     const scene& bench, const std::vector<double>& tilts_deg,
+                                                     const synthesis_params& p) {
+  scene setup = bench;
+  for (auto& s : setup.retroreflectors) {
+    s.model = sheet.model;
+    rebase_model_paths(s.model, sheet.base_dir, setup.base_dir);
+  }
+  std::vector<prediction_agreement> out;
+  const psf_params pp{.samples = p.samples, .seed = p.seed};
+  for (double t : tilts_deg) {
+    const scene truth = measurement_layout(setup, t, 150);
+    const psf_samples a = sample_psf(truth, make_sheet_models(truth), pp);
+    const scene model = fit_scene(setup, t, 150, interpolate_by_angle(preset.theta_deg, preset.a_per_mm, t),
+                                  preset.c_mm, interpolate_by_angle(preset.theta_deg, preset.mu, t));
+    const psf_samples b = sample_psf(model, make_sheet_models(model), pp);
+    out.push_back({.tilt_deg = t,
+                   .explicit_mean_mtf = bench_mean_mtf(a, p.lsf_window_mm),
+                   .predicted_mean_mtf = bench_mean_mtf(b, p.lsf_window_mm),
+                   .explicit_brightness = a.brightness(),
+                   .predicted_brightness = b.brightness()});
+  }
+  return out;
+}
+
+}  // namespace airr::analysis
