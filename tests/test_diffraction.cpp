@@ -148,3 +148,52 @@ TEST(Diffraction, PrismSheetSpreadScalesWithWavelengthOverPitch) {
   EXPECT_GT(base, 0.3 * 550e-6 / 0.1);  // of the order of lambda / pitch
   EXPECT_LT(base, 3 * 550e-6 / 0.1);
 }
+
+// The display's white: the spread of retroreflected light with display_rgb follows the equal
+// mixture of the three primaries' spreads (each drawn alone), binned by angle (chi-square), and
+// differs from one wavelength's.
+TEST(Diffraction, DisplayWhiteSpreadIsTheMixtureOfThePrimaries) {
+  const glm::dvec3 wi = glm::normalize(glm::dvec3(0.1, 0.05, 1));
+  auto angles = [&](diffracted_light light, double wavelength, int n, std::uint64_t seed) {
+    prism_sheet_geometry g;
+    g.light = light;
+    g.wavelength_nm = wavelength;
+    pcg32 rng(seed, 3);
+    std::vector<double> out;
+    while (int(out.size()) < n) {
+      const prism_path p =
+          trace_prism_sheet(g, wi, prism_cell_point(g, {rng.next_double(), rng.next_double()}), rng.next_double(), rng);
+      if (p.fate == prism_fate::retroreflected && p.face_reflections == 3 && p.front_reflections == 0)
+        out.push_back(std::acos(std::min(1.0, glm::dot(p.wo, wi))));
+    }
+    return out;
+  };
+  const int n = 30000, bins = 12;
+  const double bin_mrad = 1.5;  // the last bin holds everything beyond
+  auto histogram = [&](const std::vector<double>& a) {
+    std::vector<double> h(bins, 0.0);
+    for (double x : a) h[std::min(bins - 1, int(x * 1e3 / bin_mrad))] += 1;
+    return h;
+  };
+  std::vector<double> mixture(bins, 0.0);
+  for (std::size_t k = 0; k < 3; ++k) {
+    const auto h = histogram(angles(diffracted_light::single, display_primaries_nm[k], n, 10 + k));
+    for (int b = 0; b < bins; ++b) mixture[std::size_t(b)] += h[std::size_t(b)] / 3;
+  }
+  const auto white = histogram(angles(diffracted_light::display_rgb, 550, n, 20));
+  const auto green = histogram(angles(diffracted_light::single, 549.1, n, 21));
+  // Two samples of equal size: chi-square of their difference, (a - b)^2 / (a + b) over the bins
+  // (conservative for the mixture, whose bins vary a third as much as one sample's).
+  auto two_sample_p = [&](const std::vector<double>& a, const std::vector<double>& b) {
+    double stat = 0;
+    for (int i = 0; i < bins; ++i)
+      if (a[std::size_t(i)] + b[std::size_t(i)] > 0)
+        stat += std::pow(a[std::size_t(i)] - b[std::size_t(i)], 2) / (a[std::size_t(i)] + b[std::size_t(i)]);
+    return test::upper_regularized_gamma(0.5 * (bins - 1), 0.5 * stat);
+  };
+  const double p_mixture = two_sample_p(white, mixture), p_green = two_sample_p(white, green);
+  std::printf("display white against the primaries' mixture: p = %.3f; against 549 nm alone: p = %.2g\n", p_mixture,
+              p_green);
+  EXPECT_GT(p_mixture, 1e-3);
+  EXPECT_LT(p_green, 1e-3);
+}

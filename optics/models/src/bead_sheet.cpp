@@ -141,9 +141,10 @@ bead_path trace_bead_sheet(const bead_sheet_geometry& g, const glm::dvec3& wi, c
       // Through the bead's pupil: a circle of its diameter across the beam. A spread that would
       // send grazing light into the sheet is drawn again (the light leaves, only less spread).
       const basis across = make_basis(out.wo);
+      const double wavelength_nm = draw_wavelength_nm(g.light, g.wavelength_nm, rng);
       for (int attempt = 0; attempt < 16; ++attempt) {
         const glm::dvec2 f = sample_far_field(aperture{{}, g.diameter_mm}, rng);
-        const glm::dvec3 w = glm::normalize(out.wo + g.wavelength_nm * 1e-6 * (f.x * across.t + f.y * across.b));
+        const glm::dvec3 w = glm::normalize(out.wo + wavelength_nm * 1e-6 * (f.x * across.t + f.y * across.b));
         if (w.z > 0) {
           out.wo = w;
           break;
@@ -187,6 +188,7 @@ const retro_model_kind& bead_sheet_retro_kind() {
         number_field("backing_reflectance", "", 0, 1, 0.85, "Reflectance of the backing"),
         number_field("wavelength_nm", "nm", 0, 20000, 550,
                      "Wavelength of the diffraction by each bead's pupil (0: none)", 1000),
+        spectrum_field(),
     };
     k.make = [](const model_values& v, const model_setting&) -> std::unique_ptr<retro_model> {
       bead_sheet_geometry g;
@@ -196,6 +198,7 @@ const retro_model_kind& bead_sheet_retro_kind() {
       g.diffuse_backing = v.text("backing") == "diffuse";
       g.backing_reflectance = v.number("backing_reflectance");
       g.wavelength_nm = v.number("wavelength_nm");
+      g.light = read_spectrum(v);
       return std::make_unique<bead_sheet_retro>(g);
     };
     return k;

@@ -1,5 +1,6 @@
 #include "airr/models/diffraction.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <complex>
 
@@ -12,6 +13,22 @@ double aperture::area() const { return polygon.empty() ? pi * diameter_mm * diam
 double aperture::perimeter() const { return polygon.empty() ? pi * diameter_mm : polygon_perimeter(polygon); }
 
 double far_field_reach(const aperture& a) { return 64 / std::sqrt(a.area()); }
+
+model_field spectrum_field() {
+  return choice_field("spectrum", {"single", "display_rgb"},
+                      "Diffraction at wavelength_nm, or over the display's white (sRGB primaries' dominant "
+                      "wavelengths 611, 549, 464 nm in equal shares)");
+}
+
+diffracted_light read_spectrum(const model_values& v) {
+  return v.text("spectrum") == "display_rgb" ? diffracted_light::display_rgb : diffracted_light::single;
+}
+
+double draw_wavelength_nm(diffracted_light light, double wavelength_nm, pcg32& rng) {
+  if (light == diffracted_light::single) return wavelength_nm;
+  const int k = std::min(2, int(3 * rng.next_double()));
+  return display_primaries_nm[std::size_t(k)];
+}
 
 namespace {
 

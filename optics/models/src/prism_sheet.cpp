@@ -198,7 +198,8 @@ prism_path trace_prism_sheet(const prism_sheet_geometry& g, const glm::dvec3& wi
         if (out.fate == prism_fate::retroreflected && out.face_reflections == 3 && out.front_reflections == 0)
           used.polygon = effective_aperture(g, inside, first_pointing);
         if (used.polygon.empty()) used.polygon = aperture_triangle(g, first_pointing);
-        const auto spread = diffracted(out.wo, sample_far_field(used, rng), g.wavelength_nm * 1e-6);
+        const double wavelength_nm = draw_wavelength_nm(g.light, g.wavelength_nm, rng);
+        const auto spread = diffracted(out.wo, sample_far_field(used, rng), wavelength_nm * 1e-6);
         if (spread) {
           out.wo = *spread;
         } else {
@@ -283,6 +284,7 @@ const retro_model_kind& prism_sheet_retro_kind() {
         number_field("azimuth_deg", "deg", -360, 360, 0, "Rotation of the grooves about the sheet normal"),
         number_field("wavelength_nm", "nm", 0, 20000, 550,
                      "Wavelength of the diffraction by each cube corner's aperture (0: none)", 1000),
+        spectrum_field(),
     };
     k.make = [](const model_values& v, const model_setting&) -> std::unique_ptr<retro_model> {
       prism_sheet_geometry g;
@@ -293,6 +295,7 @@ const retro_model_kind& prism_sheet_retro_kind() {
       g.face_reflectance = v.number("face_reflectance");
       g.azimuth_deg = v.number("azimuth_deg");
       g.wavelength_nm = v.number("wavelength_nm");
+      g.light = read_spectrum(v);
       return std::make_unique<prism_sheet_retro>(g);
     };
     return k;

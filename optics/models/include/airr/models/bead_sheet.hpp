@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "airr/core/random.hpp"
+#include "airr/models/diffraction.hpp"
 #include "airr/models/retro_model.hpp"
 
 namespace airr {
@@ -24,6 +25,7 @@ struct bead_sheet_geometry {
   // Light that went through a bead spreads by the Fraunhofer pattern of its circular pupil at this
   // wavelength; 0: no diffraction.
   double wavelength_nm = 550;
+  diffracted_light light = diffracted_light::single;  // display_rgb: wavelength_nm unused (but 0 still: none)
 
   double spacing_mm() const;  // between neighbouring beads' centres
 };

@@ -3,6 +3,7 @@
 // frequencies f (cycles per mm, in the aperture's plane) with density |F(f)|^2 / area, F the
 // aperture's Fourier transform, integral over the aperture of exp(-2 pi i f . x). A ray of
 // wavelength lambda leaving in direction w has its in-plane direction cosines moved by lambda f.
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -10,6 +11,7 @@
 
 #include "airr/core/polygon.hpp"
 #include "airr/core/random.hpp"
+#include "airr/models/model_fields.hpp"
 
 namespace airr {
 
@@ -33,6 +35,19 @@ glm::dvec2 sample_far_field(const aperture& a, pcg32& rng, double f_max = 0);
 
 // The default cut-off of sample_far_field.
 double far_field_reach(const aperture& a);
+
+// The light a sheet diffracts: one wavelength (its `wavelength_nm`), or the display's white, each
+// path's wavelength drawn in equal shares from the dominant wavelengths of the sRGB primaries
+// (the tracer's channels are not told apart: the blur is white light's, without colour fringes).
+enum class diffracted_light { single, display_rgb };
+inline constexpr std::array<double, 3> display_primaries_nm{611.3, 549.1, 464.3};
+
+// The sheet models' "spectrum" field and its reading.
+model_field spectrum_field();
+diffracted_light read_spectrum(const model_values& v);
+
+// A path's wavelength in nm (one draw from rng for display_rgb, none otherwise).
+double draw_wavelength_nm(diffracted_light light, double wavelength_nm, pcg32& rng);
 
 // `w` (a unit direction, z > 0 the side it leaves to) moved by the spread: its x, y direction
 // cosines shifted by wavelength_mm f. Empty when that would leave no direction (evanescent).

@@ -14,6 +14,7 @@
 
 #include "airr/core/polygon.hpp"
 #include "airr/core/random.hpp"
+#include "airr/models/diffraction.hpp"
 #include "airr/models/retro_model.hpp"
 
 namespace airr {
@@ -29,6 +30,7 @@ struct prism_sheet_geometry {
   // aperture it used (diffraction.hpp) at this wavelength, other light that met the grooves by
   // that of the first cube corner's aperture triangle; 0: no diffraction.
   double wavelength_nm = 550;
+  diffracted_light light = diffracted_light::single;  // display_rgb: wavelength_nm unused (but 0 still: none)
 
   double triangle_side_mm() const;  // 2 pitch / sqrt(3)
   double cube_edge_mm() const;      // triangle side / sqrt(2): the shift tables' unit
