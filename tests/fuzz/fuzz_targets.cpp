@@ -15,6 +15,7 @@
 #include "airr/formats/image.hpp"
 #include "airr/formats/mesh_gltf.hpp"
 #include "airr/formats/scene_json.hpp"
+#include "airr/formats/sheet_json.hpp"
 #include "airr/models/preset.hpp"
 #include "airr/models/shift_table.hpp"
 
@@ -98,6 +99,10 @@ bool preset(std::string_view bytes) {
   return expecting_input_errors([&] { load_preset(write_input("preset.json", bytes)); });
 }
 
+bool sheet_json(std::string_view bytes) {
+  return expecting_input_errors([&] { load_sheet(write_input("sheet.json", bytes)); });
+}
+
 bool shift_table(std::string_view bytes) {
   return expecting_input_errors([&] { load_shift_table(write_input("table.json", bytes)); });
 }
@@ -139,6 +144,7 @@ bool run(const std::string& target, std::string_view bytes) {
   if (target == "scene_json") return scene_json(bytes);
   if (target == "gltf") return gltf(bytes);
   if (target == "preset") return preset(bytes);
+  if (target == "sheet_json") return sheet_json(bytes);
   if (target == "shift_table") return shift_table(bytes);
   if (target == "fit_json") return fit_json(bytes);
   if (target == "csv") return csv(bytes);

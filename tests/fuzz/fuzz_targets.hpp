@@ -19,7 +19,7 @@ bool image(std::string_view bytes);        // source and measurement images (PNG
 bool onnx(std::string_view bytes);         // an LPIPS model's inputs, as the project reads them
 
 // Every target's name.
-inline constexpr const char* targets[] = {"scene_json", "gltf", "preset", "shift_table",
+inline constexpr const char* targets[] = {"scene_json", "gltf", "preset", "sheet_json", "shift_table",
                                           "fit_json",   "csv",  "image",  "onnx"};
 
 // Runs one target by name (one of `targets`, else std::invalid_argument): whether the loader read
