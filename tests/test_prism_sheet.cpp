@@ -13,6 +13,7 @@
 #include "airr/models/prism_sheet.hpp"
 #include "airr/models/shift_table.hpp"
 #include "chi_square.hpp"
+#include "prism_test_support.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -56,40 +57,6 @@ double effective_area(const glm::dvec3& d) {
   return polygon_area(clip_convex(image, t)) / polygon_area(t);
 }
 
-struct fates {
-  double front = 0, retro = 0, stray = 0, transmitted = 0, lost = 0, n = 0;
-  double cube_retro = 0;  // retroreflected by one cube corner's three faces alone
-};
-
-fates trace_many(const prism_sheet_geometry& g, const glm::dvec3& wi, int n, std::uint64_t seed) {
-  pcg32 rng(seed, 7);
-  fates f;
-  for (int i = 0; i < n; ++i) {
-    const glm::dvec2 entry = prism_cell_point(g, {rng.next_double(), rng.next_double()});
-    const prism_path p = trace_prism_sheet(g, wi, entry, rng.next_double(), rng);
-    f.n += 1;
-    switch (p.fate) {
-      case prism_fate::front_reflection:
-        f.front += p.weight;
-        break;
-      case prism_fate::retroreflected:
-        f.retro += p.weight;
-        if (p.face_reflections == 3 && p.front_reflections == 0) f.cube_retro += p.weight;
-        break;
-      case prism_fate::stray:
-        f.stray += p.weight;
-        break;
-      case prism_fate::transmitted:
-        f.transmitted += p.weight;
-        break;
-      case prism_fate::lost:
-        f.lost += 1;
-        break;
-    }
-  }
-  return f;
-}
-
 }  // namespace
 
 // The polygon computation itself: 2/3 at normal incidence (the central hexagon), as spec section 3
@@ -125,7 +92,7 @@ TEST(PrismSheet, RetroreflectedFractionIsTheEffectiveArea) {
       for (const double phi : {0.0, 17.0, 30.0, 90.0}) {
         const glm::dvec3 wi = test::unit_direction(theta, phi);
         const int n = 20000;
-        const fates f = trace_many(g, wi, n, std::uint64_t(theta * 100 + phi));
+        const test::fates f = test::trace_many(g, wi, n, std::uint64_t(theta * 100 + phi));
         // Inside: the refracted direction; out again, the front surface passes 1 - F of it.
         const glm::dvec3 d = glm::normalize(glm::dvec3(-wi.x / index, -wi.y / index, 0) +
                                             glm::dvec3(0, 0, -std::sqrt(1 - (1 - wi.z * wi.z) / (index * index))));
@@ -187,7 +154,7 @@ TEST(PrismSheet, ShiftsFollowTheCornerCubeShiftTable) {
 TEST(PrismSheet, NoLightIsLostByALosslessSheet) {
   prism_sheet_geometry g;  // index 1.5, TIR faces
   for (const double theta : {0.0, 20.0, 40.0, 60.0}) {
-    const fates f = trace_many(g, test::unit_direction(theta, 13), 20000, 5);
+    const test::fates f = test::trace_many(g, test::unit_direction(theta, 13), 20000, 5);
     const double total = (f.front + f.retro + f.stray + f.transmitted) / f.n;
     std::printf("theta %g: front %.3f retro %.3f stray %.3f transmitted %.3f lost %.0f\n", theta, f.front / f.n,
                 f.retro / f.n, f.stray / f.n, f.transmitted / f.n, f.lost);

@@ -1,5 +1,6 @@
 #include "airr/core/polygon.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace airr {
@@ -35,6 +36,29 @@ polygon2 clip_convex_polygon(const polygon2& subject, const polygon2& clip) {
   }
   if (out.size() < 3) out.clear();
   return out;
+}
+
+polygon2 convex_hull(polygon2 points) {
+  // Andrew's monotone chain.
+  std::sort(points.begin(), points.end(),
+            [](const glm::dvec2& a, const glm::dvec2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
+  if (points.size() < 3) return {};
+  auto cross = [](const glm::dvec2& o, const glm::dvec2& a, const glm::dvec2& b) {
+    return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
+  };
+  polygon2 hull(2 * points.size());
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    while (k >= 2 && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  for (std::size_t i = points.size() - 1, lower = k + 1; i-- > 0;) {
+    while (k >= lower && cross(hull[k - 2], hull[k - 1], points[i]) <= 0) --k;
+    hull[k++] = points[i];
+  }
+  hull.resize(k - 1);
+  if (hull.size() < 3) hull.clear();
+  return hull;
 }
 
 }  // namespace airr

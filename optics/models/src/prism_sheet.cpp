@@ -11,12 +11,17 @@
 #include "airr/core/geometry.hpp"
 #include "airr/models/dielectric.hpp"
 #include "airr/models/diffraction.hpp"
+#include "prism_structure.hpp"
 
 namespace airr {
 
 double prism_sheet_geometry::triangle_side_mm() const { return 2 * pitch_mm / std::sqrt(3.0); }
-double prism_sheet_geometry::cube_edge_mm() const { return triangle_side_mm() / std::sqrt(2.0); }
-double prism_sheet_geometry::depth_mm() const { return std::sqrt(2.0) * pitch_mm / 3; }
+double prism_sheet_geometry::cube_edge_mm() const {
+  return full_cubes ? pitch_mm / std::sqrt(2.0) : triangle_side_mm() / std::sqrt(2.0);
+}
+double prism_sheet_geometry::depth_mm() const {
+  return full_cubes ? 2 * cube_edge_mm() / std::sqrt(3.0) : std::sqrt(2.0) * pitch_mm / 3;
+}
 
 namespace {
 
@@ -34,14 +39,6 @@ std::array<glm::dvec2, 3> groove_normals(const prism_sheet_geometry& g) {
   }
   return e;
 }
-
-// Where a straight stretch ends: on a face (its normal pointing into the plate) or leaving the
-// structure's slab (above the ridges inside the plate, below the apexes outside it).
-struct stretch_end {
-  glm::dvec3 point{0};
-  std::optional<glm::dvec3> face_normal;
-  int pointing = 1;  // the triangle of the face: +1 whose f's sum to 1, -1 the others
-};
 
 // Follows the ray from p along d through the aperture triangles until it meets the grooved
 // surface or leaves the slab between the ridges and the apexes. In one triangle, with f_k the
@@ -148,6 +145,7 @@ polygon2 effective_aperture(const prism_sheet_geometry& g, const glm::dvec3& d, 
 }
 
 glm::dvec2 prism_cell_point(const prism_sheet_geometry& g, const glm::dvec2& u) {
+  if (g.full_cubes) return full_cube_cell_point(g, u);
   // The cell's sides run along two ridge families (perpendicular to their normals), one
   // triangle side long.
   const auto e = groove_normals(g);
@@ -196,8 +194,10 @@ prism_path trace_prism_sheet(const prism_sheet_geometry& g, const glm::dvec3& wi
         // from below.
         aperture used;
         if (out.fate == prism_fate::retroreflected && out.face_reflections == 3 && out.front_reflections == 0)
-          used.polygon = effective_aperture(g, inside, first_pointing);
-        if (used.polygon.empty()) used.polygon = aperture_triangle(g, first_pointing);
+          used.polygon =
+              g.full_cubes ? full_cube_effective_aperture(g, inside) : effective_aperture(g, inside, first_pointing);
+        if (used.polygon.empty())
+          used.polygon = g.full_cubes ? full_cube_hexagon(g, inside) : aperture_triangle(g, first_pointing);
         const double wavelength_nm = draw_wavelength_nm(g.light, g.wavelength_nm, rng);
         const auto spread = diffracted(out.wo, sample_far_field(used, rng), wavelength_nm * 1e-6);
         if (spread) {
@@ -209,7 +209,7 @@ prism_path trace_prism_sheet(const prism_sheet_geometry& g, const glm::dvec3& wi
       return out;
     }
     if (in_plate && d.z < 0 && p.z > -g.plate_mm) p += ((-g.plate_mm - p.z) / d.z) * d;  // down to the ridges
-    const stretch_end end = follow(g, e, p, d, in_plate);
+    const stretch_end end = g.full_cubes ? follow_full_cubes(g, p, d, in_plate) : follow(g, e, p, d, in_plate);
     p = end.point;
     if (!end.face_normal) {
       if (in_plate) continue;  // above the ridges: on to the front surface
@@ -274,8 +274,13 @@ const retro_model_kind& prism_sheet_retro_kind() {
     k.name = "prism_sheet";
     k.help = "Prism sheet traced as geometry: triangular cube corners behind a clear plate";
     k.fields = {
-        number_field("pitch_mm", "mm", 1e-4, 10, 0.1, "Spacing of parallel grooves (height of the aperture triangles)",
+        number_field("pitch_mm", "mm", 1e-4, 10, 0.1,
+                     "Spacing of parallel grooves (height of the aperture triangles); full cubes: the hexagonal "
+                     "apertures' width across flats",
                      1),
+        choice_field("prisms", {"triangular", "full_cube"},
+                     "Triangular cube corners cut by three groove families, or full cubes (hexagonal apertures "
+                     "of three square faces)"),
         number_field("index", "", 1, 3, 1.5, "Refractive index of the plate"),
         number_field("plate_mm", "mm", 0, 20, 0.1, "Plate thickness above the grooves' ridges", 2),
         choice_field("coating", {"tir", "metal"},
@@ -289,6 +294,7 @@ const retro_model_kind& prism_sheet_retro_kind() {
     k.make = [](const model_values& v, const model_setting&) -> std::unique_ptr<retro_model> {
       prism_sheet_geometry g;
       g.pitch_mm = v.number("pitch_mm");
+      g.full_cubes = v.text("prisms") == "full_cube";
       g.index = v.number("index");
       g.plate_mm = v.number("plate_mm");
       g.metallised = v.text("coating") == "metal";

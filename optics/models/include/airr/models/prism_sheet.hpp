@@ -20,7 +20,11 @@
 namespace airr {
 
 struct prism_sheet_geometry {
-  double pitch_mm = 0.1;           // spacing of parallel grooves: the height of the aperture triangles
+  double pitch_mm = 0.1;  // spacing of parallel grooves: the height of the aperture triangles
+  // Full cubes in place of triangular cube corners: the back is a lattice of cube corners of three
+  // square faces each (hexagonal apertures, pitch_mm across flats), apexes 2 edge / sqrt 3 below
+  // the ridges.
+  bool full_cubes = false;
   double index = 1.5;              // of the plate
   double plate_mm = 0.1;           // from the front surface to the grooves' ridges
   bool metallised = false;         // faces: a metal coat (true) or total internal reflection with Fresnel loss
@@ -33,8 +37,8 @@ struct prism_sheet_geometry {
   diffracted_light light = diffracted_light::single;  // display_rgb: wavelength_nm unused (but 0 still: none)
 
   double triangle_side_mm() const;  // 2 pitch / sqrt(3)
-  double cube_edge_mm() const;      // triangle side / sqrt(2): the shift tables' unit
-  double depth_mm() const;          // of the apexes below the ridges: sqrt(2) pitch / 3
+  double cube_edge_mm() const;      // triangle side / sqrt(2): the shift tables' unit (full cubes: pitch / sqrt 2)
+  double depth_mm() const;          // of the apexes below the ridges: sqrt(2) pitch / 3 (full cubes: 2 edge / sqrt 3)
 };
 
 // Where a traced path ended.
@@ -74,8 +78,17 @@ polygon2 aperture_triangle(const prism_sheet_geometry& g, int pointing);
 // nothing retroreflects.
 polygon2 effective_aperture(const prism_sheet_geometry& g, const glm::dvec3& d, int pointing);
 
+// Full cubes: a cube corner's three faces projected along d (inside, d.z < 0) onto a plane
+// through its apex, about the apex: a hexagon, the corner's share of the array seen along d.
+polygon2 full_cube_hexagon(const prism_sheet_geometry& g, const glm::dvec3& d);
+// Full cubes: the part of that hexagon whose light retroreflects, its overlap with its image
+// mirrored through the apex; empty when d meets a face from behind.
+polygon2 full_cube_effective_aperture(const prism_sheet_geometry& g, const glm::dvec3& d);
+// Full cubes: a point of the front surface, uniform over one cell of the apexes' lattice.
+glm::dvec2 full_cube_cell_point(const prism_sheet_geometry& g, const glm::dvec2& u);
+
 // A point of the front surface, uniform over one cell of the array as u runs over [0, 1)^2 (one
-// cell holds two aperture triangles, one of each orientation).
+// cell holds two aperture triangles, one of each orientation; full cubes: one cube corner).
 glm::dvec2 prism_cell_point(const prism_sheet_geometry& g, const glm::dvec2& u);
 
 // The prism sheet as a retroreflector model: a sample enters at a point of the array's cell drawn

@@ -1,0 +1,28 @@
+#pragma once
+// The prism sheet's grooved back, as its tracer walks it (prism_sheet.cpp: triangular cube
+// corners; prism_full_cube.cpp: full cubes).
+#include <optional>
+
+#include <glm/glm.hpp>
+
+#include "airr/core/polygon.hpp"
+#include "airr/models/prism_sheet.hpp"
+
+namespace airr {
+
+// Where a straight stretch ends: on a face (its normal pointing into the plate) or leaving the
+// structure's slab (above the ridges inside the plate, below the apexes outside it).
+struct stretch_end {
+  glm::dvec3 point{0};
+  std::optional<glm::dvec3> face_normal;
+  int pointing = 1;  // triangular cube corners: +1 the triangles whose f's sum to 1, -1 the others
+};
+
+// Full cubes: the glass is the union of the cube lattice's cells (edge: the cube edge, axes the
+// three cube axes, whose sum is the sheet normal) with index sum i + j + k >= 0, so every lattice
+// point of sum 0 is the apex of a cube corner of three square faces, seen from the glass. The ray
+// from p along d walks the lattice's cells (their index sum changes by one at each step) until it
+// crosses from glass into air or back, or leaves the slab (sum 2 at the ridges, 0 at the apexes).
+stretch_end follow_full_cubes(const prism_sheet_geometry& g, const glm::dvec3& p, const glm::dvec3& d, bool in_plate);
+
+}  // namespace airr
