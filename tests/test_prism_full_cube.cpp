@@ -2,9 +2,11 @@
 // all the light entering a mirror-faced sheet in air comes back; at other angles the share that
 // does is one corner's effective area, which this file traces independently with three square
 // mirrors alone (no lattice), and which the model's own aperture polygons give too.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -142,4 +144,64 @@ TEST(FullCube, NoLightIsLostByALosslessSheet) {
     EXPECT_NEAR(total, 1.0, 0.005) << theta;
     EXPECT_LE(f.lost / f.n, 0.001) << theta;
   }
+}
+
+// The six face orders divide a cube corner's effective aperture: for shifts in every direction the
+// distinct parts' areas add up to the whole, and at normal incidence each is a sixth of it.
+TEST(FaceOrders, SixPartsDivideTheEffectiveAperture) {
+  for (const bool full : {false, true}) {
+    prism_sheet_geometry g;
+    g.full_cubes = full;
+    for (const double theta : {0.0, 15.0, 30.0}) {
+      const glm::dvec3 d = -test::unit_direction(theta, 20);
+      const polygon2 whole = full ? full_cube_effective_aperture(g, d) : effective_aperture(g, d, 1);
+      // Distinct parts told apart by their vertices' mean (a part and its mirror image through
+      // the apex have equal areas).
+      std::vector<double> areas;
+      std::vector<glm::dvec2> centres;
+      for (int k = 0; k < 360; ++k) {
+        const double a = radians(k + 0.5);
+        const polygon2 part = face_order_aperture(g, d, 1, 0.01 * glm::dvec2(std::cos(a), std::sin(a)));
+        const double area = polygon_area(part);
+        glm::dvec2 centre(0);  // the area centroid (clipping may leave near-duplicate vertices)
+        for (std::size_t i = 0; i < part.size(); ++i) {
+          const glm::dvec2 &p0 = part[i], &p1 = part[(i + 1) % part.size()];
+          centre += (p0 + p1) * (p0.x * p1.y - p1.x * p0.y) / (6 * area);
+        }
+        const auto seen = [&](const glm::dvec2& c) { return glm::length(c - centre) < 1e-9 * g.pitch_mm; };
+        if (area > 0 && std::none_of(centres.begin(), centres.end(), seen)) {
+          areas.push_back(area);
+          centres.push_back(centre);
+        }
+        if (theta == 0) EXPECT_NEAR(area, polygon_area(whole) / 6, 1e-12) << full << " " << k;
+      }
+      double sum = 0;
+      for (double x : areas) sum += x;
+      if (theta > 0) EXPECT_NEAR(sum, polygon_area(whole), 1e-9 * polygon_area(whole)) << full << " " << theta;
+      EXPECT_LE(areas.size(), 6u);
+    }
+  }
+}
+
+// Total internal reflection diffracts each face order's part apart: its retroreflected light
+// spreads wider than a metal-coated sheet's, which diffracts by the whole aperture.
+TEST(FaceOrders, TotalInternalReflectionSpreadsWiderThanAMetalCoat) {
+  auto median_spread = [](bool metallised) {
+    prism_sheet_geometry g;
+    g.metallised = metallised;
+    pcg32 rng(5, 5);
+    const glm::dvec3 wi = glm::normalize(glm::dvec3(0.05, 0.02, 1));
+    std::vector<double> angles;
+    while (angles.size() < 20000) {
+      const prism_path p =
+          trace_prism_sheet(g, wi, prism_cell_point(g, {rng.next_double(), rng.next_double()}), rng.next_double(), rng);
+      if (p.fate == prism_fate::retroreflected && p.face_reflections == 3 && p.front_reflections == 0)
+        angles.push_back(std::acos(std::min(1.0, glm::dot(p.wo, wi))));
+    }
+    std::nth_element(angles.begin(), angles.begin() + angles.size() / 2, angles.end());
+    return angles[angles.size() / 2];
+  };
+  const double tir = median_spread(false), metal = median_spread(true);
+  std::printf("median spread: TIR %.3f mrad, metal %.3f mrad (ratio %.2f)\n", 1e3 * tir, 1e3 * metal, tir / metal);
+  EXPECT_GT(tir / metal, 1.5);
 }

@@ -136,6 +136,20 @@ polygon2 aperture_triangle(const prism_sheet_geometry& g, int pointing) {
   return triangle;
 }
 
+polygon2 face_order_aperture(const prism_sheet_geometry& g, const glm::dvec3& d, int pointing,
+                             const glm::dvec2& shift_mm) {
+  const polygon2 effective = g.full_cubes ? full_cube_effective_aperture(g, d) : effective_aperture(g, d, pointing);
+  if (effective.empty()) return {};
+  const corner_view view = g.full_cubes ? full_cube_corner_view(g, d) : triangular_corner_view(g, d, pointing);
+  // Entry and exit are mirror images through the apex line: the entry is half the shift back.
+  return face_order_aperture(effective, view, view.apex - 0.5 * shift_mm);
+}
+
+corner_view triangular_corner_view(const prism_sheet_geometry& g, const glm::dvec3& d, int pointing) {
+  const polygon2 triangle = aperture_triangle(g, pointing);
+  return {glm::dvec2(d) * (g.depth_mm() / d.z), {triangle[0], triangle[1], triangle[2]}};
+}
+
 polygon2 effective_aperture(const prism_sheet_geometry& g, const glm::dvec3& d, int pointing) {
   const polygon2 triangle = aperture_triangle(g, pointing);
   polygon2 image;
@@ -193,9 +207,14 @@ prism_path trace_prism_sheet(const prism_sheet_geometry& g, const glm::dvec3& wi
         // the aperture triangle of the first cube corner it met: that triangle bounds its spread
         // from below.
         aperture used;
-        if (out.fate == prism_fate::retroreflected && out.face_reflections == 3 && out.front_reflections == 0)
+        if (out.fate == prism_fate::retroreflected && out.face_reflections == 3 && out.front_reflections == 0) {
           used.polygon =
               g.full_cubes ? full_cube_effective_aperture(g, inside) : effective_aperture(g, inside, first_pointing);
+          // Total internal reflection shifts the phase by polarisation differently for each face
+          // order: the six orders' parts diffract apart (a metal coat keeps the whole coherent).
+          if (!g.metallised && !used.polygon.empty())
+            used.polygon = face_order_aperture(g, inside, first_pointing, out.shift_mm);
+        }
         if (used.polygon.empty())
           used.polygon = g.full_cubes ? full_cube_hexagon(g, inside) : aperture_triangle(g, first_pointing);
         const double wavelength_nm = draw_wavelength_nm(g.light, g.wavelength_nm, rng);

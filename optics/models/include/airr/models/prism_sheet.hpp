@@ -87,6 +87,14 @@ polygon2 full_cube_effective_aperture(const prism_sheet_geometry& g, const glm::
 // Full cubes: a point of the front surface, uniform over one cell of the apexes' lattice.
 glm::dvec2 full_cube_cell_point(const prism_sheet_geometry& g, const glm::dvec2& u);
 
+// The part of the effective aperture (either kind of prism) whose light meets the faces in the
+// same order as a path retroreflected with `shift_mm` (exit minus entry): the six face orders
+// divide the aperture along the lines of the cube's edges through the apex. Total internal
+// reflection diffracts each part apart. `pointing` as for effective_aperture (ignored for full
+// cubes).
+polygon2 face_order_aperture(const prism_sheet_geometry& g, const glm::dvec3& d, int pointing,
+                             const glm::dvec2& shift_mm);
+
 // A point of the front surface, uniform over one cell of the array as u runs over [0, 1)^2 (one
 // cell holds two aperture triangles, one of each orientation; full cubes: one cube corner).
 glm::dvec2 prism_cell_point(const prism_sheet_geometry& g, const glm::dvec2& u);
