@@ -8,11 +8,13 @@
 
 #include "airr/core/assets.hpp"
 #include "airr/core/error.hpp"
+#include "airr/core/geometry.hpp"
 #include "airr/core/random.hpp"
 #include "airr/layout/psf.hpp"
 #include "airr/layout/sheet_models.hpp"
 #include "airr/models/preset.hpp"
 #include "airr/models/retro_sinc_shift.hpp"
+#include "airr/models/shift_table.hpp"
 #include "airr/models/sinc_lobe.hpp"
 #include "chi_square.hpp"
 #include "test_helpers.hpp"
@@ -287,8 +289,46 @@ TEST(Presets, BadPresetsGiveClearErrors) {
   expect_error(head + R"("a_per_mm": -1, "mu": 0.2, "c_mm": 0.1})", "a_per_mm: must be positive");
   expect_error(head + R"("a_per_mm": 1, "mu": 0.2})", "c_mm: missing");
   expect_error(head + R"("a_per_mm": 1, "mu": 0.2, "c_mm": 0.1, "colour": 1})", "colour: unknown key");
+  expect_error(head + R"("a_per_mm": 1, "mu": 0.2, "c_mm": 0.1, "shift_index": 0.5})",
+               "shift_index: must be in [1, 3]");
   expect_error("{", "malformed JSON");
   EXPECT_THROW(load_preset("no-such-sheet"), input_error);
+}
+
+// A preset's shift_index reads the shift table at the angle inside: at 30.87 deg outside an index
+// of 1.5 gives 20 deg inside, where the shifts (in c) follow the table's 20 deg row by chi-square,
+// and not its 30 deg row; the index round-trips through the preset file.
+TEST(Presets, ShiftIndexReadsTheShiftTableAtTheAngleInside) {
+  test::temp_dir dir;
+  sheet_preset p{.name = "in glass", .a_per_mm = {1000}, .mu = {1}, .c_mm = 1, .shift_index = 1.5};
+  save_preset(p, dir.file("glass.json"));
+  EXPECT_DOUBLE_EQ(load_preset(dir.file("glass.json")).shift_index, 1.5);
+  EXPECT_DOUBLE_EQ(load_preset("rf-ay").shift_index, 1.0);
+
+  retro_model_params m{.type = "sinc_shift", .values = {}};
+  set_model_value(m, "preset", dir.file("glass.json"));
+  const auto model = make_retro_model(m);
+  const shift_table table = load_shift_table(default_shift_table_path());
+  const double outside = degrees(std::asin(1.5 * std::sin(radians(20))));
+  const glm::dvec3 wi = test::unit_direction(outside, 0);
+  const int bins = table.bins(), n = 20000;
+  std::vector<double> counts(std::size_t(bins), 0.0);
+  pcg32 rng(3, 9);
+  for (int i = 0; i < n; ++i) {
+    const retro_sample r = model->sample(wi, test::random_retro_samples(rng));
+    counts[std::size_t(std::min(bins - 1, int(glm::length(r.shift_mm) / table.s_max * bins)))] += 1;
+  }
+  auto p_value = [&](double theta) {
+    const auto row =
+        std::size_t(std::find(table.theta_deg.begin(), table.theta_deg.end(), theta) - table.theta_deg.begin());
+    std::vector<double> expected;
+    for (double pr : table.probability[row]) expected.push_back(pr * n);
+    return test::chi_square(counts, expected).p_value;
+  };
+  std::printf("shifts at %.2f deg outside, index 1.5: p = %.3f against the 20 deg row, %.2g against 30 deg\n", outside,
+              p_value(20), p_value(30));
+  EXPECT_GT(p_value(20), 1e-3);
+  EXPECT_LT(p_value(30), 1e-6);
 }
 
 TEST(Presets, BlurGrowsWithFloatingDistance) {

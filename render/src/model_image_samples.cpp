@@ -33,7 +33,7 @@ struct grid_offset {
 static std::optional<grid_offset> sample_offset(const model_image& m, const model_bin& b, const glm::dvec2& jitter,
                                                 const retro_samples& u, double& weight) {
   const retro_sample rs = b.sampler->sample(u);
-  if (!(rs.weight > 0)) return std::nullopt;
+  if (!(rs.weight > 0) || !rs.retroreflected) return std::nullopt;
   const auto delta = psf_landing_offset(b.chief, rs);
   if (!delta) return std::nullopt;
   const glm::dvec2 mm =

@@ -122,6 +122,7 @@ struct path_state {
   int retroreflections = 0;
   int mirror_reflections = 0;
   int prop_scatterings = 0;
+  int sheet_scatterings = 0;  // a sheet sent the light back without retroreflecting it
   // Each branch split off before any retroreflection takes the sample's first-retroreflection
   // numbers at its first sheet, as the control variate predicts every sheet with them.
   bool first_retro_used = false;
@@ -129,7 +130,7 @@ struct path_state {
 
 image_component component_of(const path_state& p) {
   if (p.retroreflections > 0) return component_aerial;
-  if (p.prop_scatterings > 0) return component_rest;
+  if (p.prop_scatterings > 0 || p.sheet_scatterings > 0) return component_rest;
   if (p.mirror_reflections == 0) return component_direct;
   return p.mirror_reflections == 1 ? component_reflection : component_rest;
 }
@@ -310,7 +311,11 @@ static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, c
       p.dir = glm::normalize(to_world(f, rs.wo));
       p.origin = hit + rs.shift_mm.x * f.u + rs.shift_mm.y * f.v;
       p.throughput *= float(rs.weight);
-      ++p.retroreflections;
+      if (rs.retroreflected) {
+        ++p.retroreflections;
+      } else {
+        ++p.sheet_scatterings;
+      }
     }
   }
   return radiance;

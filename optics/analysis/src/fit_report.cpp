@@ -30,6 +30,7 @@ json settings_json(const fit_params& p) {
           {"c_bracket_mm", {0.0, p.c_max_mm}},
           {"c_tolerance_mm", p.c_tolerance_mm},
           {"alternation_tolerance", p.alternation_tolerance},
+          {"shift_index", p.shift_index},
           {"method",
            "a: log-a scan (first fit) or downhill steps from the neighbouring tilt's a, then Brent's minimum "
            "of the MTF MSE over (0, 1] lp/mm, checked at a (1 -+ 2%); "

@@ -8,6 +8,7 @@
 #include "airr/layout/layout.hpp"
 #include "airr/layout/psf.hpp"
 #include "airr/layout/sheet_models.hpp"
+#include "airr/models/retro_model.hpp"
 
 namespace airr::analysis {
 
@@ -33,6 +34,12 @@ double bench_mean_mtf(const psf_samples& psf, double lsf_window_mm) {
   return sum / n;
 }
 
+// A prism sheet's light meets its cube corners inside the plate: the preset reads the shift
+// table at the angle inside (preset.hpp). Other sheets keep the table at the angle outside.
+double shift_index_of(const sheet_description& sheet) {
+  return sheet.model.type == "prism_sheet" ? read_model_values(sheet.model).number("index") : 1.0;
+}
+
 }  // namespace
 
 fit_result predict_preset(const sheet_description& sheet, const scene& bench, const std::string& data_dir,
@@ -43,7 +50,9 @@ fit_result predict_preset(const sheet_description& sheet, const scene& bench, co
                        .name = sheet.name,
                        .note = "the sheet " + sheet.name + " (" + sheet.model.type + ") on the simulated bench"},
                       p.synthesis, scaled(progress, 0, synthesis_share));
-  fit_result r = fit_sheet(load_fit_data(data_dir), p.fit, scaled(progress, synthesis_share, 1));
+  fit_params fit = p.fit;
+  fit.shift_index = shift_index_of(sheet);
+  fit_result r = fit_sheet(load_fit_data(data_dir), fit, scaled(progress, synthesis_share, 1));
   r.preset.name = sheet.name;
   r.preset.provenance["source"] = "airr predict-preset";
   r.preset.provenance["sheet"] = {
@@ -67,8 +76,9 @@ std::vector<prediction_agreement> compare_prediction(const sheet_description& sh
   for (double t : tilts_deg) {
     const scene truth = measurement_layout(setup, t, 150);
     const psf_samples a = sample_psf(truth, make_sheet_models(truth), pp);
-    const scene model = fit_scene(setup, t, 150, interpolate_by_angle(preset.theta_deg, preset.a_per_mm, t),
-                                  preset.c_mm, interpolate_by_angle(preset.theta_deg, preset.mu, t));
+    const scene model =
+        fit_scene(setup, t, 150, interpolate_by_angle(preset.theta_deg, preset.a_per_mm, t), preset.c_mm,
+                  interpolate_by_angle(preset.theta_deg, preset.mu, t), preset.shift_index);
     const psf_samples b = sample_psf(model, make_sheet_models(model), pp);
     out.push_back({.tilt_deg = t,
                    .explicit_mean_mtf = bench_mean_mtf(a, p.lsf_window_mm),

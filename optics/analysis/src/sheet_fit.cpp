@@ -119,7 +119,7 @@ class sheet_fitter {
   sheet_fitter(const fit_data& d, const fit_params& p, progress_meter& meter) : d_(d), p_(p), meter_(meter) {}
 
   psf_samples psf(double tilt, double distance, double a, double c) {
-    const scene s = fit_scene(d_.setup, tilt, distance, a, c, 1.0);
+    const scene s = fit_scene(d_.setup, tilt, distance, a, c, 1.0, p_.shift_index);
     psf_samples out = sample_psf(s, make_sheet_models(s), {.samples = p_.psf_samples, .seed = p_.seed});
     ++simulations_;
     meter_.add(1);
@@ -209,7 +209,7 @@ class sheet_fitter {
 }  // namespace
 
 scene fit_scene(const scene& setup, double tilt_deg, double floating_distance_mm, double a_per_mm, double c_mm,
-                double mu) {
+                double mu, double shift_index) {
   scene s = measurement_layout(setup, tilt_deg, floating_distance_mm);
   const double r_mm = reference_distance(setup);
   for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) {
@@ -223,6 +223,7 @@ scene fit_scene(const scene& setup, double tilt_deg, double floating_distance_mm
     set_model_value(m, "a_per_mm", a_per_mm);
     set_model_value(m, "c_mm", c_mm);
     set_model_value(m, "mu", mu);
+    if (shift_index != 1.0) set_model_value(m, "shift_index", shift_index);
   }
   return s;
 }
@@ -284,7 +285,7 @@ fit_result fit_sheet(const fit_data& d, const fit_params& p, const fit_progress_
   std::vector<double> mu_theta, mu_values;
   for (const auto& w : d.white_squares) {
     meter.set_stage("mu at tilt " + deg_text(w.tilt_deg) + " deg");
-    const scene s = fit_scene(d.setup, w.tilt_deg, w.floating_distance_mm, a_at(w.tilt_deg), c, 1.0);
+    const scene s = fit_scene(d.setup, w.tilt_deg, w.floating_distance_mm, a_at(w.tilt_deg), c, 1.0, p.shift_index);
     const psf_samples ps = fitter.psf(w.tilt_deg, w.floating_distance_mm, a_at(w.tilt_deg), c);
     const cv::Mat unit = white_square_image(s, ps, w.width_mm, w.height_mm);
     const double sim_sim = unit.dot(unit), real_sim = w.luminance.dot(unit);
@@ -313,6 +314,7 @@ fit_result fit_sheet(const fit_data& d, const fit_params& p, const fit_progress_
   preset.name = d.name;
   preset.reference_distance_mm = reference_distance(d.setup);
   preset.c_mm = c;
+  preset.shift_index = p.shift_index;
   for (const auto& a : report.a) {
     preset.theta_deg.push_back(a.tilt_deg);
     preset.a_per_mm.push_back(a.a_per_mm);

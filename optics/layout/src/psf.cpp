@@ -86,7 +86,7 @@ static double add_sheet_samples(const psf_chief_ray& chief, const retro_model& m
       sample_in_blocks<psf_samples>(p.samples, p.seed, 0, 0x5eedu, p.stratified,
                                     [&](const std::array<double, 6>&, const retro_samples& u, psf_samples& part) {
                                       const retro_sample rs = model.sample(wi, u);
-                                      if (!(rs.weight > 0)) return;
+                                      if (!(rs.weight > 0) || !rs.retroreflected) return;
                                       const auto delta = psf_landing_offset(chief, rs);
                                       if (!delta) return;
                                       // The image of a point shows where rays land relative to the ideal point,

@@ -52,7 +52,7 @@ void trace_one(const sheet_path& sp, const retro_model& model, const glm::dvec3&
   const double profile = sp.emission ? sp.emission->at(degrees(std::acos(std::min(1.0, cos_display)))) : 1.0;
 
   const retro_sample rs = model.sample(-to_local(sp.rr, d_in), u);
-  if (!(rs.weight > 0)) return;
+  if (!(rs.weight > 0) || !rs.retroreflected) return;
   const glm::dvec3 back = to_world(sp.rr, rs.wo);
   const glm::dvec3 start = q + rs.shift_mm.x * sp.rr.u + rs.shift_mm.y * sp.rr.v;
   const auto again = hit_part(sp.hm, start, back);

@@ -171,7 +171,7 @@ bead_sheet_retro::bead_sheet_retro(const bead_sheet_geometry& g) : g_(g) {
 
 retro_sample bead_sheet_retro::sample(const glm::dvec3& wi, retro_samples u) const {
   const bead_path path = trace_bead_sheet(g_, wi, bead_cell_point(g_, u.lobe), u.more);
-  return {path.wo, path.shift_mm, path.weight};
+  return {path.wo, path.shift_mm, path.weight, path.through_bead};
 }
 
 const retro_model_kind& bead_sheet_retro_kind() {

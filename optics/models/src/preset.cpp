@@ -49,6 +49,7 @@ sheet_preset preset_from_json(const json& j, const std::string& origin) {
   p.mu = read_values(r, "mu");
   p.c_mm = r.number("c_mm");
   r.number("reference_distance_mm", p.reference_distance_mm);
+  r.number("shift_index", p.shift_index);
   if (r.has("provenance")) p.provenance = r.raw("provenance");
   r.finish();
 
@@ -70,6 +71,7 @@ sheet_preset preset_from_json(const json& j, const std::string& origin) {
   }
   if (p.c_mm < 0) r.fail("c_mm", "must not be negative");
   if (p.reference_distance_mm <= 0) r.fail("reference_distance_mm", "must be positive");
+  if (!(p.shift_index >= 1 && p.shift_index <= 3)) r.fail("shift_index", "must be in [1, 3]");
   return p;
 }
 
@@ -93,6 +95,7 @@ json preset_to_json(const sheet_preset& p) {
             {"c_mm", p.c_mm},
             {"reference_distance_mm", p.reference_distance_mm}};
   if (!p.theta_deg.empty()) j["tilt_deg"] = p.theta_deg;
+  if (p.shift_index != 1.0) j["shift_index"] = p.shift_index;
   if (!p.provenance.is_null()) j["provenance"] = p.provenance;
   return j;
 }

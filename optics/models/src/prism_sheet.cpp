@@ -284,7 +284,7 @@ prism_sheet_retro::prism_sheet_retro(const prism_sheet_geometry& g) : g_(g) {
 
 retro_sample prism_sheet_retro::sample(const glm::dvec3& wi, retro_samples u) const {
   const prism_path path = trace_prism_sheet(g_, wi, prism_cell_point(g_, u.lobe), u.shift.x, u.more);
-  return {path.wo, path.shift_mm, path.weight};
+  return {path.wo, path.shift_mm, path.weight, path.fate == prism_fate::retroreflected};
 }
 
 const retro_model_kind& prism_sheet_retro_kind() {

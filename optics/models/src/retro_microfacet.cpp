@@ -208,7 +208,7 @@ microfacet_trace microfacet_retro::trace(const glm::dvec3& wi, retro_samples u) 
   const double p_retro = std::min(1.0, era(x_deg, phi_deg));
   if (u.lobe.y >= p_retro) {
     out.branch = microfacet_branch::diffuse;
-    out.sample = {cosine_hemisphere(u.shift), {0, 0}, mu_};
+    out.sample = {cosine_hemisphere(u.shift), {0, 0}, mu_, false};
     return out;
   }
 

@@ -14,7 +14,7 @@ sinc_shift_params resolve_sinc_shift_params(const model_values& v, const model_s
   sinc_shift_params p;
   const std::string preset_name = v.text("preset");
   const auto a = v.optional_number("a_per_mm"), mu = v.optional_number("mu"), c = v.optional_number("c_mm"),
-             r = v.optional_number("reference_distance_mm");
+             r = v.optional_number("reference_distance_mm"), n = v.optional_number("shift_index");
   if (!preset_name.empty()) {
     const sheet_preset preset = load_preset(preset_name, setting.base_dir);
     p.theta_deg = preset.theta_deg;
@@ -22,6 +22,7 @@ sinc_shift_params resolve_sinc_shift_params(const model_values& v, const model_s
     p.mu = preset.mu;
     p.c_mm = preset.c_mm;
     p.reference_distance_mm = preset.reference_distance_mm;
+    p.shift_index = preset.shift_index;
   } else if (!a) {
     v.fail("a_per_mm", "needed by the sinc_shift model without a preset");
   }
@@ -29,6 +30,7 @@ sinc_shift_params resolve_sinc_shift_params(const model_values& v, const model_s
   if (mu) p.mu = {*mu};
   if (c) p.c_mm = *c;
   if (r) p.reference_distance_mm = *r;
+  if (n) p.shift_index = *n;
   if (v.text("lookup") == "per_render") p.lookup_angle_deg = setting.chief_incidence_deg;
   return p;
 }
@@ -52,6 +54,10 @@ const retro_model_kind& sinc_shift_retro_kind() {
                               3),
         optional_number_field("reference_distance_mm", "mm", 0, 1e5, true,
                               "Reference distance R; unset: the preset's, else 300", 1000),
+        optional_number_field("shift_index", "", 1, 3, false,
+                              "Index in front of the cube corners: the shift table is read at the angle inside; "
+                              "unset: the preset's, else 1",
+                              2),
         text_field("shift_table", field_kind::path, "Corner-cube shift table (JSON); empty: the shipped table"),
         choice_field("lookup", {"per_ray", "per_render"},
                      "Angle of a, mu and the shift distribution: each ray's incidence (per_ray) or the sheet's "
@@ -74,6 +80,7 @@ const retro_model_kind& sinc_shift_retro_kind() {
         if (key == "mu") return interpolate_by_angle(p.theta_deg, p.mu, theta_deg);
         if (key == "c_mm") return p.c_mm;
         if (key == "reference_distance_mm") return p.reference_distance_mm;
+        if (key == "shift_index") return p.shift_index;
       } catch (const std::exception&) {
       }
       return std::nullopt;
@@ -101,7 +108,10 @@ sinc_shift_retro::incidence sinc_shift_retro::prepare(const glm::dvec3& wi) cons
   in.frame = make_basis(wi);
   in.k = a_at(theta_deg) * p_.reference_distance_mm;
   in.mu = mu_at(theta_deg);
-  if (p_.c_mm > 0 && shifts_) in.rows = shift_rows_at(*shifts_, p_.lookup_angle_deg.value_or(theta_deg));
+  if (p_.c_mm > 0 && shifts_) {
+    const double outside = radians(p_.lookup_angle_deg.value_or(theta_deg));
+    in.rows = shift_rows_at(*shifts_, degrees(std::asin(std::sin(outside) / p_.shift_index)));
+  }
   return in;
 }
 

@@ -72,7 +72,7 @@ model_image_job control_variate_job(const tracer_scene& ts, bool quick = false);
 // The components of an image (spec section 8), by what a path met before the display: the aerial
 // image (at least one retroreflection), the display seen directly (no half-mirror reflection, no
 // prop), its plain reflection in the half mirror (one, no prop), and the rest (more, or light a
-// prop scattered). They add up to the image.
+// prop scattered or a sheet sent back without retroreflecting it). They add up to the image.
 enum image_component { component_aerial, component_direct, component_reflection, component_rest };
 inline constexpr int component_count = 4;
 inline constexpr const char* component_names[component_count] = {"aerial", "direct", "reflection", "rest"};

@@ -28,6 +28,7 @@ struct fit_params {
   double c_max_mm = 5.0;                 // the c search bracket is [0, c_max]
   double c_tolerance_mm = 1e-4;          // the root finder's final bracket width
   double alternation_tolerance = 0.005;  // converged: the final c bracket is narrower than this x c
+  double shift_index = 1.0;              // of the simulated sheet (preset.hpp); 1: as the shipped presets
 };
 
 // A measured MTF curve as the fit compared with it.

@@ -24,6 +24,7 @@ struct prediction_params {
 
 // Synthesises the bench's measurements of `sheet` into data_dir (kept: fit.json, the curves and
 // images), fits them and returns the preset, named after the sheet, its provenance naming the sheet.
+// A prism sheet's preset reads the shift table at the angle inside its plate (shift_index: its index).
 // Progress runs over both stages; returning false cancels (fit_cancelled).
 fit_result predict_preset(const sheet_description& sheet, const scene& bench, const std::string& data_dir,
                           const prediction_params& p, const fit_progress_callback& progress);

@@ -54,6 +54,6 @@ fit_result fit_sheet(const fit_data& data, const fit_params& p, const fit_progre
 // a device's sheets are cut from the one material being fitted, each reached by its own path (the
 // setup's shift table, R and each sheet's angle lookup are kept).
 scene fit_scene(const scene& setup, double tilt_deg, double floating_distance_mm, double a_per_mm, double c_mm,
-                double mu);
+                double mu, double shift_index = 1.0);
 
 }  // namespace airr::analysis

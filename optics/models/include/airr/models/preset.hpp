@@ -15,6 +15,9 @@ struct sheet_preset {
   std::vector<double> mu;         // one per angle, or a single value
   double c_mm = 0.0;
   double reference_distance_mm = 300.0;
+  // Refractive index in front of the cube corners: the shift distribution is the corner-cube
+  // table's at the angle inside, asin(sin theta / n). 1 (every shipped preset): at theta itself.
+  double shift_index = 1.0;
   nlohmann::json provenance;  // where the values come from (a table, a fit with its inputs and losses)
 };
 

@@ -29,6 +29,10 @@ struct retro_sample {
   glm::dvec3 wo{0, 0, 1};
   glm::dvec2 shift_mm{0, 0};  // exit point minus entry point, in the sheet plane (local x, y)
   double weight = 0;          // throughput; 0 means absorbed
+  // False for light the sheet sends back some other way than by retroreflection (a surface
+  // reflection, a diffuse lobe, stray paths through the structure): it lands wherever its direction
+  // takes it, and is stray light, not part of the aerial image or its PSF.
+  bool retroreflected = true;
 };
 
 // A model at one fixed incidence, for many samples there: sample(u) is the model's sample(wi, u)

@@ -20,6 +20,7 @@ struct sinc_shift_params {
   std::vector<double> mu{1.0};
   double c_mm = 0.0;
   double reference_distance_mm = 300.0;
+  double shift_index = 1.0;  // the shift table is read at the angle inside this index (preset.hpp)
   // Lookup "per_render": a, mu and the shift distribution at this one angle (the sheet's chief
   // ray) for every ray; unset ("per_ray"): at each ray's own incidence angle.
   std::optional<double> lookup_angle_deg{};
