@@ -86,16 +86,11 @@ void run_fit(const options& opt) {
 void run_synthesise(const options& opt) {
   const airr::sheet_preset truth = airr::load_preset(opt.preset, fs::current_path().string());
   const std::string preset_path = airr::resolve_preset_path(opt.preset, fs::current_path().string());
-  airr::scene setup;
-  if (!opt.setup.empty()) {
-    setup = airr::load_scene(opt.setup);
-    airr::analysis::check_fit_sheets(setup, opt.setup);
-  }
   airr::retro_model_params model{.type = "sinc_shift", .values = {}};
   airr::set_model_value(model, "preset", fs::absolute(preset_path).string());
   const airr::analysis::synthesis_params p{.samples = opt.samples.value_or(1000000), .seed = opt.seed.value_or(7)};
   progress_bar bar("synthesise");
-  airr::analysis::synthesise_fit_data(opt.synthesise, airr::analysis::synthesis_bench(setup),
+  airr::analysis::synthesise_fit_data(opt.synthesise, airr::analysis::synthesis_bench_file(opt.setup),
                                       {.model = model,
                                        .base_dir = "",
                                        .name = "synthetic " + truth.name,

@@ -25,12 +25,7 @@ struct options {
 void run(const options& opt) {
   const auto t0 = std::chrono::steady_clock::now();
   const airr::sheet_description sheet = airr::load_sheet(opt.sheet);
-  airr::scene setup;
-  if (!opt.setup.empty()) {
-    setup = airr::load_scene(opt.setup);
-    airr::analysis::check_fit_sheets(setup, opt.setup);
-  }
-  const airr::scene bench = airr::analysis::synthesis_bench(setup);
+  const airr::scene bench = airr::analysis::synthesis_bench_file(opt.setup);
   const std::string data = opt.data.empty() ? fs::path(opt.output).replace_extension("").string() + "_bench" : opt.data;
 
   progress_bar bar("predict");

@@ -13,6 +13,7 @@
 #include "airr/models/diffraction.hpp"
 #include "airr/models/prism_sheet.hpp"
 #include "chi_square.hpp"
+#include "prism_test_support.hpp"
 
 using namespace airr;
 
@@ -127,18 +128,7 @@ TEST(Diffraction, PrismSheetSpreadScalesWithWavelengthOverPitch) {
     prism_sheet_geometry g;
     g.pitch_mm = pitch;
     g.wavelength_nm = wavelength;
-    pcg32 rng(2, 8);
-    const glm::dvec3 wi = glm::normalize(glm::dvec3(0.1, 0.05, 1));
-    std::vector<double> angles;
-    while (angles.size() < 20000) {
-      const prism_path p =
-          trace_prism_sheet(g, wi, prism_cell_point(g, {rng.next_double(), rng.next_double()}), rng.next_double(), rng);
-      if (p.fate == prism_fate::retroreflected && p.face_reflections == 3 && p.front_reflections == 0) {
-        angles.push_back(std::acos(std::min(1.0, glm::dot(p.wo, wi))));
-      }
-    }
-    std::nth_element(angles.begin(), angles.begin() + angles.size() / 2, angles.end());
-    return angles[angles.size() / 2];
+    return test::median_retro_spread(g, glm::normalize(glm::dvec3(0.1, 0.05, 1)), 2, 8);
   };
   const double base = median_spread(0.1, 550), coarse = median_spread(0.2, 550), red = median_spread(0.1, 1100);
   std::printf("median spread: %.3f mrad at 0.1 mm and 550 nm, %.3f at 0.2 mm, %.3f at 1100 nm (lambda / pitch %.1f)\n",
@@ -156,17 +146,10 @@ TEST(Diffraction, DisplayWhiteSpreadIsTheMixtureOfThePrimaries) {
   const glm::dvec3 wi = glm::normalize(glm::dvec3(0.1, 0.05, 1));
   auto angles = [&](diffracted_light light, double wavelength, int n, std::uint64_t seed) {
     prism_sheet_geometry g;
+    g.metallised = true;  // one aperture per cube corner: the narrower spread tells wavelengths apart best
     g.light = light;
     g.wavelength_nm = wavelength;
-    pcg32 rng(seed, 3);
-    std::vector<double> out;
-    while (int(out.size()) < n) {
-      const prism_path p =
-          trace_prism_sheet(g, wi, prism_cell_point(g, {rng.next_double(), rng.next_double()}), rng.next_double(), rng);
-      if (p.fate == prism_fate::retroreflected && p.face_reflections == 3 && p.front_reflections == 0)
-        out.push_back(std::acos(std::min(1.0, glm::dot(p.wo, wi))));
-    }
-    return out;
+    return test::retro_spread_angles(g, wi, n, seed, 3);
   };
   const int n = 30000, bins = 12;
   const double bin_mrad = 1.5;  // the last bin holds everything beyond

@@ -136,14 +136,7 @@ TEST(FullCube, ReturnsAllLightAtNormalIncidence) {
 TEST(FullCube, NoLightIsLostByALosslessSheet) {
   prism_sheet_geometry g;
   g.full_cubes = true;
-  for (const double theta : {0.0, 20.0, 40.0, 60.0}) {
-    const test::fates f = test::trace_many(g, test::unit_direction(theta, 13), 20000, 9);
-    const double total = (f.front + f.retro + f.stray + f.transmitted) / f.n;
-    std::printf("theta %g: front %.3f retro %.3f stray %.3f transmitted %.3f lost %.0f\n", theta, f.front / f.n,
-                f.retro / f.n, f.stray / f.n, f.transmitted / f.n, f.lost);
-    EXPECT_NEAR(total, 1.0, 0.005) << theta;
-    EXPECT_LE(f.lost / f.n, 0.001) << theta;
-  }
+  test::expect_no_light_lost(g, 9);
 }
 
 // The six face orders divide a cube corner's effective aperture: for shifts in every direction the
@@ -189,17 +182,7 @@ TEST(FaceOrders, TotalInternalReflectionSpreadsWiderThanAMetalCoat) {
   auto median_spread = [](bool metallised) {
     prism_sheet_geometry g;
     g.metallised = metallised;
-    pcg32 rng(5, 5);
-    const glm::dvec3 wi = glm::normalize(glm::dvec3(0.05, 0.02, 1));
-    std::vector<double> angles;
-    while (angles.size() < 20000) {
-      const prism_path p =
-          trace_prism_sheet(g, wi, prism_cell_point(g, {rng.next_double(), rng.next_double()}), rng.next_double(), rng);
-      if (p.fate == prism_fate::retroreflected && p.face_reflections == 3 && p.front_reflections == 0)
-        angles.push_back(std::acos(std::min(1.0, glm::dot(p.wo, wi))));
-    }
-    std::nth_element(angles.begin(), angles.begin() + angles.size() / 2, angles.end());
-    return angles[angles.size() / 2];
+    return test::median_retro_spread(g, glm::normalize(glm::dvec3(0.05, 0.02, 1)), 5, 5);
   };
   const double tir = median_spread(false), metal = median_spread(true);
   std::printf("median spread: TIR %.3f mrad, metal %.3f mrad (ratio %.2f)\n", 1e3 * tir, 1e3 * metal, tir / metal);

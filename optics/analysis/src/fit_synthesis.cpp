@@ -59,6 +59,13 @@ scene synthesis_bench(scene setup) {
   return setup;
 }
 
+scene synthesis_bench_file(const std::string& setup_path) {
+  if (setup_path.empty()) return synthesis_bench(scene{});
+  const scene setup = load_scene(setup_path);
+  check_fit_sheets(setup, setup_path);
+  return synthesis_bench(setup);
+}
+
 void synthesise_fit_data(const std::string& dir_name, const scene& bench, const synthesis_truth& truth,
                          const synthesis_params& p, const fit_progress_callback& progress) {
   const fs::path dir = fs::absolute(dir_name);

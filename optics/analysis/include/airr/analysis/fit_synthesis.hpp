@@ -33,6 +33,8 @@ struct synthesis_truth {
 // images; empty: the default layout) with panels for parts, no props, a uniform display and a
 // 40 x 40 camera of 0.4 mm pixels framing a 10 mm white square.
 scene synthesis_bench(scene setup);
+// The same from a scene file (its sheets checked as the fit's setups are); empty: the default.
+scene synthesis_bench_file(const std::string& setup_path);
 
 // Writes fit.json, setup.json (the bench), 17 MTF CSVs and 10 white-square EXRs into dir (made if
 // missing), each file atomically. Every sheet of the bench takes truth's model. `progress` may
