@@ -284,6 +284,15 @@ TEST(Gui, PredictedPresetFromTheSheetsModelIsApplied) {
   EXPECT_EQ(preset.at("provenance").at("sheet").at("model").at("pitch_mm"), 0.16);
   EXPECT_NEAR(preset.at("a_per_mm")[0].get<double>(), 0.89, 0.1);
   EXPECT_TRUE(std::filesystem::exists(dir.file("config/airr-studio/predictions/prism_sheet_bench/fit.json")));
+  // A second prediction keeps the first's preset and measurements.
+  const studio_run again =
+      run_studio(dir, default_scene_path() + sheet + " --predict-preset --predict-samples 20000 --frames 2 --save-as " +
+                          dir.file("again.json"));
+  ASSERT_EQ(again.status, 0) << again.log;
+  const auto again_json = nlohmann::json::parse(std::ifstream(dir.file("again.json")));
+  EXPECT_NE(again_json.at("retroreflectors").at(0).at("model").at("preset"), model.at("preset"));
+  EXPECT_TRUE(std::filesystem::exists(model.at("preset").get<std::string>()));
+  EXPECT_TRUE(std::filesystem::exists(dir.file("config/airr-studio/predictions/prism_sheet_bench-2/fit.json")));
   EXPECT_GT(read_png(shot).width, 0);
 }
 

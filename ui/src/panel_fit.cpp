@@ -39,7 +39,11 @@ void start_preset_prediction(studio& st) {
                                   .note = "the designer's sheet model, predicted in the fit window",
                                   .model = model,
                                   .base_dir = st.doc.base_dir};
-    const std::string data_dir = (fs::path(config_dir()) / "predictions" / (model.type + "_bench")).string();
+    // Each prediction's measurements in a folder of their own, as its preset's provenance names it.
+    const fs::path predictions = fs::path(config_dir()) / "predictions";
+    fs::path bench = predictions / (model.type + "_bench");
+    for (int n = 2; fs::exists(bench); ++n) bench = predictions / (model.type + "_bench-" + std::to_string(n));
+    const std::string data_dir = bench.string();
     analysis::prediction_params p;
     p.synthesis.samples = st.predict_samples;
     p.fit.psf_samples = std::max<std::uint64_t>(1000, st.predict_samples / 5);
@@ -62,7 +66,10 @@ void apply_fitted_preset(studio& st, const sheet_preset& preset) {
     for (char& c : name) {
       if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_') c = '_';
     }
-    st.fit_saved_path = (dir / (name + ".json")).string();
+    // A new file: a scene saved earlier may name a preset of the same name.
+    fs::path path = dir / (name + ".json");
+    for (int n = 2; fs::exists(path); ++n) path = dir / (name + "-" + std::to_string(n) + ".json");
+    st.fit_saved_path = path.string();
     save_preset(preset, st.fit_saved_path);
   }
   auto& m = st.doc.sheet().model;
