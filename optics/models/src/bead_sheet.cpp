@@ -159,14 +159,12 @@ bead_path trace_bead_sheet(const bead_sheet_geometry& g, const glm::dvec3& wi, c
 }
 
 bead_sheet_retro::bead_sheet_retro(const bead_sheet_geometry& g) : g_(g) {
-  const auto check = [](const char* name, double v, double lo, double hi) {
-    check_model_number("bead_sheet", name, v, lo, hi);
-  };
-  check("diameter_mm", g.diameter_mm, 1e-4, 10);
-  check("index", g.index, 1, 3);
-  check("fill_fraction", g.fill_fraction, 0.01, 0.9069);
-  check("backing_reflectance", g.backing_reflectance, 0, 1);
-  check("wavelength_nm", g.wavelength_nm, 0, 20000);
+  check_model_numbers("bead_sheet", bead_sheet_retro_kind().fields,
+                      {{"diameter_mm", g.diameter_mm},
+                       {"index", g.index},
+                       {"fill_fraction", g.fill_fraction},
+                       {"backing_reflectance", g.backing_reflectance},
+                       {"wavelength_nm", g.wavelength_nm}});
 }
 
 retro_sample bead_sheet_retro::sample(const glm::dvec3& wi, retro_samples u) const {

@@ -186,4 +186,12 @@ void check_model_number(const std::string& model, const std::string& name, doubl
   }
 }
 
+void check_model_numbers(const std::string& model, const model_fields& fields,
+                         std::initializer_list<std::pair<const char*, double>> values) {
+  for (const auto& [name, v] : values) {
+    const model_field* f = find_field(fields, name);
+    check_model_number(model, name, v, f->lo, f->hi);
+  }
+}
+
 }  // namespace airr

@@ -1,4 +1,3 @@
-#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -91,29 +90,6 @@ corner_view full_cube_corner_view(const prism_sheet_geometry& g, const glm::dvec
     v.edge_ends[k] = glm::dvec2(end) - (end.z / d.z) * glm::dvec2(d);
   }
   return v;
-}
-
-polygon2 face_order_aperture(const polygon2& effective, const corner_view& view, const glm::dvec2& entry) {
-  // The six half-lines from the apex along the edges and against them, sorted by angle; the
-  // entry's direction lies between two neighbours, whose wedge (under 180 deg) holds its part.
-  std::array<double, 6> angles{};
-  for (std::size_t k = 0; k < 3; ++k) {
-    const glm::dvec2 r = view.edge_ends[k] - view.apex;
-    angles[2 * k] = std::atan2(r.y, r.x);
-    angles[2 * k + 1] = std::atan2(-r.y, -r.x);
-  }
-  std::sort(angles.begin(), angles.end());
-  const glm::dvec2 w = entry - view.apex;
-  const double at = std::atan2(w.y, w.x);
-  double lo = angles[5] - 2 * pi, hi = angles[0];
-  for (std::size_t i = 0; i + 1 < 6; ++i)
-    if (at >= angles[i] && at < angles[i + 1]) lo = angles[i], hi = angles[i + 1];
-  if (at >= angles[5]) lo = angles[5], hi = angles[0] + 2 * pi;
-  double reach = 0;
-  for (const glm::dvec2& p : effective) reach = std::max(reach, 4 * glm::length(p - view.apex));
-  const polygon2 wedge = {view.apex, view.apex + reach * glm::dvec2(std::cos(lo), std::sin(lo)),
-                          view.apex + reach * glm::dvec2(std::cos(hi), std::sin(hi))};
-  return clip_convex_polygon(effective, wedge);
 }
 
 polygon2 full_cube_effective_aperture(const prism_sheet_geometry& g, const glm::dvec3& d) {

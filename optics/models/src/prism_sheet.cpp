@@ -136,13 +136,42 @@ polygon2 aperture_triangle(const prism_sheet_geometry& g, int pointing) {
   return triangle;
 }
 
+polygon2 face_order_aperture(const polygon2& effective, const corner_view& view, const glm::dvec2& entry) {
+  // The six half-lines from the apex along the edges and against them, sorted by angle; the
+  // entry's direction lies between two neighbours, whose wedge (under 180 deg) holds its part.
+  std::array<double, 6> angles{};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const glm::dvec2 r = view.edge_ends[k] - view.apex;
+    angles[2 * k] = std::atan2(r.y, r.x);
+    angles[2 * k + 1] = std::atan2(-r.y, -r.x);
+  }
+  std::sort(angles.begin(), angles.end());
+  const glm::dvec2 w = entry - view.apex;
+  const double at = std::atan2(w.y, w.x);
+  double lo = angles[5] - 2 * pi, hi = angles[0];
+  for (std::size_t i = 0; i + 1 < 6; ++i)
+    if (at >= angles[i] && at < angles[i + 1]) lo = angles[i], hi = angles[i + 1];
+  if (at >= angles[5]) lo = angles[5], hi = angles[0] + 2 * pi;
+  double reach = 0;
+  for (const glm::dvec2& p : effective) reach = std::max(reach, 4 * glm::length(p - view.apex));
+  const polygon2 wedge = {view.apex, view.apex + reach * glm::dvec2(std::cos(lo), std::sin(lo)),
+                          view.apex + reach * glm::dvec2(std::cos(hi), std::sin(hi))};
+  return clip_convex_polygon(effective, wedge);
+}
+
+// The face order's part of an effective aperture already worked out for d (non-empty).
+static polygon2 face_order_part(const prism_sheet_geometry& g, const glm::dvec3& d, int pointing,
+                                const polygon2& effective, const glm::dvec2& shift_mm) {
+  const corner_view view = g.full_cubes ? full_cube_corner_view(g, d) : triangular_corner_view(g, d, pointing);
+  // Entry and exit are mirror images through the apex line: the entry is half the shift back.
+  return face_order_aperture(effective, view, view.apex - 0.5 * shift_mm);
+}
+
 polygon2 face_order_aperture(const prism_sheet_geometry& g, const glm::dvec3& d, int pointing,
                              const glm::dvec2& shift_mm) {
   const polygon2 effective = g.full_cubes ? full_cube_effective_aperture(g, d) : effective_aperture(g, d, pointing);
   if (effective.empty()) return {};
-  const corner_view view = g.full_cubes ? full_cube_corner_view(g, d) : triangular_corner_view(g, d, pointing);
-  // Entry and exit are mirror images through the apex line: the entry is half the shift back.
-  return face_order_aperture(effective, view, view.apex - 0.5 * shift_mm);
+  return face_order_part(g, d, pointing, effective, shift_mm);
 }
 
 corner_view triangular_corner_view(const prism_sheet_geometry& g, const glm::dvec3& d, int pointing) {
@@ -213,7 +242,7 @@ prism_path trace_prism_sheet(const prism_sheet_geometry& g, const glm::dvec3& wi
           // Total internal reflection shifts the phase by polarisation differently for each face
           // order: the six orders' parts diffract apart (a metal coat keeps the whole coherent).
           if (!g.metallised && !used.polygon.empty())
-            used.polygon = face_order_aperture(g, inside, first_pointing, out.shift_mm);
+            used.polygon = face_order_part(g, inside, first_pointing, used.polygon, out.shift_mm);
         }
         if (used.polygon.empty())
           used.polygon = g.full_cubes ? full_cube_hexagon(g, inside) : aperture_triangle(g, first_pointing);
@@ -271,15 +300,13 @@ prism_path trace_prism_sheet(const prism_sheet_geometry& g, const glm::dvec3& wi
 }
 
 prism_sheet_retro::prism_sheet_retro(const prism_sheet_geometry& g) : g_(g) {
-  const auto check = [](const char* name, double v, double lo, double hi) {
-    check_model_number("prism_sheet", name, v, lo, hi);
-  };
-  check("pitch_mm", g.pitch_mm, 1e-4, 10);
-  check("index", g.index, 1, 3);
-  check("plate_mm", g.plate_mm, 0, 20);
-  check("face_reflectance", g.face_reflectance, 0, 1);
-  check("azimuth_deg", g.azimuth_deg, -360, 360);
-  check("wavelength_nm", g.wavelength_nm, 0, 20000);
+  check_model_numbers("prism_sheet", prism_sheet_retro_kind().fields,
+                      {{"pitch_mm", g.pitch_mm},
+                       {"index", g.index},
+                       {"plate_mm", g.plate_mm},
+                       {"face_reflectance", g.face_reflectance},
+                       {"azimuth_deg", g.azimuth_deg},
+                       {"wavelength_nm", g.wavelength_nm}});
 }
 
 retro_sample prism_sheet_retro::sample(const glm::dvec3& wi, retro_samples u) const {

@@ -172,13 +172,11 @@ microfacet_retro::microfacet_retro(const microfacet_params& p)
       internal_reflectance_(p.internal_reflectance),
       eta_(p.eta),
       mu_(p.mu) {
-  const auto check = [](const char* name, double v, double lo, double hi) {
-    check_model_number("microfacet", name, v, lo, hi);
-  };
-  check("alpha_surface", alpha_surface_, 0, 1);
-  check("alpha_internal", alpha_internal_, 0, 1);
-  check("internal_reflectance", internal_reflectance_, 0, 1);
-  check("eta", eta_, 1, 3);
+  check_model_numbers("microfacet", microfacet_retro_kind().fields,
+                      {{"alpha_surface", alpha_surface_},
+                       {"alpha_internal", alpha_internal_},
+                       {"internal_reflectance", internal_reflectance_},
+                       {"eta", eta_}});
 }
 
 retro_sample microfacet_retro::sample(const glm::dvec3& wi, retro_samples u) const { return trace(wi, u).sample; }

@@ -1,8 +1,10 @@
 #pragma once
 // One description per retroreflector-model parameter (key, unit, range, default, help) that drives
 // reading, writing, validation, command-line overrides and the layout panel's rows.
+#include <initializer_list>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -70,6 +72,9 @@ void set_model_value(retro_model_params& p, const model_fields& fields, const st
 // A model's constructor's check of one number, for models built without a field table; throws
 // input_error "<model> model: <name>: <v> is outside [lo, hi]".
 void check_model_number(const std::string& model, const std::string& name, double v, double lo, double hi);
+// The same for each named value against its field's range in `fields` (one home for the ranges).
+void check_model_numbers(const std::string& model, const model_fields& fields,
+                         std::initializer_list<std::pair<const char*, double>> values);
 
 // Range and choice checks of every stored value; throws input_error "<where>.<key>: <problem>".
 void validate_model_values(const retro_model_params& p, const model_fields& fields, const std::string& where);
