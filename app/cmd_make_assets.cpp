@@ -21,6 +21,7 @@ void add_make_assets_command(CLI::App& app) {
     const std::string panel = *dir + "/models/panel.gltf";
     airr::save_gltf_mesh(airr::make_unit_panel(), panel);
     airr::save_gltf_mesh(airr::make_corner_cube(), *dir + "/models/corner_cube.gltf");
+    airr::save_gltf_mesh(airr::make_corner_cube_tile(0.1), *dir + "/models/corner_cube_tile.gltf");
     const airr::image_metadata meta{{"airr:generator", "airr make-assets"}};
     airr::write_image(*dir + "/charts/test_chart.png", airr::make_test_chart(), meta);
     airr::write_image(*dir + "/charts/slanted_edge.png", airr::make_slanted_edge_chart(), meta);
@@ -35,7 +36,8 @@ void add_make_assets_command(CLI::App& app) {
     airr::set_model_value(rf_ay.sheet().model, "preset", "rf-ay");
     airr::save_scene(rf_ay, *dir + "/scenes/default.json");
     std::fprintf(stderr,
-                 "wrote %s, models/corner_cube.gltf, charts/test_chart.png, charts/slanted_edge.png, "
+                 "wrote %s, models/corner_cube.gltf, models/corner_cube_tile.gltf, charts/test_chart.png, "
+                 "charts/slanted_edge.png, "
                  "scenes/default.json, scenes/ideal_bench.json in %s\n",
                  panel.c_str(), dir->c_str());
   });

@@ -11,7 +11,7 @@ trap 'rm -rf "$tmp"' EXIT
 
 "$airr" make-assets --dir "$tmp"
 status=0
-for f in models/panel.gltf models/corner_cube.gltf scenes/default.json scenes/ideal_bench.json; do
+for f in models/panel.gltf models/corner_cube.gltf models/corner_cube_tile.gltf scenes/default.json scenes/ideal_bench.json; do
   if cmp -s "$tmp/$f" "$assets/$f"; then echo "same: $f"; else echo "DIFFERS: $f" >&2; diff "$tmp/$f" "$assets/$f" | head -20 >&2; status=1; fi
 done
 for f in charts/test_chart.png charts/slanted_edge.png; do

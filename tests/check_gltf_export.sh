@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Exports a layout with props as .glb and .gltf with `airr export-gltf`, exports the imported .glb
 # again, exports the shipped kiosk (its display's chart embedded as a texture) as .glb and .gltf,
-# and has the Khronos glTF-Validator judge all five: no errors and no warnings.
+# and has the Khronos glTF-Validator judge all five and the tile sheet's shipped tile: no errors
+# and no warnings.
 set -euo pipefail
 airr="$1"
 source_dir="$2"
@@ -35,4 +36,4 @@ PY
 "$airr" export-gltf "$source_dir/assets/scenes/two_sheet_kiosk.json" -o "$tmp/kiosk.glb"
 "$airr" export-gltf "$source_dir/assets/scenes/two_sheet_kiosk.json" -o "$tmp/kiosk.gltf"
 node "$validator/validate.mjs" --strict "$tmp/layout.glb" "$tmp/layout.gltf" "$tmp/again.glb" "$tmp/kiosk.glb" \
-  "$tmp/kiosk.gltf"
+  "$tmp/kiosk.gltf" "$source_dir/assets/models/corner_cube_tile.gltf"

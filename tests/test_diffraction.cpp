@@ -3,6 +3,7 @@
 // Airy patterns (chi-square), and a prism sheet's retroreflected spread scales with wavelength
 // over pitch.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -179,4 +180,39 @@ TEST(Diffraction, DisplayWhiteSpreadIsTheMixtureOfThePrimaries) {
               p_green);
   EXPECT_GT(p_mixture, 1e-3);
   EXPECT_LT(p_green, 1e-3);
+}
+
+// Colour fringes: with the display's white each retroreflected path carries one primary's channel
+// (three times over), so the channels average to white, and the light carrying red spreads wider
+// than the light carrying blue, by the ratio of their wavelengths.
+TEST(Diffraction, DisplayWhiteBlursEachChannelByItsWavelength) {
+  prism_sheet_geometry g;
+  g.metallised = true;
+  g.light = diffracted_light::display_rgb;
+  const glm::dvec3 wi = glm::normalize(glm::dvec3(0.1, 0.05, 1));
+  pcg32 rng(4, 4);
+  glm::dvec3 sum(0);
+  std::array<std::vector<double>, 3> spread;
+  int n = 0;
+  while (n < 60000) {
+    const prism_path p =
+        trace_prism_sheet(g, wi, prism_cell_point(g, {rng.next_double(), rng.next_double()}), rng.next_double(), rng);
+    if (p.fate != prism_fate::retroreflected || p.face_reflections != 3 || p.front_reflections != 0) continue;
+    ++n;
+    sum += p.channels;
+    for (int k = 0; k < 3; ++k)
+      if (p.channels[k] > 0) spread[std::size_t(k)].push_back(std::acos(std::min(1.0, glm::dot(p.wo, wi))));
+  }
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + std::ptrdiff_t(v.size() / 2), v.end());
+    return v[v.size() / 2];
+  };
+  const glm::dvec3 mean = sum / double(n);
+  const double red = median(spread[0]), green = median(spread[1]), blue = median(spread[2]);
+  std::printf("channels' mean %.4f %.4f %.4f; median spread R %.3f G %.3f B %.3f mrad (R / B %.3f, wavelengths %.3f)\n",
+              mean.r, mean.g, mean.b, red * 1e3, green * 1e3, blue * 1e3, red / blue,
+              display_primaries_nm[0] / display_primaries_nm[2]);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(mean[k], 1.0, 4 * std::sqrt(2.0 / n));
+  EXPECT_NEAR(red / blue, display_primaries_nm[0] / display_primaries_nm[2], 0.04);
+  EXPECT_NEAR(green / blue, display_primaries_nm[1] / display_primaries_nm[2], 0.04);
 }

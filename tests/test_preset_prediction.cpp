@@ -63,6 +63,25 @@ TEST(SheetFile, RoundTripsAndRefusesBadInput) {
   EXPECT_NE(test::error_of([&] { load_sheet(dir.file("absent.json")); }).find("absent.json"), std::string::npos);
 }
 
+// Every shipped sheet loads and builds its model (the tile sheet's tile found beside it); a tile
+// sheet whose tile is missing names the tile's file.
+TEST(SheetFile, EveryShippedSheetBuildsItsModel) {
+  int sheets = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(asset_dir() + "/sheets")) {
+    const sheet_description s = load_sheet(entry.path().string());
+    EXPECT_NO_THROW(make_retro_model(s.model, {.base_dir = s.base_dir}, "model")) << entry.path();
+    ++sheets;
+  }
+  EXPECT_GE(sheets, 4);
+  test::temp_dir dir;
+  write_text(
+      dir.file("tile.json"),
+      R"({"format": "airr-sheet", "version": 1, "name": "x", "model": {"type": "tile_sheet", "tile": "cad.glb"}})");
+  const std::string missing = test::error_of([&] { load_sheet(dir.file("tile.json")); });
+  EXPECT_NE(missing.find("cad.glb"), std::string::npos) << missing;
+  EXPECT_NE(missing.find("tile"), std::string::npos) << missing;
+}
+
 TEST(PresetPrediction, BadSheetIsAOneLineError) {
   test::temp_dir dir;
   write_text(dir.file("sheet.json"), R"({"format": "airr-sheet", "version": 1, "name": "x",

@@ -1,5 +1,6 @@
 // The prism sheet traced as geometry, through the tracer: the aerial image forms where the mirror
-// image of the display lies, as bright as the share of light the sheet retroreflects.
+// image of the display lies, as bright as the share of light the sheet retroreflects; the tile
+// sheet with the same cube corners as its tile does the same.
 #include <cstdio>
 
 #include <gtest/gtest.h>
@@ -59,4 +60,44 @@ TEST(PrismSheetRender, TheAerialImageFormsAtTheMirrorImageAsBrightAsTheSheetRetu
   std::printf("prism sheet at %.1f deg: centre %.4f of the ideal sheet's; it retroreflects %.4f\n",
               degrees(std::acos(wi.z)), ratio, returned / n);
   EXPECT_NEAR(ratio, returned / n, 0.02);
+}
+
+// The tile sheet with its shipped tile (the prism sheet's cube corners as a glTF mesh, traced by
+// Embree) forms the same aerial image as the prism sheet: where, and as bright.
+TEST(PrismSheetRender, TheShippedTileRendersAsThePrismSheet) {
+  scene prism = test::uniform_source_scene(12.0, 64);
+  prism.sheet().pose.pitch_deg = 10;
+  scene tile = prism;
+  prism.sheet().model = retro_model_params{"prism_sheet", {{"wavelength_nm", 0.0}}};
+  tile.sheet().model = retro_model_params{"tile_sheet", {{"wavelength_nm", 0.0}}};
+  const render_snapshot a = test::render_to(prism, 64), b = test::render_to(tile, 64);
+  const glm::dvec2 ca = image_centroid(a), cb = image_centroid(b);
+  EXPECT_NEAR(cb.x, ca.x, 0.25);
+  EXPECT_NEAR(cb.y, ca.y, 0.25);
+  const double ratio = test::centre_mean(b, 3) / test::centre_mean(a, 3);
+  std::printf("tile sheet's centre: %.4f of the prism sheet's\n", ratio);
+  EXPECT_NEAR(ratio, 1.0, 0.03);
+}
+
+// Colour fringes in the tracer: a prism sheet under the display's white returns white light (the
+// channels' totals agree), but its red spreads wider than its blue, so past the aerial image's
+// edge the red outweighs the blue.
+TEST(PrismSheetRender, TheDisplaysWhiteHasColourFringes) {
+  scene s = test::uniform_source_scene(12.0, 64);
+  s.sheet().pose.pitch_deg = 10;
+  s.sheet().model =
+      retro_model_params{"prism_sheet", {{"coating", std::string("metal")}, {"spectrum", std::string("display_rgb")}}};
+  const render_snapshot snap = test::render_to(s, 128);
+  const double half = 0.5 * test::centre_mean(snap, 3);
+  glm::dvec3 total(0), outside(0);
+  for (std::size_t i = 0; i < std::size_t(snap.width) * snap.height; ++i) {
+    const glm::dvec3 c((*snap.rgb)[3 * i], (*snap.rgb)[3 * i + 1], (*snap.rgb)[3 * i + 2]);
+    total += c;
+    if (c.g < half) outside += c;
+  }
+  std::printf("totals R %.4g G %.4g B %.4g; past the edge R / B %.3f\n", total.r, total.g, total.b,
+              outside.r / outside.b);
+  EXPECT_NEAR(total.r / total.b, 1.0, 0.03);
+  EXPECT_NEAR(total.g / total.b, 1.0, 0.03);
+  EXPECT_GT(outside.r / outside.b, 1.1);
 }

@@ -17,7 +17,7 @@ struct prop_scene {
   // Held so that no other mesh takes a key's address while this scene may share its prototype.
   std::vector<instance_mesh> meshes;
   std::vector<glm::dmat4> transforms;
-  std::unique_ptr<embree_layout_scene> embree;
+  std::unique_ptr<embree_instanced_scene> embree;
 };
 
 // The last props' scene built: the next one shares its meshes' acceleration structures, so an
@@ -75,8 +75,8 @@ prop_hit_function scene_prop_hits(const scene& s) {
       built->device = last.device;
       built->meshes = meshes;
       built->transforms = transforms;
-      built->embree = std::make_unique<embree_layout_scene>(*built->device, meshes,
-                                                            last.scene ? last.scene->embree.get() : nullptr);
+      built->embree = std::make_unique<embree_instanced_scene>(*built->device, meshes,
+                                                               last.scene ? last.scene->embree.get() : nullptr);
       built->embree->set_transforms(transforms);
       ++last.builds;
       last.scene = props = built;

@@ -31,7 +31,7 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   std::vector<std::string> keys;
   for (const auto& path : part_meshes) keys.push_back("part:" + path);
   for (const auto& p : props) keys.push_back(prop_mesh_key(p.params, p.mesh.get()));
-  std::unique_ptr<embree_layout_scene> embree;
+  std::unique_ptr<embree_instanced_scene> embree;
   if (!ts.embree || ts.embree->keys() != keys) {
     std::vector<instance_mesh> meshes;
     std::map<std::string, std::shared_ptr<const triangle_mesh>> parts;
@@ -43,7 +43,7 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
       meshes.push_back({keys[i], m});
     }
     for (std::size_t k = 0; k < props.size(); ++k) meshes.push_back({keys[part_meshes.size() + k], props[k].mesh});
-    embree = std::make_unique<embree_layout_scene>(device, meshes);
+    embree = std::make_unique<embree_instanced_scene>(device, meshes);
   }
   const std::string tex = resolve_scene_path(s, s.source.image);
   std::shared_ptr<const image_rgb> texture = tex.empty() ? nullptr : cached_image_pixels(tex);
@@ -310,7 +310,7 @@ static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, c
       if (!(rs.weight > 0)) break;
       p.dir = glm::normalize(to_world(f, rs.wo));
       p.origin = hit + rs.shift_mm.x * f.u + rs.shift_mm.y * f.v;
-      p.throughput *= float(rs.weight);
+      p.throughput *= glm::vec3(rs.channels) * float(rs.weight);
       if (rs.retroreflected) {
         ++p.retroreflections;
       } else {

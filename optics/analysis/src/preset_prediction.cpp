@@ -34,10 +34,11 @@ double bench_mean_mtf(const psf_samples& psf, double lsf_window_mm) {
   return sum / n;
 }
 
-// A prism sheet's light meets its cube corners inside the plate: the preset reads the shift
-// table at the angle inside (preset.hpp). Other sheets keep the table at the angle outside.
+// A prism or tile sheet's light meets its cube corners inside the plate: the preset reads the
+// shift table at the angle inside (preset.hpp). Other sheets keep the table at the angle outside.
 double shift_index_of(const sheet_description& sheet) {
-  return sheet.model.type == "prism_sheet" ? read_model_values(sheet.model).number("index") : 1.0;
+  const bool plate = sheet.model.type == "prism_sheet" || sheet.model.type == "tile_sheet";
+  return plate ? read_model_values(sheet.model).number("index") : 1.0;
 }
 
 }  // namespace

@@ -1,5 +1,9 @@
 #include "airr/core/mesh.hpp"
 
+#include <utility>
+
+#include "airr/core/error.hpp"
+
 namespace airr {
 
 triangle_mesh make_unit_panel() {
@@ -18,6 +22,18 @@ mesh_bounds bounds_of(const triangle_mesh& mesh) {
     b.hi = glm::max(b.hi, p);
   }
   return b;
+}
+
+static mesh_file_reader& installed_reader() {
+  static mesh_file_reader reader;
+  return reader;
+}
+
+void install_mesh_file_reader(mesh_file_reader reader) { installed_reader() = std::move(reader); }
+
+std::shared_ptr<const triangle_mesh> read_mesh_file(const std::string& path) {
+  if (!installed_reader()) throw input_error(path + ": this program cannot read mesh files");
+  return installed_reader()(path);
 }
 
 }  // namespace airr

@@ -50,6 +50,12 @@ std::shared_ptr<const triangle_mesh> cached_prop_mesh(const std::string& path, c
                    [&] { return std::make_shared<const triangle_mesh>(load_prop_mesh(path, node)); });
 }
 
+// Models below this library read mesh files through core's hook (a sheet's unit cell).
+[[maybe_unused]] static const bool mesh_reader_installed = [] {
+  install_mesh_file_reader([](const std::string& path) { return cached_prop_mesh(path, ""); });
+  return true;
+}();
+
 pose gltf_node_rigid_pose(const std::string& path, const std::string& node) {
   const gltf::file f = gltf::read(path);
   return gltf::node_rigid_pose(f, gltf::find_node(f, node));

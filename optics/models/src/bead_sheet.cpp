@@ -141,10 +141,11 @@ bead_path trace_bead_sheet(const bead_sheet_geometry& g, const glm::dvec3& wi, c
       // Through the bead's pupil: a circle of its diameter across the beam. A spread that would
       // send grazing light into the sheet is drawn again (the light leaves, only less spread).
       const basis across = make_basis(out.wo);
-      const double wavelength_nm = draw_wavelength_nm(g.light, g.wavelength_nm, rng);
+      const drawn_light drawn = draw_light(g.light, g.wavelength_nm, rng);
+      out.channels = drawn.channels;
       for (int attempt = 0; attempt < 16; ++attempt) {
         const glm::dvec2 f = sample_far_field(aperture{{}, g.diameter_mm}, rng);
-        const glm::dvec3 w = glm::normalize(out.wo + wavelength_nm * 1e-6 * (f.x * across.t + f.y * across.b));
+        const glm::dvec3 w = glm::normalize(out.wo + drawn.wavelength_nm * 1e-6 * (f.x * across.t + f.y * across.b));
         if (w.z > 0) {
           out.wo = w;
           break;
@@ -169,7 +170,7 @@ bead_sheet_retro::bead_sheet_retro(const bead_sheet_geometry& g) : g_(g) {
 
 retro_sample bead_sheet_retro::sample(const glm::dvec3& wi, retro_samples u) const {
   const bead_path path = trace_bead_sheet(g_, wi, bead_cell_point(g_, u.lobe), u.more);
-  return {path.wo, path.shift_mm, path.weight, path.through_bead};
+  return {path.wo, path.shift_mm, path.weight, path.through_bead, path.channels};
 }
 
 const retro_model_kind& bead_sheet_retro_kind() {

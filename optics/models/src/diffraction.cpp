@@ -17,17 +17,19 @@ double far_field_reach(const aperture& a) { return 64 / std::sqrt(a.area()); }
 model_field spectrum_field() {
   return choice_field("spectrum", {"single", "display_rgb"},
                       "Diffraction at wavelength_nm, or over the display's white (sRGB primaries' dominant "
-                      "wavelengths 611, 549, 464 nm in equal shares)");
+                      "wavelengths 611, 549, 464 nm in equal shares, each blurring its own channel)");
 }
 
 diffracted_light read_spectrum(const model_values& v) {
   return v.text("spectrum") == "display_rgb" ? diffracted_light::display_rgb : diffracted_light::single;
 }
 
-double draw_wavelength_nm(diffracted_light light, double wavelength_nm, pcg32& rng) {
-  if (light == diffracted_light::single) return wavelength_nm;
+drawn_light draw_light(diffracted_light light, double wavelength_nm, pcg32& rng) {
+  if (light == diffracted_light::single) return {wavelength_nm, glm::dvec3(1.0)};
   const int k = std::min(2, int(3 * rng.next_double()));
-  return display_primaries_nm[std::size_t(k)];
+  drawn_light out{display_primaries_nm[std::size_t(k)], glm::dvec3(0.0)};
+  out.channels[k] = 3;
+  return out;
 }
 
 namespace {

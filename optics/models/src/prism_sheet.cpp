@@ -9,7 +9,6 @@
 
 #include "airr/core/error.hpp"
 #include "airr/core/geometry.hpp"
-#include "airr/models/dielectric.hpp"
 #include "airr/models/diffraction.hpp"
 #include "prism_structure.hpp"
 
@@ -25,7 +24,6 @@ double prism_sheet_geometry::depth_mm() const {
 
 namespace {
 
-constexpr int max_events = 256;
 constexpr int max_steps = 100000;  // triangles crossed by one straight stretch
 
 // The three groove families' in-plane unit normals, 120 deg apart (they sum to zero): family k's
@@ -90,7 +88,8 @@ stretch_end follow(const prism_sheet_geometry& g, const std::array<glm::dvec2, 3
         if (t > eps && t < t_hit) t_hit = t, k_hit = k;
       }
     } else {
-      // From below, the surface is reached when the last face still above the ray comes down to it.
+      // From below, the surface is reached when the last face still above the ray comes down to it,
+      // unless by then the ray has gone under a face it was above.
       double t_last = 0;
       bool reachable = true;
       for (int k = 0; k < 3; ++k) {
@@ -102,6 +101,8 @@ stretch_end follow(const prism_sheet_geometry& g, const std::array<glm::dvec2, 3
         const double t = -g0[std::size_t(k)] / slope[std::size_t(k)];
         if (t >= t_last) t_last = t, k_hit = k;
       }
+      for (int k = 0; k < 3 && reachable; ++k)
+        if (g0[std::size_t(k)] >= 0 && g0[std::size_t(k)] + slope[std::size_t(k)] * t_last < -eps) reachable = false;
       if (reachable && k_hit >= 0 && t_last > eps) t_hit = t_last;
       if (!reachable) k_hit = -1;
     }
@@ -199,103 +200,33 @@ glm::dvec2 prism_cell_point(const prism_sheet_geometry& g, const glm::dvec2& u) 
 
 prism_path trace_prism_sheet(const prism_sheet_geometry& g, const glm::dvec3& wi, const glm::dvec2& entry,
                              double u_front, pcg32& rng) {
-  prism_path out;
-  if (!(wi.z > 0)) return out;
-  const glm::dvec3 front_normal(0, 0, 1);
-  if (u_front < fresnel_dielectric(wi.z, g.index)) {
-    out.fate = prism_fate::front_reflection;
-    out.wo = glm::dvec3(-wi.x, -wi.y, wi.z);
-    out.weight = 1;
-    return out;
-  }
   const auto e = groove_normals(g);
-  glm::dvec3 d = *refract(-wi, front_normal, 1 / g.index);
-  const glm::dvec3 inside = d;
-  int first_pointing = 0;  // the cube corner of the first face met
-  glm::dvec3 p(entry, 0.0);
-  bool in_plate = true;
-  double weight = 1;
-  for (int event = 0; event < max_events; ++event) {
-    out.events = event;
-    if (in_plate && d.z > 0 && p.z >= -g.plate_mm - 1e-12 * g.pitch_mm) {
-      // Up through the plate to the front surface.
-      p += ((0 - p.z) / d.z) * d;
-      const double reflectance = fresnel_dielectric(d.z, 1 / g.index);
-      if (rng.next_double() < reflectance) {
-        d.z = -d.z;
-        ++out.front_reflections;
-        continue;
-      }
-      out.wo = glm::normalize(*refract(d, -front_normal, g.index));
-      out.shift_mm = glm::dvec2(p) - entry;
-      out.weight = weight;
-      out.fate = glm::length(out.wo - wi) < 1e-9 ? prism_fate::retroreflected : prism_fate::stray;
-      if (out.face_reflections > 0 && g.wavelength_nm > 0) {
-        // One cube corner's three faces: the beam leaves through the part of its aperture that
-        // retroreflects, and spreads by its far field. Any other path's beam is narrower than
-        // the aperture triangle of the first cube corner it met: that triangle bounds its spread
-        // from below.
-        aperture used;
-        if (out.fate == prism_fate::retroreflected && out.face_reflections == 3 && out.front_reflections == 0) {
-          used.polygon =
-              g.full_cubes ? full_cube_effective_aperture(g, inside) : effective_aperture(g, inside, first_pointing);
-          // Total internal reflection shifts the phase by polarisation differently for each face
-          // order: the six orders' parts diffract apart (a metal coat keeps the whole coherent).
-          if (!g.metallised && !used.polygon.empty())
-            used.polygon = face_order_part(g, inside, first_pointing, used.polygon, out.shift_mm);
-        }
-        if (used.polygon.empty())
-          used.polygon = g.full_cubes ? full_cube_hexagon(g, inside) : aperture_triangle(g, first_pointing);
-        const double wavelength_nm = draw_wavelength_nm(g.light, g.wavelength_nm, rng);
-        const auto spread = diffracted(out.wo, sample_far_field(used, rng), wavelength_nm * 1e-6);
-        if (spread) {
-          out.wo = *spread;
-        } else {
-          out.weight = 0;  // evanescent
-        }
-      }
-      return out;
-    }
-    if (in_plate && d.z < 0 && p.z > -g.plate_mm) p += ((-g.plate_mm - p.z) / d.z) * d;  // down to the ridges
-    const stretch_end end = g.full_cubes ? follow_full_cubes(g, p, d, in_plate) : follow(g, e, p, d, in_plate);
-    p = end.point;
-    if (!end.face_normal) {
-      if (in_plate) continue;  // above the ridges: on to the front surface
-      if (d.z < 0) {
-        out.fate = prism_fate::transmitted;
-        out.wo = d;
-        out.shift_mm = glm::dvec2(p) - entry;
-        out.weight = weight;
-        return out;
-      }
-      break;  // no surface where one must be: numerically lost
-    }
-    const glm::dvec3 n = *end.face_normal;  // into the plate
-    if (in_plate) {
-      if (out.face_reflections == 0) first_pointing = end.pointing;
-      ++out.face_reflections;
-      if (g.metallised) {
-        weight *= g.face_reflectance;
-        d = reflect(d, n);
-        continue;
-      }
-      if (rng.next_double() < fresnel_dielectric(-glm::dot(d, n), 1 / g.index)) {
-        d = reflect(d, n);
-      } else {
-        d = glm::normalize(*refract(d, n, g.index));
-        in_plate = false;
-      }
-    } else {
-      if (rng.next_double() < fresnel_dielectric(glm::dot(d, n), g.index)) {
-        d = reflect(d, n);
-      } else {
-        d = glm::normalize(*refract(d, -n, 1 / g.index));
-        in_plate = true;
-      }
-    }
+  const follow_back back = [&](const glm::dvec3& p, const glm::dvec3& d, bool in_plate) {
+    stretch_end end = g.full_cubes ? follow_full_cubes(g, p, d, in_plate) : follow(g, e, p, d, in_plate);
+    if (g.metallised) end.metal_reflectance = g.face_reflectance;
+    return end;
+  };
+  plate_walk_record record;
+  prism_path out = walk_plate({g.index, g.plate_mm, g.pitch_mm}, back, wi, entry, u_front, rng, record);
+  const bool out_of_front = out.fate == prism_fate::retroreflected || out.fate == prism_fate::stray;
+  if (!out_of_front || out.face_reflections == 0 || g.wavelength_nm <= 0) return out;
+  // One cube corner's three faces: the beam leaves through the part of its aperture that
+  // retroreflects, and spreads by its far field. Any other path's beam is narrower than the
+  // aperture triangle of the first cube corner it met: that triangle bounds its spread from below.
+  const glm::dvec3 inside = record.inside;
+  const int first_pointing = record.faces.front().pointing;
+  aperture used;
+  if (out.fate == prism_fate::retroreflected && out.face_reflections == 3 && out.front_reflections == 0) {
+    used.polygon =
+        g.full_cubes ? full_cube_effective_aperture(g, inside) : effective_aperture(g, inside, first_pointing);
+    // Total internal reflection shifts the phase by polarisation differently for each face
+    // order: the six orders' parts diffract apart (a metal coat keeps the whole coherent).
+    if (!g.metallised && !used.polygon.empty())
+      used.polygon = face_order_part(g, inside, first_pointing, used.polygon, out.shift_mm);
   }
-  out.fate = prism_fate::lost;
-  out.weight = 0;
+  if (used.polygon.empty())
+    used.polygon = g.full_cubes ? full_cube_hexagon(g, inside) : aperture_triangle(g, first_pointing);
+  diffract_exit(used, g.light, g.wavelength_nm, rng, out);
   return out;
 }
 
@@ -311,7 +242,7 @@ prism_sheet_retro::prism_sheet_retro(const prism_sheet_geometry& g) : g_(g) {
 
 retro_sample prism_sheet_retro::sample(const glm::dvec3& wi, retro_samples u) const {
   const prism_path path = trace_prism_sheet(g_, wi, prism_cell_point(g_, u.lobe), u.shift.x, u.more);
-  return {path.wo, path.shift_mm, path.weight, path.fate == prism_fate::retroreflected};
+  return {path.wo, path.shift_mm, path.weight, path.fate == prism_fate::retroreflected, path.channels};
 }
 
 const retro_model_kind& prism_sheet_retro_kind() {

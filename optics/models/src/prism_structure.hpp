@@ -8,16 +8,9 @@
 
 #include "airr/core/polygon.hpp"
 #include "airr/models/prism_sheet.hpp"
+#include "plate_walk.hpp"
 
 namespace airr {
-
-// Where a straight stretch ends: on a face (its normal pointing into the plate) or leaving the
-// structure's slab (above the ridges inside the plate, below the apexes outside it).
-struct stretch_end {
-  glm::dvec3 point{0};
-  std::optional<glm::dvec3> face_normal;
-  int pointing = 1;  // triangular cube corners: +1 the triangles whose f's sum to 1, -1 the others
-};
 
 // Full cubes: the glass is the union of the cube lattice's cells (edge: the cube edge, axes the
 // three cube axes, whose sum is the sheet normal) with index sum i + j + k >= 0, so every lattice

@@ -5,6 +5,7 @@
 #include "airr/models/prism_sheet.hpp"
 #include "airr/models/retro_microfacet.hpp"
 #include "airr/models/retro_sinc_shift.hpp"
+#include "airr/models/tile_sheet.hpp"
 
 namespace airr {
 
@@ -43,9 +44,9 @@ const retro_model_kind& ideal_retro_kind() {
 
 // The registration: every model the scene file can name, in the order the designer lists them.
 const std::vector<const retro_model_kind*>& retro_model_kinds() {
-  static const std::vector<const retro_model_kind*> kinds = {&ideal_retro_kind(), &sinc_shift_retro_kind(),
+  static const std::vector<const retro_model_kind*> kinds = {&ideal_retro_kind(),      &sinc_shift_retro_kind(),
                                                              &microfacet_retro_kind(), &prism_sheet_retro_kind(),
-                                                             &bead_sheet_retro_kind()};
+                                                             &bead_sheet_retro_kind(), &tile_sheet_retro_kind()};
   return kinds;
 }
 

@@ -37,7 +37,7 @@ struct tracer_scene {
   };
   std::vector<prop> props;
   unsigned first_prop = part_first_sheet;
-  std::unique_ptr<embree_layout_scene> embree;
+  std::unique_ptr<embree_instanced_scene> embree;
   // The model image, the control variate of every pixel's estimate (null: none, the plain
   // estimator); see update_model_image.
   bool use_model_image = true;

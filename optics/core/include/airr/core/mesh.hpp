@@ -1,6 +1,8 @@
 #pragma once
 // Triangle meshes: the geometry of parts and props, whatever file they come from.
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -37,5 +39,13 @@ struct mesh_bounds {
   glm::vec3 lo{0.0f}, hi{0.0f};
 };
 mesh_bounds bounds_of(const triangle_mesh& mesh);
+
+// Mesh files are read by the formats library (mesh_gltf.hpp), which lies above the models that
+// may need one (a sheet's unit cell); it installs its reader here. The reader gives the file's
+// whole default scene in millimetres and throws input_error naming the file.
+using mesh_file_reader = std::function<std::shared_ptr<const triangle_mesh>(const std::string& path)>;
+void install_mesh_file_reader(mesh_file_reader reader);
+// Throws input_error when no reader is installed.
+std::shared_ptr<const triangle_mesh> read_mesh_file(const std::string& path);
 
 }  // namespace airr

@@ -37,6 +37,7 @@ struct bead_path {
   bool lost = false;          // still inside after the event limit
   bool through_bead = false;  // it entered a bead and left through the same bead's front
   int backing_reflections = 0;
+  glm::dvec3 channels{1.0};  // of the display's R, G, B (diffracted_light)
 };
 
 // Light arriving against wi (sheet-local, wi.z > 0) at `entry` (mm) on the sheet plane; every

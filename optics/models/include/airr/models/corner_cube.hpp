@@ -8,4 +8,10 @@ namespace airr {
 // Three right-isosceles triangles, one per face, normals pointing into the corner.
 triangle_mesh make_corner_cube();
 
+// The tile sheet's shipped tile (tile_sheet.hpp), in metres as glTF files are: the prism sheet's
+// triangular cube corners at `pitch_mm`, azimuth 0 (ridges at z = 0, apexes below), over the
+// cell [0, 2 pitch / sqrt 3) x [0, 2 pitch): the four cube corners whose apexes lie in it, each of
+// three triangular faces.
+triangle_mesh make_corner_cube_tile(double pitch_mm);
+
 }  // namespace airr

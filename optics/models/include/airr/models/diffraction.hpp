@@ -37,8 +37,9 @@ glm::dvec2 sample_far_field(const aperture& a, pcg32& rng, double f_max = 0);
 double far_field_reach(const aperture& a);
 
 // The light a sheet diffracts: one wavelength (its `wavelength_nm`), or the display's white, each
-// path's wavelength drawn in equal shares from the dominant wavelengths of the sRGB primaries
-// (the tracer's channels are not told apart: the blur is white light's, without colour fringes).
+// path's wavelength drawn in equal shares from the dominant wavelengths of the sRGB primaries, the
+// path carrying that primary's channel alone (each channel blurs by its own wavelength: colour
+// fringes).
 enum class diffracted_light { single, display_rgb };
 inline constexpr std::array<double, 3> display_primaries_nm{611.3, 549.1, 464.3};
 
@@ -46,8 +47,14 @@ inline constexpr std::array<double, 3> display_primaries_nm{611.3, 549.1, 464.3}
 model_field spectrum_field();
 diffracted_light read_spectrum(const model_values& v);
 
-// A path's wavelength in nm (one draw from rng for display_rgb, none otherwise).
-double draw_wavelength_nm(diffracted_light light, double wavelength_nm, pcg32& rng);
+// A path's wavelength in nm and what it carries of the tracer's R, G, B channels: one wavelength
+// carries all three alike; display_rgb draws a primary (one draw from rng) whose path carries its
+// channel alone, three times over, so that the mean over paths is white.
+struct drawn_light {
+  double wavelength_nm = 0;
+  glm::dvec3 channels{1.0};
+};
+drawn_light draw_light(diffracted_light light, double wavelength_nm, pcg32& rng);
 
 // `w` (a unit direction, z > 0 the side it leaves to) moved by the spread: its x, y direction
 // cosines shifted by wavelength_mm f. Empty when that would leave no direction (evanescent).

@@ -58,6 +58,7 @@ struct prism_path {
   int face_reflections = 0;   // on the grooves' faces, from inside the plate
   int front_reflections = 0;  // inside the plate, on the front surface
   int events = 0;             // every interaction after entry
+  glm::dvec3 channels{1.0};   // of the display's R, G, B (diffracted_light)
 };
 
 // Light arriving against wi (sheet-local, wi.z > 0) at `entry` (mm) on the front surface. The

@@ -33,6 +33,9 @@ struct retro_sample {
   // reflection, a diffuse lobe, stray paths through the structure): it lands wherever its direction
   // takes it, and is stray light, not part of the aerial image or its PSF.
   bool retroreflected = true;
+  // What it carries of the tracer's R, G, B channels (1 each but for light drawn at one primary's
+  // wavelength, diffraction.hpp); the model PSF and the model image take the mean, white.
+  glm::dvec3 channels{1.0};
 };
 
 // A model at one fixed incidence, for many samples there: sample(u) is the model's sample(wi, u)
