@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   add_sweep_command(app);
   add_fit_command(app);
   add_predict_preset_command(app);
+  add_optimise_command(app);
   add_viewzone_command(app);
   add_export_gltf_command(app);
   try {

@@ -1,0 +1,84 @@
+#pragma once
+// Design specs (format "airr-design", version 1): what a designer asks the optimiser for. A base
+// scene, the free variables (scene values by their --set keys, with ranges), the eye positions the
+// metrics are taken at, the objectives (metrics to maximise or minimise, weighted) and the
+// constraints (metrics bounded from below or above). Read strictly: errors name the file and field.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "airr/layout/scene.hpp"
+
+namespace airr {
+
+// The metrics of a layout (spec section 9) a spec may name.
+enum class design_metric {
+  visible_fraction,  // of the aerial image, at the eye (geometric)
+  mean_mtf,          // of the model PSF seen from the eye, over (0, 1] lp/mm
+  mtf50_lp_per_mm,   // where that MTF first falls to 0.5
+  r50_mm,            // radius holding half the model PSF's energy
+  brightness,        // the model PSF's light relative to the display's
+  size_x_mm,         // the device's bounding box (display panel, half mirror, sheets) along x, y, z
+  size_y_mm,
+  size_z_mm,
+};
+// The spec's name of a metric, and the metric a name stands for (empty for an unknown name).
+const char* to_string(design_metric m);
+std::optional<design_metric> design_metric_named(const std::string& name);
+// Whether the metric depends on the eye (the others are the layout's alone).
+bool metric_at_eye(design_metric m);
+// The names, comma-separated (for error messages and help).
+std::string design_metric_names();
+
+struct design_variable {
+  std::string key;  // a --set key, e.g. "half_mirror.pose.pitch_deg" or "floating_distance_mm"
+  double min = 0, max = 0;
+};
+
+// Over several eyes, an eye metric is their mean or their minimum.
+enum class over_eyes { mean, min };
+
+struct design_objective {
+  design_metric metric = design_metric::visible_fraction;
+  over_eyes over = over_eyes::mean;
+  bool maximise = true;
+  double weight = 1;
+};
+
+struct design_constraint {
+  design_metric metric = design_metric::visible_fraction;
+  over_eyes over = over_eyes::mean;
+  std::optional<double> min, max;
+};
+
+struct design_search {
+  std::uint64_t seed = 1;
+  int global_evaluations = 100;       // of the global search
+  int local_evaluations = 60;         // of the local polish after it
+  std::uint64_t psf_samples = 20000;  // per model PSF
+};
+
+struct design_spec {
+  std::string path;        // the spec's file
+  std::string scene_path;  // the base scene, resolved
+  scene base;              // read and checked
+  std::vector<design_variable> variables;
+  std::vector<glm::dvec3> eyes_mm;  // the scene's observer when the spec gives none
+  std::vector<design_objective> objectives;
+  std::vector<design_constraint> constraints;
+  design_search search;
+};
+
+// Reads and checks a spec and its base scene; throws input_error "<file>: <field>: <problem>":
+// unknown keys, empty or reversed ranges, values that are not finite, unknown metrics, variables
+// the scene does not have, no objective.
+design_spec load_design_spec(const std::string& path);
+
+// The base scene with the variables set to x (one value per variable, in order); throws
+// input_error naming the spec when a value makes no valid layout.
+scene design_scene(const design_spec& spec, const std::vector<double>& x);
+
+}  // namespace airr

@@ -1,0 +1,37 @@
+#pragma once
+// A layout's design metrics (spec section 9) as a design spec names them: at each of its eyes (the
+// observer placed there, looking at the aerial image's centre) the visible fraction and the model
+// PSF's mean MTF, MTF50, r50 and brightness, over the eyes their mean or minimum; and the device's
+// bounding box.
+#include <string>
+#include <vector>
+
+#include "airr/formats/design_spec.hpp"
+#include "airr/layout/scene.hpp"
+
+namespace airr {
+
+// The scene with its observer at `eye`, looking at the aerial image's centre.
+scene observer_at(scene s, const glm::dvec3& eye);
+
+// The extent along x, y and z of the display panel, the half mirror and the sheets (mm).
+glm::dvec3 device_size_mm(const scene& s);
+
+// What one layout scores on a spec: each objective's and constraint's metric value, the weighted
+// objective (larger is better), and the constraints it breaks.
+struct design_evaluation {
+  std::vector<double> objective_values;
+  std::vector<double> constraint_values;
+  double score = 0;                 // sum of weight x value, minimised metrics counting negative
+  std::vector<std::string> broken;  // "size_z_mm 260 > max 250", one per broken constraint
+  bool feasible() const { return broken.empty(); }
+};
+
+// Evaluates s (a layout the spec's variables made) on the spec's metrics; the model PSFs are
+// seeded by the spec, so equal layouts score equally whatever the threads.
+design_evaluation evaluate_design(const design_spec& spec, const scene& s);
+
+// How far a constraint is broken (0 when it holds), in its metric's units.
+double constraint_violation(const design_constraint& c, double value);
+
+}  // namespace airr

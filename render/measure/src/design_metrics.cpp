@@ -1,0 +1,123 @@
+#include "airr/measure/design_metrics.hpp"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <map>
+#include <optional>
+
+#include "airr/core/error.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/layout/psf.hpp"
+#include "airr/layout/sheet_models.hpp"
+#include "airr/layout/viewing_zone.hpp"
+#include "airr/measure/mtf_routes.hpp"
+#include "airr/render/prop_hits.hpp"
+
+namespace airr {
+
+namespace {
+
+// The eye metrics of one layout at one eye, each worked out once when first asked for.
+class eye_metrics {
+ public:
+  eye_metrics(const design_spec& spec, const scene& s, const glm::dvec3& eye, const viewing_parts& parts)
+      : spec_(spec), s_(observer_at(s, eye)), eye_(eye), parts_(parts) {}
+
+  double value(design_metric m) {
+    if (m == design_metric::visible_fraction) return visible_fraction(parts_, eye_);
+    const psf_samples& p = psf();
+    switch (m) {
+      case design_metric::mean_mtf:
+        return mtf().mean_mtf;
+      case design_metric::mtf50_lp_per_mm:
+        return mtf().mtf50_lp_per_mm.value_or(4.0);  // above 0.5 as far as searched
+      case design_metric::r50_mm:
+        return p.offset_mm.empty() ? std::numeric_limits<double>::infinity() : energy_radius(p, 0.5);
+      case design_metric::brightness:
+        return p.brightness();
+      default:
+        return 0;
+    }
+  }
+
+ private:
+  const psf_samples& psf() {
+    if (!psf_) psf_ = scene_psf(s_, spec_.search.psf_samples);
+    return *psf_;
+  }
+  const mtf_summary& mtf() {
+    if (!mtf_) mtf_ = psf_route_mtf(psf(), 0.0);
+    return *mtf_;
+  }
+
+  const design_spec& spec_;
+  scene s_;
+  glm::dvec3 eye_;
+  const viewing_parts& parts_;
+  std::optional<psf_samples> psf_;
+  std::optional<mtf_summary> mtf_;
+};
+
+}  // namespace
+
+scene observer_at(scene s, const glm::dvec3& eye) {
+  const glm::dvec3 target = aerial_image_center(s);
+  s.observer.placement = observer_placement::look_at;
+  s.observer.position_mm = {eye.x, eye.y, eye.z};
+  s.observer.look_at_mm = {target.x, target.y, target.z};
+  return s;
+}
+
+glm::dvec3 device_size_mm(const scene& s) {
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+  auto add = [&](const part_frame& f) {
+    for (const glm::dvec3& c : corners(f)) lo = glm::min(lo, c), hi = glm::max(hi, c);
+  };
+  add(source_panel_frame(s));
+  add(half_mirror_frame(s));
+  for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) add(retroreflector_frame(s, i));
+  return hi - lo;
+}
+
+double constraint_violation(const design_constraint& c, double value) {
+  double v = 0;
+  if (c.min && value < *c.min) v = *c.min - value;
+  if (c.max && value > *c.max) v = value - *c.max;
+  return v;
+}
+
+design_evaluation evaluate_design(const design_spec& spec, const scene& s) {
+  const viewing_parts parts(s, scene_prop_hits(s));
+  std::vector<eye_metrics> eyes;
+  for (const glm::dvec3& e : spec.eyes_mm) eyes.emplace_back(spec, s, e, parts);
+  const glm::dvec3 size = device_size_mm(s);
+  auto value = [&](design_metric m, over_eyes over) {
+    if (m == design_metric::size_x_mm) return size.x;
+    if (m == design_metric::size_y_mm) return size.y;
+    if (m == design_metric::size_z_mm) return size.z;
+    double sum = 0, least = std::numeric_limits<double>::infinity();
+    for (eye_metrics& e : eyes) {
+      const double v = e.value(m);
+      sum += v;
+      least = std::min(least, v);
+    }
+    return over == over_eyes::min ? least : sum / double(eyes.size());
+  };
+  design_evaluation out;
+  for (const design_objective& o : spec.objectives) {
+    const double v = value(o.metric, o.over);
+    out.objective_values.push_back(v);
+    out.score += (o.maximise ? 1 : -1) * o.weight * v;
+  }
+  for (const design_constraint& c : spec.constraints) {
+    const double v = value(c.metric, c.over);
+    out.constraint_values.push_back(v);
+    if (constraint_violation(c, v) > 0)
+      out.broken.push_back(std::string(to_string(c.metric)) + " " + number_text(v) +
+                           (c.min && v < *c.min ? " < min " + number_text(*c.min) : " > max " + number_text(*c.max)));
+  }
+  return out;
+}
+
+}  // namespace airr
