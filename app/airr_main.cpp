@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
   add_fit_command(app);
   add_predict_preset_command(app);
   add_optimise_command(app);
+  add_tolerance_command(app);
   add_viewzone_command(app);
   add_export_gltf_command(app);
   try {

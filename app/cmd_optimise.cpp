@@ -26,6 +26,7 @@ struct options {
 
 void run(const options& opt) {
   const airr::design_spec spec = airr::load_design_spec(opt.spec);
+  if (spec.variables.empty()) throw airr::input_error(opt.spec + ": variables: the optimiser needs at least one");
   const std::string csv =
       opt.csv.empty() ? fs::path(opt.output).replace_extension("").string() + "_evaluations.csv" : opt.csv;
   progress_bar bar("optimise");

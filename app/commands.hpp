@@ -20,6 +20,7 @@ void add_sweep_command(CLI::App& app);
 void add_fit_command(CLI::App& app);
 void add_predict_preset_command(CLI::App& app);
 void add_optimise_command(CLI::App& app);
+void add_tolerance_command(CLI::App& app);
 void add_viewzone_command(CLI::App& app);
 void add_export_gltf_command(CLI::App& app);
 

@@ -117,7 +117,7 @@ design_spec load_design_spec(const std::string& path) {
   } catch (const input_error& e) {
     r.fail("scene", e.what());
   }
-  each_object(r, "variables", true, [&](json_reader& v, std::size_t) {
+  each_object(r, "variables", false, [&](json_reader& v, std::size_t) {
     design_variable var;
     var.key = v.string("key");
     var.min = v.number("min");
@@ -168,6 +168,32 @@ design_spec load_design_spec(const std::string& path) {
     if (con.min && con.max && !(*con.min <= *con.max)) c.fail(c.field("max"), "must not be below min");
     spec.constraints.push_back(con);
   });
+  each_object(r, "tolerances", false, [&](json_reader& t, std::size_t) {
+    design_tolerance tol;
+    tol.key = t.string("key");
+    std::string distribution = "normal";
+    t.string("distribution", distribution);
+    if (distribution != "normal" && distribution != "uniform")
+      t.fail(t.field("distribution"), "must be \"normal\" or \"uniform\"");
+    tol.uniform = distribution == "uniform";
+    tol.size = t.number(tol.uniform ? "half_width" : "sd");
+    if (!(tol.size > 0)) t.fail(t.field(tol.uniform ? "half_width" : "sd"), "must be positive");
+    t.boolean("percent", tol.percent);
+    try {
+      scene_number(spec.base, tol.key);
+    } catch (const input_error& e) {
+      t.fail(t.field("key"), std::string("not a number of the scene (") + e.what() + ")");
+    }
+    spec.tolerances.push_back(tol);
+  });
+  if (r.has("tolerance")) {
+    json_reader t = r.child("tolerance");
+    t.integer("samples", spec.tolerance.samples);
+    t.integer("seed", spec.tolerance.seed);
+    if (spec.tolerance.samples < 10 || spec.tolerance.samples > 1000000)
+      t.fail(t.field("samples"), "must be 10 to 1000000");
+    t.finish();
+  }
   if (r.has("search")) {
     json_reader s = r.child("search");
     s.integer("seed", spec.search.seed);

@@ -50,38 +50,51 @@ static bool switch_model_type(json& m, const std::string& type, const std::strin
   return true;
 }
 
+// The node a dotted key names (array elements by index), its parent, and the key as walked.
+struct key_node {
+  json* node = nullptr;
+  json* parent = nullptr;
+  std::string walked;
+};
+
+static key_node find_key(json& j, const std::string& key) {
+  key_node out{&j, nullptr, ""};
+  json*& node = out.node;
+  json*& parent = out.parent;
+  std::string& walked = out.walked;
+  std::string rest = key;
+  while (true) {
+    const auto dot = rest.find('.');
+    const std::string part = rest.substr(0, dot);
+    walked += (walked.empty() ? "" : ".") + part;
+    parent = node;
+    if (node->is_array()) {
+      // Sheets are numbered from 0: retroreflectors.1.pose.pitch_deg.
+      std::size_t index = 0, used = 0;
+      try {
+        index = std::stoul(part, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != part.size() || part.empty() || index >= node->size()) {
+        throw input_error("--set " + key + ": no element '" + walked + "' (" + std::to_string(node->size()) +
+                          " present, numbered from 0)");
+      }
+      node = &(*node)[index];
+    } else {
+      if (!node->is_object() || !node->contains(part))
+        throw input_error("--set " + key + ": unknown key '" + walked + "'");
+      node = &(*node)[part];
+    }
+    if (dot == std::string::npos) break;
+    rest = rest.substr(dot + 1);
+  }
+  return out;
+}
+
 void apply_overrides(json& j, const std::vector<scene_override>& overrides) {
   for (const auto& o : overrides) {
-    json* node = &j;
-    json* parent = nullptr;
-    std::string rest = o.key;
-    std::string walked;
-    while (true) {
-      const auto dot = rest.find('.');
-      const std::string part = rest.substr(0, dot);
-      walked += (walked.empty() ? "" : ".") + part;
-      parent = node;
-      if (node->is_array()) {
-        // Sheets are numbered from 0: retroreflectors.1.pose.pitch_deg.
-        std::size_t index = 0, used = 0;
-        try {
-          index = std::stoul(part, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        if (used != part.size() || part.empty() || index >= node->size()) {
-          throw input_error("--set " + o.key + ": no element '" + walked + "' (" + std::to_string(node->size()) +
-                            " present, numbered from 0)");
-        }
-        node = &(*node)[index];
-      } else {
-        if (!node->is_object() || !node->contains(part))
-          throw input_error("--set " + o.key + ": unknown key '" + walked + "'");
-        node = &(*node)[part];
-      }
-      if (dot == std::string::npos) break;
-      rest = rest.substr(dot + 1);
-    }
+    const auto [node, parent, walked] = find_key(j, o.key);
     const json value = override_value(o.value);
     const bool model_type = walked.size() >= 10 && walked.compare(walked.size() - 10, 10, "model.type") == 0;
     if (model_type && value.is_string() &&
@@ -131,6 +144,14 @@ scene with_overrides(scene s, const std::vector<scene_override>& overrides, cons
     }
   }
   return s;
+}
+
+double scene_number(const scene& s, const std::string& key) {
+  if (key == floating_distance_key) return floating_distance(s);
+  json full = scene_to_json(s);
+  const key_node found = find_key(full, key == tilt_key ? "retroreflectors.0.pose.pitch_deg" : key);
+  if (!found.node->is_number()) throw input_error("--set " + key + ": not a number in the scene");
+  return found.node->get<double>();
 }
 
 }  // namespace airr

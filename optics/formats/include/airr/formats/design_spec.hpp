@@ -1,8 +1,9 @@
 #pragma once
 // Design specs (format "airr-design", version 1): what a designer asks the optimiser for. A base
 // scene, the free variables (scene values by their --set keys, with ranges), the eye positions the
-// metrics are taken at, the objectives (metrics to maximise or minimise, weighted) and the
-// constraints (metrics bounded from below or above). Read strictly: errors name the file and field.
+// metrics are taken at, the objectives (metrics to maximise or minimise, weighted), the
+// constraints (metrics bounded from below or above) and the assembly tolerances `airr tolerance`
+// draws. Read strictly: errors name the file and field.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -54,6 +55,21 @@ struct design_constraint {
   std::optional<double> min, max;
 };
 
+// An assembly tolerance: a scene value (by its --set key) off its nominal by a normal error of
+// standard deviation `size`, or a uniform one within +-`size`; with `percent`, size is a
+// percentage of the nominal value.
+struct design_tolerance {
+  std::string key;
+  double size = 0;
+  bool uniform = false;
+  bool percent = false;
+};
+
+struct tolerance_settings {
+  int samples = 1000;  // Monte Carlo layouts
+  std::uint64_t seed = 1;
+};
+
 struct design_search {
   std::uint64_t seed = 1;
   int global_evaluations = 100;       // of the global search
@@ -70,6 +86,8 @@ struct design_spec {
   std::vector<design_objective> objectives;
   std::vector<design_constraint> constraints;
   design_search search;
+  std::vector<design_tolerance> tolerances;
+  tolerance_settings tolerance;
 };
 
 // Reads and checks a spec and its base scene; throws input_error "<file>: <field>: <problem>":

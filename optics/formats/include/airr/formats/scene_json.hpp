@@ -44,6 +44,10 @@ void apply_overrides(nlohmann::json& j, const std::vector<scene_override>& overr
 // validated. `origin` names the overrides in error messages.
 scene with_overrides(scene s, const std::vector<scene_override>& overrides, const std::string& origin);
 
+// The number an override key names in s (the short keys included); throws input_error for a key
+// the scene does not have or that names no number (an unset value, a group, a text).
+double scene_number(const scene& s, const std::string& key);
+
 // Checks every value's range; throws input_error "<origin>: <field>: <problem>".
 void validate_scene(const scene& s, const std::string& origin);
 // Checks that every referenced file exists.

@@ -1,0 +1,121 @@
+// airr tolerance SPEC [--scene best.json] [-o samples.csv] [--png DIR]
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+#include <string>
+
+#include "airr/analysis/plot_png.hpp"
+#include "airr/core/error.hpp"
+#include "airr/core/files.hpp"
+#include "airr/formats/design_spec.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/measure/design_tolerance.hpp"
+#include "commands.hpp"
+#include "progress_bar.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::atomic<bool> interrupted{false};
+
+struct options {
+  std::string spec, scene, csv, png;
+};
+
+std::string samples_csv(const airr::tolerance_result& r) {
+  std::ostringstream out;
+  out.precision(10);
+  for (std::size_t m = 0; m < r.metrics.size(); ++m) out << (m ? "," : "") << r.metrics[m].name;
+  out << "\n";
+  const std::size_t rows = r.metrics.empty() ? 0 : r.metrics.front().values.size();
+  for (std::size_t i = 0; i < rows; ++i) {
+    for (std::size_t m = 0; m < r.metrics.size(); ++m) out << (m ? "," : "") << r.metrics[m].values[i];
+    out << "\n";
+  }
+  return out.str();
+}
+
+// One histogram per metric (40 bins over its range), as a step line.
+void write_histograms(const airr::tolerance_result& r, const std::string& dir) {
+  fs::create_directories(dir);
+  for (std::size_t m = 0; m < r.metrics.size(); ++m) {
+    const auto& d = r.metrics[m];
+    if (d.values.empty()) continue;
+    const auto [lo_it, hi_it] = std::minmax_element(d.values.begin(), d.values.end());
+    const double lo = *lo_it, hi = std::max(*hi_it, lo + 1e-12);
+    const int bins = 40;
+    std::vector<double> count(bins, 0.0);
+    for (double v : d.values) count[std::size_t(std::min(bins - 1, int((v - lo) / (hi - lo) * bins)))] += 1;
+    airr::analysis::plot_series s{d.name, {}, {}, std::nullopt};
+    for (int b = 0; b < bins; ++b) {
+      for (const double edge : {lo + (hi - lo) * b / bins, lo + (hi - lo) * (b + 1) / bins}) {
+        s.x.push_back(edge);
+        s.y.push_back(count[std::size_t(b)]);
+      }
+    }
+    std::string file = d.name.substr(0, d.name.find(' '));
+    airr::analysis::write_plot_png(fs::path(dir) / (std::to_string(m) + "_" + file + ".png"), {s},
+                                   {.title = d.name + " over " + std::to_string(d.values.size()) + " layouts",
+                                    .x_title = d.name.substr(0, d.name.find(' ')),
+                                    .y_title = "layouts",
+                                    .y_min = 0.0});
+  }
+}
+
+void run(const options& opt) {
+  const airr::design_spec spec = airr::load_design_spec(opt.spec);
+  const airr::scene nominal = opt.scene.empty() ? spec.base : airr::load_scene(opt.scene);
+  progress_bar bar("tolerance");
+  interrupted = false;
+  const auto previous = std::signal(SIGINT, [](int) { interrupted = true; });
+  const airr::tolerance_result r = airr::run_tolerance(
+      spec, nominal, [&](int done, int total) { bar.update(double(done) / total); }, &interrupted);
+  std::signal(SIGINT, previous);
+  bar.finish(r.cancelled ? "cancelled" : "done");
+  std::printf("%d layouts (%d no valid layout) in %.1f s; yield %.4f (every constraint met)\n", r.samples, r.invalid,
+              bar.seconds(), r.yield);
+  std::printf("%-28s %12s %12s %12s %12s %12s\n", "metric", "mean", "sd", "p5", "p50", "p95");
+  for (const auto& m : r.metrics)
+    std::printf("%-28s %12.6g %12.6g %12.6g %12.6g %12.6g\n", m.name.c_str(), m.mean, m.sd, m.p5, m.p50, m.p95);
+  std::printf("sensitivity: each metric's change per tolerance size, that tolerance alone\n%-40s", "tolerance");
+  for (const auto& m : r.metrics) std::printf(" %28s", m.name.c_str());
+  std::printf("\n");
+  for (std::size_t t = 0; t < r.sensitivity.size(); ++t) {
+    const auto& tol = spec.tolerances[t];
+    char label[160];
+    std::snprintf(label, sizeof label, "%s %s %g%s", tol.key.c_str(), tol.uniform ? "+-" : "sd", tol.size,
+                  tol.percent ? "%" : "");
+    std::printf("%-40s", label);
+    for (double v : r.sensitivity[t]) std::printf(" %28.6g", v);
+    std::printf("\n");
+  }
+  const std::string csv =
+      opt.csv.empty() ? fs::path(opt.spec).replace_extension("").string() + "_tolerance.csv" : opt.csv;
+  airr::write_file_atomic(csv, samples_csv(r));
+  std::printf("wrote %s\n", csv.c_str());
+  if (!opt.png.empty()) {
+    write_histograms(r, opt.png);
+    std::printf("wrote the histograms into %s\n", opt.png.c_str());
+  }
+}
+
+}  // namespace
+
+void add_tolerance_command(CLI::App& app) {
+  auto opt = std::make_shared<options>();
+  auto* cmd = app.add_subcommand("tolerance",
+                                 "Monte Carlo over a design spec's tolerances: each metric's distribution, the yield "
+                                 "against the constraints, and each tolerance's sensitivity alone");
+  cmd->add_option("spec", opt->spec, "Design spec with tolerances (format airr-design; see docs/design.md)")
+      ->required();
+  cmd->add_option("--scene", opt->scene, "The nominal layout (default the spec's scene; e.g. what optimise wrote)");
+  cmd->add_option("-o,--output", opt->csv, "CSV of every layout's metrics (default: beside the spec)");
+  cmd->add_option("--png", opt->png, "Folder for one histogram PNG per metric");
+  cmd->callback([opt] { run(*opt); });
+}

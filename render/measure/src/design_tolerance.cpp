@@ -1,0 +1,130 @@
+#include "airr/measure/design_tolerance.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <optional>
+
+#include "airr/core/error.hpp"
+#include "airr/core/geometry.hpp"
+#include "airr/core/random.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/measure/design_metrics.hpp"
+
+namespace airr {
+
+namespace {
+
+std::string number_value(double v) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  return buffer;
+}
+
+// The layout with each tolerance's value moved by its offset; empty when it is no valid layout.
+std::optional<design_evaluation> evaluate_offsets(const design_spec& spec, const scene& nominal,
+                                                  const std::vector<double>& nominal_values,
+                                                  const std::vector<double>& offsets) {
+  std::vector<scene_override> set;
+  for (std::size_t t = 0; t < spec.tolerances.size(); ++t)
+    if (offsets[t] != 0) set.push_back({spec.tolerances[t].key, number_value(nominal_values[t] + offsets[t])});
+  try {
+    scene s = with_overrides(nominal, set, spec.path);
+    validate_scene(s, spec.path);
+    check_layout(s, spec.path);
+    return evaluate_design(spec, s);
+  } catch (const input_error&) {
+    return std::nullopt;
+  }
+}
+
+std::vector<double> metric_values(const design_evaluation& e) {
+  std::vector<double> v = e.objective_values;
+  v.insert(v.end(), e.constraint_values.begin(), e.constraint_values.end());
+  return v;
+}
+
+double percentile(std::vector<double> sorted, double p) {
+  if (sorted.empty()) return NAN;
+  const double at = p * double(sorted.size() - 1);
+  const std::size_t i = std::size_t(at);
+  const double f = at - double(i);
+  return i + 1 < sorted.size() ? sorted[i] * (1 - f) + sorted[i + 1] * f : sorted[i];
+}
+
+}  // namespace
+
+tolerance_result run_tolerance(const design_spec& spec, const scene& nominal,
+                               const std::function<void(int, int)>& progress, const std::atomic<bool>* cancel) {
+  if (spec.tolerances.empty()) throw input_error(spec.path + ": tolerances: none given");
+  std::vector<double> nominal_values, sizes;
+  for (const design_tolerance& t : spec.tolerances) {
+    nominal_values.push_back(scene_number(nominal, t.key));
+    sizes.push_back(t.percent ? t.size / 100 * std::abs(nominal_values.back()) : t.size);
+  }
+  tolerance_result out;
+  for (const design_objective& o : spec.objectives)
+    out.metrics.push_back({std::string(to_string(o.metric)) + " (objective)", {}, 0, 0, 0, 0, 0});
+  for (const design_constraint& c : spec.constraints)
+    out.metrics.push_back({std::string(to_string(c.metric)) + " (constraint)", {}, 0, 0, 0, 0, 0});
+  const int total = spec.tolerance.samples + 2 * int(spec.tolerances.size());
+  int done = 0, passing = 0;
+  pcg32 rng(spec.tolerance.seed, 11);
+  for (int i = 0; i < spec.tolerance.samples; ++i) {
+    if (cancel && cancel->load()) {
+      out.cancelled = true;
+      break;
+    }
+    std::vector<double> offsets;
+    for (std::size_t t = 0; t < spec.tolerances.size(); ++t) {
+      const double u1 = rng.next_double(), u2 = rng.next_double();
+      offsets.push_back(spec.tolerances[t].uniform
+                            ? sizes[t] * (2 * u1 - 1)
+                            : sizes[t] * std::sqrt(-2 * std::log(1 - u1)) * std::cos(2 * pi * u2));
+    }
+    const auto e = evaluate_offsets(spec, nominal, nominal_values, offsets);
+    ++out.samples;
+    if (!e) {
+      ++out.invalid;
+    } else {
+      const std::vector<double> v = metric_values(*e);
+      for (std::size_t m = 0; m < v.size(); ++m) out.metrics[m].values.push_back(v[m]);
+      if (e->feasible()) ++passing;
+    }
+    if (progress) progress(++done, total);
+  }
+  out.yield = out.samples > 0 ? double(passing) / out.samples : 0;
+  for (metric_distribution& m : out.metrics) {
+    if (m.values.empty()) continue;
+    double sum = 0, sum2 = 0;
+    for (double v : m.values) sum += v;
+    m.mean = sum / double(m.values.size());
+    for (double v : m.values) sum2 += (v - m.mean) * (v - m.mean);
+    m.sd = m.values.size() > 1 ? std::sqrt(sum2 / double(m.values.size() - 1)) : 0;
+    std::vector<double> sorted = m.values;
+    std::sort(sorted.begin(), sorted.end());
+    m.p5 = percentile(sorted, 0.05);
+    m.p50 = percentile(sorted, 0.5);
+    m.p95 = percentile(sorted, 0.95);
+  }
+  for (std::size_t t = 0; t < spec.tolerances.size() && !out.cancelled; ++t) {
+    std::vector<double> up(spec.tolerances.size(), 0.0), down = up;
+    up[t] = sizes[t];
+    down[t] = -sizes[t];
+    const auto a = evaluate_offsets(spec, nominal, nominal_values, up);
+    const auto b = evaluate_offsets(spec, nominal, nominal_values, down);
+    std::vector<double> change(out.metrics.size(), NAN);
+    if (a && b) {
+      const std::vector<double> va = metric_values(*a), vb = metric_values(*b);
+      for (std::size_t m = 0; m < change.size(); ++m) change[m] = 0.5 * (va[m] - vb[m]);
+    }
+    out.sensitivity.push_back(change);
+    done += 2;
+    if (progress) progress(done, total);
+  }
+  return out;
+}
+
+}  // namespace airr
