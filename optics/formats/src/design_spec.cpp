@@ -67,12 +67,6 @@ over_eyes read_over(json_reader& r) {
   return over == "min" ? over_eyes::min : over_eyes::mean;
 }
 
-std::string value_text(double v) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", v);
-  return buffer;
-}
-
 }  // namespace
 
 const char* to_string(design_metric m) {
@@ -124,7 +118,7 @@ design_spec load_design_spec(const std::string& path) {
     var.max = v.number("max");
     if (!(var.min < var.max)) v.fail(v.field("max"), "the range is empty: max must exceed min");
     try {
-      with_overrides(spec.base, {{var.key, value_text(0.5 * (var.min + var.max))}}, "--set");
+      with_overrides(spec.base, {design_override(var.key, 0.5 * (var.min + var.max))}, "--set");
     } catch (const input_error& e) {
       v.fail(v.field("key"), std::string("not a value of the scene (") + e.what() + ")");
     }
@@ -212,10 +206,16 @@ design_spec load_design_spec(const std::string& path) {
   return spec;
 }
 
+scene_override design_override(const std::string& key, double v) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  return {key, buffer};
+}
+
 scene design_scene(const design_spec& spec, const std::vector<double>& x) {
   std::vector<scene_override> set;
   for (std::size_t i = 0; i < spec.variables.size() && i < x.size(); ++i)
-    set.push_back({spec.variables[i].key, value_text(x[i])});
+    set.push_back(design_override(spec.variables[i].key, x[i]));
   scene s = with_overrides(spec.base, set, spec.path);
   validate_scene(s, spec.path);
   check_layout(s, spec.path);

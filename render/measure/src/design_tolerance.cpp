@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <optional>
 
@@ -17,19 +16,13 @@ namespace airr {
 
 namespace {
 
-std::string number_value(double v) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", v);
-  return buffer;
-}
-
 // The layout with each tolerance's value moved by its offset; empty when it is no valid layout.
 std::optional<design_evaluation> evaluate_offsets(const design_spec& spec, const scene& nominal,
                                                   const std::vector<double>& nominal_values,
                                                   const std::vector<double>& offsets) {
   std::vector<scene_override> set;
   for (std::size_t t = 0; t < spec.tolerances.size(); ++t)
-    if (offsets[t] != 0) set.push_back({spec.tolerances[t].key, number_value(nominal_values[t] + offsets[t])});
+    if (offsets[t] != 0) set.push_back(design_override(spec.tolerances[t].key, nominal_values[t] + offsets[t]));
   try {
     scene s = with_overrides(nominal, set, spec.path);
     validate_scene(s, spec.path);

@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "airr/formats/scene_json.hpp"
 #include "airr/layout/scene.hpp"
 
 namespace airr {
@@ -94,6 +95,9 @@ struct design_spec {
 // unknown keys, empty or reversed ranges, values that are not finite, unknown metrics, variables
 // the scene does not have, no objective.
 design_spec load_design_spec(const std::string& path);
+
+// The override setting `key` to exactly v (all 17 digits), as variables and tolerances set values.
+scene_override design_override(const std::string& key, double v);
 
 // The base scene with the variables set to x (one value per variable, in order); throws
 // input_error naming the spec when a value makes no valid layout.
