@@ -137,10 +137,16 @@ polygon2 tile_path_aperture(const tile_sheet_geometry& g, const tile_structure& 
 prism_path trace_tile_sheet(const tile_sheet_geometry& g, const tile_structure& t, const glm::dvec3& wi,
                             const glm::dvec2& entry, double u_front, pcg32& rng) {
   const tile_frame f(g, t);
-  placed_face last;  // where the previous stretch ended, when on a face
-  const follow_back back = [&](const glm::dvec3& p, const glm::dvec3& d, bool in_plate) {
-    stretch_end end = follow_tile(g, t, f, p, d, in_plate, last);
-    last = end.face_normal ? placed_face{end.face, end.cell_origin} : placed_face{};
+  // One reference captured, so that the walk's std::function holds it without allocating.
+  struct walk_state {
+    const tile_sheet_geometry& g;
+    const tile_structure& t;
+    const tile_frame& f;
+    placed_face last;  // where the previous stretch ended, when on a face
+  } state{g, t, f, {}};
+  const follow_back back = [&state](const glm::dvec3& p, const glm::dvec3& d, bool in_plate) {
+    stretch_end end = follow_tile(state.g, state.t, state.f, p, d, in_plate, state.last);
+    state.last = end.face_normal ? placed_face{end.face, end.cell_origin} : placed_face{};
     return end;
   };
   plate_walk_record record;

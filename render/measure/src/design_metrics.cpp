@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -21,11 +22,13 @@ namespace {
 // The eye metrics of one layout at one eye, each worked out once when first asked for.
 class eye_metrics {
  public:
-  eye_metrics(const design_spec& spec, const scene& s, const glm::dvec3& eye, const viewing_parts& parts)
+  // `parts` gives the layout's viewing parts, built on first use.
+  eye_metrics(const design_spec& spec, const scene& s, const glm::dvec3& eye,
+              const std::function<const viewing_parts&()>& parts)
       : spec_(spec), s_(observer_at(s, eye)), eye_(eye), parts_(parts) {}
 
   double value(design_metric m) {
-    if (m == design_metric::visible_fraction) return visible_fraction(parts_, eye_);
+    if (m == design_metric::visible_fraction) return visible_fraction(parts_(), eye_);
     const psf_samples& p = psf();
     switch (m) {
       case design_metric::mean_mtf:
@@ -54,7 +57,7 @@ class eye_metrics {
   const design_spec& spec_;
   scene s_;
   glm::dvec3 eye_;
-  const viewing_parts& parts_;
+  const std::function<const viewing_parts&()>& parts_;
   std::optional<psf_samples> psf_;
   std::optional<mtf_summary> mtf_;
 };
@@ -88,7 +91,12 @@ double constraint_violation(const design_constraint& c, double value) {
 }
 
 design_evaluation evaluate_design(const design_spec& spec, const scene& s) {
-  const viewing_parts parts(s, scene_prop_hits(s));
+  // Only a visible fraction needs the viewing parts (and the props' Embree scene).
+  std::optional<viewing_parts> built;
+  const std::function<const viewing_parts&()> parts = [&]() -> const viewing_parts& {
+    if (!built) built.emplace(s, scene_prop_hits(s));
+    return *built;
+  };
   std::vector<eye_metrics> eyes;
   for (const glm::dvec3& e : spec.eyes_mm) eyes.emplace_back(spec, s, e, parts);
   const glm::dvec3 size = device_size_mm(s);
