@@ -64,7 +64,7 @@ void add_viewzone_command(CLI::App& app) {
     std::string scene_path, csv, png;
     bool sphere = false;
     double distance = 300;
-    int grid = 21, rows = 128;
+    int grid = 21, rows = 64;
     std::vector<double> x_range, y_range;
     std::vector<std::string> sets;
     bool full = false;
@@ -87,7 +87,7 @@ void add_viewzone_command(CLI::App& app) {
       ->expected(2);
   cmd->add_option("--y", opt->y_range, "First and last y (mm) or elevation (deg); default -200 200 mm or -60 60 deg")
       ->expected(2);
-  cmd->add_option("--rows", opt->rows, "Rows across the aerial image per eye (default 128)")
+  cmd->add_option("--rows", opt->rows, "Slabs across the aerial image per eye (default 64)")
       ->check(CLI::Range(1, 100000));
   cmd->add_flag("--full", opt->full,
                 "Also the full model per eye: mean brightness (relative to the best eye), mean MTF over (0, 1] lp/mm "

@@ -80,35 +80,64 @@ bool aerial_point_visible(const viewing_parts& parts, const glm::dvec3& eye, con
   return false;
 }
 
-double visible_fraction(const viewing_parts& parts, const glm::dvec3& eye, int rows) {
+namespace {
+
+// The visible length of the aerial image's row at height y: points stepped from edge to edge
+// (nudged inside), each step counted whole or cut where visibility changes (found by bisection).
+double visible_width(const viewing_parts& parts, const glm::dvec3& eye, double y) {
   const part_frame& a = parts.aerial;
   const int steps = 64;
   const double w = a.width;
-  auto visible_at = [&](double x, double y) { return aerial_point_visible(parts, eye, part_point(a, x, y)); };
+  auto visible_at = [&](double x) { return aerial_point_visible(parts, eye, part_point(a, x, y)); };
+  auto x_at = [&](int k) { return std::clamp((double(k) / steps - 0.5) * w, -0.5 * w + 1e-9, 0.5 * w - 1e-9); };
   double total = 0;
-  for (int j = 0; j < rows; ++j) {
-    const double y = ((j + 0.5) / rows - 0.5) * a.height;
-    // Sample points from edge to edge (nudged inside), each step's stretch counted whole or cut
-    // where visibility changes.
-    auto x_at = [&](int k) { return std::clamp((double(k) / steps - 0.5) * w, -0.5 * w + 1e-9, 0.5 * w - 1e-9); };
-    bool prev = visible_at(x_at(0), y);
-    for (int k = 1; k <= steps; ++k) {
-      const double x0 = x_at(k - 1), x1 = x_at(k);
-      const bool cur = visible_at(x1, y);
-      if (prev && cur) {
-        total += x1 - x0;
-      } else if (prev != cur) {
-        double lo = x0, hi = x1;  // visibility at lo is prev's
-        while (hi - lo > 1e-6 * w) {
-          const double mid = 0.5 * (lo + hi);
-          (visible_at(mid, y) == prev ? lo : hi) = mid;
-        }
-        total += prev ? lo - x0 : x1 - hi;
+  bool prev = visible_at(x_at(0));
+  for (int k = 1; k <= steps; ++k) {
+    const double x0 = x_at(k - 1), x1 = x_at(k);
+    const bool cur = visible_at(x1);
+    if (prev && cur) {
+      total += x1 - x0;
+    } else if (prev != cur) {
+      double lo = x0, hi = x1;  // visibility at lo is prev's
+      while (hi - lo > 1e-6 * w) {
+        const double mid = 0.5 * (lo + hi);
+        (visible_at(mid) == prev ? lo : hi) = mid;
       }
-      prev = cur;
+      total += prev ? lo - x0 : x1 - hi;
     }
+    prev = cur;
   }
-  return total / (rows * w);
+  return total;
+}
+
+// The visible area between rows y0 and y1 of widths w0 and w1. The maps between flat parts are
+// projective, so the width is linear in y between the visible region's corners: a slab whose middle
+// row is on the line is a trapezoid; one with a corner inside is halved until it is, or thin.
+double slab_area(const viewing_parts& parts, const glm::dvec3& eye, double y0, double y1, double w0, double w1,
+                 int depth) {
+  const double ym = 0.5 * (y0 + y1);
+  const double wm = visible_width(parts, eye, ym);
+  if (depth == 0 || std::abs(wm - 0.5 * (w0 + w1)) <= 1e-5 * parts.aerial.width) {
+    return 0.25 * (y1 - y0) * (w0 + 2 * wm + w1);
+  }
+  return slab_area(parts, eye, y0, ym, w0, wm, depth - 1) + slab_area(parts, eye, ym, y1, wm, w1, depth - 1);
+}
+
+}  // namespace
+
+double visible_fraction(const viewing_parts& parts, const glm::dvec3& eye, int rows) {
+  const part_frame& a = parts.aerial;
+  auto y_at = [&](int j) {
+    return std::clamp((double(j) / rows - 0.5) * a.height, -0.5 * a.height + 1e-9, 0.5 * a.height - 1e-9);
+  };
+  double total = 0;
+  double w0 = visible_width(parts, eye, y_at(0));
+  for (int j = 0; j < rows; ++j) {
+    const double w1 = visible_width(parts, eye, y_at(j + 1));
+    total += slab_area(parts, eye, y_at(j), y_at(j + 1), w0, w1, 12);
+    w0 = w1;
+  }
+  return total / (a.height * a.width);
 }
 
 glm::dvec3 eye_position(const scene& s, const eye_grid& g, double x, double y) {

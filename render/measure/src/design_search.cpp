@@ -158,16 +158,22 @@ design_result optimise_design(const design_spec& spec, const std::function<void(
   nlopt::opt global(nlopt::GN_ISRES, n);
   configure(global, spec.search.global_evaluations);
   run(global, x);
-  if (!state.result.cancelled && spec.search.local_evaluations > 0 && state.result.best >= 0) {
-    state.phase = "local";
+  // The local polish, restarted from the best layout while it still improves. Without constraints
+  // Nelder-Mead: it follows the sharp ridges that parts' edges make in the visible fraction, where
+  // COBYLA's linear models stall.
+  const std::size_t local_end = state.result.trials.size() + std::size_t(spec.search.local_evaluations);
+  state.phase = "local";
+  while (!state.result.cancelled && state.result.best >= 0 && state.result.trials.size() < local_end) {
+    const int start_best = state.result.best;
     x = state.result.best_trial().x;
-    nlopt::opt local(nlopt::LN_COBYLA, n);
-    configure(local, spec.search.local_evaluations);
+    nlopt::opt local(spec.constraints.empty() ? nlopt::LN_NELDERMEAD : nlopt::LN_COBYLA, n);
+    configure(local, int(local_end - state.result.trials.size()));
     std::vector<double> step;
     for (unsigned i = 0; i < n; ++i) step.push_back(0.05 * (hi[i] - lo[i]));
     local.set_initial_step(step);
     local.set_xtol_abs(std::vector<double>(n, 1e-4));
     run(local, x);
+    if (state.result.best == start_best) break;
   }
   return std::move(state.result);
 }

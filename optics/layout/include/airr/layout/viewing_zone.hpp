@@ -33,9 +33,10 @@ struct viewing_parts {
 // between.
 bool aerial_point_visible(const viewing_parts& parts, const glm::dvec3& eye, const glm::dvec3& p);
 
-// The visible fraction at `eye`: `rows` rows across the aerial image, on each the visible
-// stretches found by stepping and their ends by bisection (to 1e-6 of the row).
-double visible_fraction(const viewing_parts& parts, const glm::dvec3& eye, int rows = 128);
+// The visible fraction at `eye`: `rows` slabs across the aerial image, each a trapezoid between
+// its edge rows, halved where its middle row shows a corner of the visible region. On each row the
+// visible stretches are found by stepping and their ends by bisection (to 1e-6 of the row).
+double visible_fraction(const viewing_parts& parts, const glm::dvec3& eye, int rows = 64);
 
 // A grid of eye positions: on a plane `distance_mm` in front of the aerial image's centre (the
 // observer's orbit at azimuth and elevation 0; x to the right, y up, in mm), or on the sphere of
@@ -70,7 +71,7 @@ struct viewing_zone_map {
 // The visible fraction over the grid, rows of eyes in parallel; `progress(done, total)` after each
 // row of eyes. Empty `visible` when `cancel` was set. `prop_hits` as for viewing_parts.
 viewing_zone_map geometric_viewing_zone(const scene& s, const eye_grid& g, const prop_hit_function& prop_hits,
-                                        int rows_per_eye = 128, const std::function<void(int, int)>& progress = {},
+                                        int rows_per_eye = 64, const std::function<void(int, int)>& progress = {},
                                         const std::atomic<bool>* cancel = nullptr);
 
 }  // namespace airr
