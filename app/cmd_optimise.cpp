@@ -1,4 +1,5 @@
-// airr optimise SPEC -o best.json [--csv evaluations.csv]
+// airr optimise SPEC -o best.json [--csv evaluations.csv]; with two objectives also the Pareto front
+// (best_pareto.csv, best_pareto.png)
 #include <atomic>
 #include <csignal>
 #include <cstdio>
@@ -6,6 +7,7 @@
 #include <memory>
 #include <string>
 
+#include "airr/analysis/plot_png.hpp"
 #include "airr/core/error.hpp"
 #include "airr/core/files.hpp"
 #include "airr/formats/design_spec.hpp"
@@ -24,6 +26,35 @@ struct options {
   std::string spec, output, csv;
 };
 
+// The Pareto front of two objectives as CSV, and as a PNG over every feasible evaluation.
+void write_front(const airr::design_spec& spec, const airr::design_result& r, const std::string& stem) {
+  airr::write_file_atomic(stem + ".csv", airr::design_front_csv(spec, r));
+  airr::analysis::plot_series all{"feasible evaluations", {}, {}, cv::Scalar(175, 175, 175), true};
+  airr::analysis::plot_series front{"Pareto front", {}, {}, cv::Scalar(40, 40, 200), false};
+  for (const airr::design_trial& t : r.trials) {
+    if (!t.valid || !t.evaluation.feasible()) continue;
+    all.x.push_back(t.evaluation.objective_values[0]);
+    all.y.push_back(t.evaluation.objective_values[1]);
+  }
+  for (int i : r.front) {
+    front.x.push_back(r.trials[std::size_t(i)].evaluation.objective_values[0]);
+    front.y.push_back(r.trials[std::size_t(i)].evaluation.objective_values[1]);
+  }
+  airr::analysis::plot_series front_points = front;
+  front_points.label.clear();
+  front_points.points = true;
+  auto title = [&](int i) {
+    const airr::design_objective& o = spec.objectives[std::size_t(i)];
+    return std::string(airr::to_string(o.metric)) + (o.maximise ? " (maximised)" : " (minimised)");
+  };
+  airr::analysis::plot_params p;
+  p.title = "Pareto front: " + std::to_string(r.front.size()) + " layouts";
+  p.x_title = title(0);
+  p.y_title = title(1);
+  airr::analysis::write_plot_png(stem + ".png", {all, front, front_points}, p);
+  std::printf("Pareto front: %zu layouts in %s.csv and %s.png\n", r.front.size(), stem.c_str(), stem.c_str());
+}
+
 void run(const options& opt) {
   const airr::design_spec spec = airr::load_design_spec(opt.spec);
   if (spec.variables.empty()) throw airr::input_error(opt.spec + ": variables: the optimiser needs at least one");
@@ -35,8 +66,10 @@ void run(const options& opt) {
   const airr::design_result r = airr::optimise_design(
       spec,
       [&](const airr::design_progress& p) {
-        char detail[96] = "";
-        if (p.have_best)
+        char detail[128] = "";
+        if (spec.front.points > 0)
+          std::snprintf(detail, sizeof detail, "%d/%d, %s", p.done, p.total, p.stage.c_str());
+        else if (p.have_best)
           std::snprintf(detail, sizeof detail, "%d/%d, best %.6g%s", p.done, p.total, p.best_score,
                         p.best_feasible ? "" : " (infeasible)");
         bar.update(double(p.done) / p.total, detail);
@@ -60,6 +93,7 @@ void run(const options& opt) {
   for (std::size_t i = 0; i < spec.constraints.size(); ++i)
     std::printf("constraint %s: %.6g\n", airr::to_string(spec.constraints[i].metric),
                 best.evaluation.constraint_values[i]);
+  if (!r.front.empty()) write_front(spec, r, fs::path(opt.output).replace_extension("").string() + "_pareto");
   airr::scene s = airr::design_scene(spec, best.x);
   airr::save_scene(airr::rebase_scene_paths(s, fs::absolute(opt.output).parent_path().string()), opt.output);
   std::printf("wrote %s%s\n", opt.output.c_str(), r.cancelled ? " (the best before the search was cancelled)" : "");

@@ -60,11 +60,12 @@ void write_histograms(const airr::tolerance_result& r, const std::string& dir) {
       }
     }
     std::string file = d.name.substr(0, d.name.find(' '));
-    airr::analysis::write_plot_png(fs::path(dir) / (std::to_string(m) + "_" + file + ".png"), {s},
-                                   {.title = d.name + " over " + std::to_string(d.values.size()) + " layouts",
-                                    .x_title = d.name.substr(0, d.name.find(' ')),
-                                    .y_title = "layouts",
-                                    .y_min = 0.0});
+    airr::analysis::plot_params p;
+    p.title = d.name + " over " + std::to_string(d.values.size()) + " layouts";
+    p.x_title = d.name.substr(0, d.name.find(' '));
+    p.y_title = "layouts";
+    p.y_min = 0.0;
+    airr::analysis::write_plot_png(fs::path(dir) / (std::to_string(m) + "_" + file + ".png"), {s}, p);
   }
 }
 

@@ -65,6 +65,7 @@ TEST(DesignSpec, BadSpecsAreOneLineErrorsNamingTheField) {
   expect(error_for(var + R"("objectives": [])"), {"objectives", "must not be empty"});
   expect(error_for(var + obj + R"(, "constraints": [{"metric": "size_z_mm"}])"), {"constraints[0]", "min, a max"});
   expect(error_for(var + obj + R"(, "search": {"global_evaluations": 0})"), {"search.global_evaluations"});
+  expect(error_for(var + obj + R"(, "pareto": {"points": 5})"), {"pareto.points", "exactly two objectives"});
 }
 
 namespace {
@@ -225,4 +226,63 @@ TEST(DesignOptimise, OneAndTwoThreadsGiveTheSameResult) {
     EXPECT_EQ(one.trials[i].evaluation.score, two.trials[i].evaluation.score) << i;
   }
   EXPECT_EQ(one.best, two.best);
+}
+
+// A Pareto front of the device's height and depth over the sheet's tilt: a front that is not
+// convex (weighted sums would find its ends alone). Against the front of a 0.01 deg sweep: the
+// same ends, no layout of the sweep better in both by more than 0.05 mm, and no gap wider than
+// 1.5 levels.
+TEST(DesignOptimise, TheParetoFrontOfTwoObjectivesIsTheSweepsFront) {
+  test::temp_dir dir;
+  const design_spec spec = spec_from(
+      dir,
+      R"("variables": [{"key": "tilt_deg", "min": 0, "max": 60}], )"
+      R"("objectives": [{"metric": "size_y_mm", "goal": "minimise"}, {"metric": "size_z_mm", "goal": "minimise"}], )"
+      R"("pareto": {"points": 9}, "search": {"global_evaluations": 30, "local_evaluations": 30})");
+  const design_result r = optimise_design(spec);
+  std::vector<glm::dvec2> sweep, front;
+  for (double t = 0; t <= 60 + 1e-9; t += 0.01) {
+    scene s = spec.base;
+    s.sheet().pose.pitch_deg = t;
+    const glm::dvec3 size = device_size_mm(s);
+    sweep.push_back({size.y, size.z});
+  }
+  std::vector<glm::dvec2> sweep_front;
+  for (const glm::dvec2& p : sweep) {
+    const bool dominated = std::any_of(sweep.begin(), sweep.end(), [&](const glm::dvec2& q) {
+      return q.x <= p.x && q.y <= p.y && (q.x < p.x || q.y < p.y);
+    });
+    if (!dominated) sweep_front.push_back(p);
+  }
+  for (int i : r.front) {
+    const std::vector<double>& v = r.trials[std::size_t(i)].evaluation.objective_values;
+    front.push_back({v[0], v[1]});
+  }
+  ASSERT_GE(front.size(), 9u);
+  const auto [y_lo, y_hi] = std::minmax_element(sweep_front.begin(), sweep_front.end(),
+                                                [](const glm::dvec2& a, const glm::dvec2& b) { return a.x < b.x; });
+  std::printf("front: %zu layouts from %zu evaluations; sweep front %zu of %zu, height %.3f-%.3f mm\n", front.size(),
+              r.trials.size(), sweep_front.size(), sweep.size(), y_lo->x, y_hi->x);
+  EXPECT_NEAR(front.front().x, y_lo->x, 0.05);
+  EXPECT_NEAR(front.front().y, y_lo->y, 0.05);
+  EXPECT_NEAR(front.back().x, y_hi->x, 0.05);
+  EXPECT_NEAR(front.back().y, y_hi->y, 0.05);
+  for (const glm::dvec2& p : front) {
+    for (const glm::dvec2& q : sweep) EXPECT_FALSE(q.x < p.x - 0.05 && q.y < p.y - 0.05) << p.x << " " << p.y;
+  }
+  const double z_range = y_lo->y - y_hi->y, level = z_range / 8;
+  double widest = 0;
+  for (std::size_t i = 1; i < front.size(); ++i) widest = std::max(widest, std::abs(front[i].y - front[i - 1].y));
+  std::printf("widest gap in depth %.3f mm, levels %.3f mm apart\n", widest, level);
+  EXPECT_LE(widest, 1.5 * level);
+
+  // The command writes the front beside the scene: a CSV row per layout of it, and a plot.
+  const test::command_result cli = test::run_cli("optimise " + dir.file("spec.json") + " -o " + dir.file("best.json"));
+  ASSERT_EQ(cli.exit_code, 0) << cli.out;
+  std::ifstream csv(dir.file("best_pareto.csv"));
+  std::string line;
+  std::size_t rows = 0;
+  while (std::getline(csv, line)) ++rows;
+  EXPECT_EQ(rows, front.size() + 1);
+  EXPECT_GT(std::filesystem::file_size(dir.file("best_pareto.png")), 10000u);
 }

@@ -147,7 +147,9 @@ cv::Mat render_plot(const std::vector<plot_series>& series, const plot_params& p
     const cv::Scalar colour = series[s].colour.value_or(plot_palette_colour(static_cast<int>(s)));
     std::vector<cv::Point> run;
     auto flush = [&] {
-      if (run.size() >= 2)
+      if (series[s].points) {
+        for (const cv::Point& p : run) cv::circle(inner, p, 3 << shift, colour, cv::FILLED, cv::LINE_AA, shift);
+      } else if (run.size() >= 2)
         cv::polylines(inner, std::vector<std::vector<cv::Point>>{run}, false, colour, 2, cv::LINE_AA, shift);
       else if (run.size() == 1)
         cv::circle(inner, run[0], 3 << shift, colour, cv::FILLED, cv::LINE_AA, shift);
@@ -196,7 +198,10 @@ cv::Mat render_plot(const std::vector<plot_series>& series, const plot_params& p
       const size_t s = labelled[i];
       const cv::Scalar colour = series[s].colour.value_or(plot_palette_colour(static_cast<int>(s)));
       const int cy = box.y + pad / 2 + static_cast<int>(i) * row_h + row_h / 2;
-      cv::line(img, {box.x + pad, cy}, {box.x + pad + sample_w, cy}, colour, 2, cv::LINE_AA);
+      if (series[s].points)
+        cv::circle(img, {box.x + pad + sample_w / 2, cy}, 4, colour, cv::FILLED, cv::LINE_AA);
+      else
+        cv::line(img, {box.x + pad, cy}, {box.x + pad + sample_w, cy}, colour, 2, cv::LINE_AA);
       put_text(img, series[s].label, {box.x + 2 * pad + sample_w, cy}, legend_scale, 1, 0.0, 0.5);
     }
   }

@@ -202,6 +202,14 @@ design_spec load_design_spec(const std::string& path) {
       s.fail(s.field("psf_samples"), "must be 1000 to 100000000");
     s.finish();
   }
+  if (r.has("pareto")) {
+    json_reader f = r.child("pareto");
+    f.require("points");
+    f.integer("points", spec.front.points);
+    if (spec.front.points < 3 || spec.front.points > 101) f.fail(f.field("points"), "must be 3 to 101");
+    if (spec.objectives.size() != 2) f.fail(f.field("points"), "a Pareto front needs exactly two objectives");
+    f.finish();
+  }
   r.finish();
   return spec;
 }

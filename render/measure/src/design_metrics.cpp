@@ -90,6 +90,25 @@ double constraint_violation(const design_constraint& c, double value) {
   return v;
 }
 
+double design_score(const design_spec& spec, const std::vector<double>& objective_values) {
+  double score = 0;
+  for (std::size_t i = 0; i < spec.objectives.size() && i < objective_values.size(); ++i)
+    score += (spec.objectives[i].maximise ? 1 : -1) * spec.objectives[i].weight * objective_values[i];
+  return score;
+}
+
+std::vector<std::string> broken_constraints(const design_spec& spec, const std::vector<double>& constraint_values) {
+  std::vector<std::string> broken;
+  for (std::size_t i = 0; i < spec.constraints.size() && i < constraint_values.size(); ++i) {
+    const design_constraint& c = spec.constraints[i];
+    const double v = constraint_values[i];
+    if (constraint_violation(c, v) > 0)
+      broken.push_back(std::string(to_string(c.metric)) + " " + number_text(v) +
+                       (c.min && v < *c.min ? " < min " + number_text(*c.min) : " > max " + number_text(*c.max)));
+  }
+  return broken;
+}
+
 design_evaluation evaluate_design(const design_spec& spec, const scene& s) {
   // Only a visible fraction needs the viewing parts (and the props' Embree scene).
   std::optional<viewing_parts> built;
@@ -113,18 +132,10 @@ design_evaluation evaluate_design(const design_spec& spec, const scene& s) {
     return over == over_eyes::min ? least : sum / double(eyes.size());
   };
   design_evaluation out;
-  for (const design_objective& o : spec.objectives) {
-    const double v = value(o.metric, o.over);
-    out.objective_values.push_back(v);
-    out.score += (o.maximise ? 1 : -1) * o.weight * v;
-  }
-  for (const design_constraint& c : spec.constraints) {
-    const double v = value(c.metric, c.over);
-    out.constraint_values.push_back(v);
-    if (constraint_violation(c, v) > 0)
-      out.broken.push_back(std::string(to_string(c.metric)) + " " + number_text(v) +
-                           (c.min && v < *c.min ? " < min " + number_text(*c.min) : " > max " + number_text(*c.max)));
-  }
+  for (const design_objective& o : spec.objectives) out.objective_values.push_back(value(o.metric, o.over));
+  out.score = design_score(spec, out.objective_values);
+  for (const design_constraint& c : spec.constraints) out.constraint_values.push_back(value(c.metric, c.over));
+  out.broken = broken_constraints(spec, out.constraint_values);
   return out;
 }
 

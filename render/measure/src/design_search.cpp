@@ -1,9 +1,11 @@
 #include "airr/measure/design_search.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include <nlopt.hpp>
@@ -17,13 +19,44 @@ namespace {
 // A layout that is no layout breaks each constraint by this much.
 constexpr double invalid_violation = 1e6;
 
+// Constraint k's violation at t, signed as NLopt wants it: negative inside.
+double signed_violation(const design_spec& spec, const design_trial& t, std::size_t k) {
+  if (!t.valid) return invalid_violation;
+  const design_constraint& c = spec.constraints[k];
+  const double v = t.evaluation.constraint_values[k];
+  double g = -std::numeric_limits<double>::infinity();
+  if (c.min) g = std::max(g, *c.min - v);
+  if (c.max) g = std::max(g, v - *c.max);
+  return g;
+}
+
+double total_violation(const design_spec& spec, const design_trial& t) {
+  double sum = 0;
+  for (std::size_t k = 0; k < spec.constraints.size(); ++k) sum += std::max(0.0, signed_violation(spec, t, k));
+  return t.valid ? sum : invalid_violation;
+}
+
+// Feasible beats infeasible; among feasible the higher score, among infeasible the smaller
+// violation.
+bool better_trial(const design_spec& spec, const design_trial& t, const design_trial& b) {
+  const bool tf = t.valid && t.evaluation.feasible(), bf = b.valid && b.evaluation.feasible();
+  if (tf != bf) return tf;
+  return tf ? t.evaluation.score > b.evaluation.score : total_violation(spec, t) < total_violation(spec, b);
+}
+
 class search_state {
  public:
+  // `done_before` of `total` evaluations were made by earlier searches (a Pareto front's), which
+  // `stage` names.
   search_state(const design_spec& spec, const std::function<void(const design_progress&)>& progress,
-               const std::atomic<bool>* cancel)
-      : spec_(spec), progress_(progress), cancel_(cancel), start_(std::chrono::steady_clock::now()) {
-    total_ = spec.search.global_evaluations + spec.search.local_evaluations;
-  }
+               const std::atomic<bool>* cancel, int done_before, int total, std::string stage)
+      : spec_(spec),
+        progress_(progress),
+        cancel_(cancel),
+        start_(std::chrono::steady_clock::now()),
+        done_before_(done_before),
+        total_(total),
+        stage_(std::move(stage)) {}
 
   // The trial at x, evaluated once (NLopt asks for the objective and each constraint at one x).
   const design_trial& at(const std::vector<double>& x) {
@@ -50,8 +83,9 @@ class search_state {
     consider(result.trials.back());
     if (progress_) {
       design_progress p;
-      p.done = int(result.trials.size());
+      p.done = done_before_ + int(result.trials.size());
       p.total = total_;
+      p.stage = stage_.empty() ? phase : stage_ + " " + phase;
       p.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
       p.have_best = result.best >= 0;
       if (p.have_best) {
@@ -63,48 +97,22 @@ class search_state {
     return result.trials.back();
   }
 
-  double violation(const design_trial& t, std::size_t k) const {
-    if (!t.valid) return invalid_violation;
-    const design_constraint& c = spec_.constraints[k];
-    const double v = t.evaluation.constraint_values[k];
-    // Signed, as NLopt wants it: negative inside.
-    double g = -std::numeric_limits<double>::infinity();
-    if (c.min) g = std::max(g, *c.min - v);
-    if (c.max) g = std::max(g, v - *c.max);
-    return g;
-  }
-
-  double total_violation(const design_trial& t) const {
-    double sum = 0;
-    for (std::size_t k = 0; k < spec_.constraints.size(); ++k) sum += std::max(0.0, violation(t, k));
-    return t.valid ? sum : invalid_violation;
-  }
+  double violation(const design_trial& t, std::size_t k) const { return signed_violation(spec_, t, k); }
 
   std::string phase = "global";
   design_result result;
 
  private:
-  // Feasible beats infeasible; among feasible the higher score, among infeasible the smaller
-  // violation.
   void consider(const design_trial& t) {
-    if (result.best < 0) {
-      result.best = t.index;
-      return;
-    }
-    const design_trial& b = result.best_trial();
-    const bool tf = t.valid && t.evaluation.feasible(), bf = b.valid && b.evaluation.feasible();
-    if (tf != bf) {
-      if (tf) result.best = t.index;
-      return;
-    }
-    if (tf ? t.evaluation.score > b.evaluation.score : total_violation(t) < total_violation(b)) result.best = t.index;
+    if (result.best < 0 || better_trial(spec_, t, result.best_trial())) result.best = t.index;
   }
 
   const design_spec& spec_;
   const std::function<void(const design_progress&)>& progress_;
   const std::atomic<bool>* cancel_;
   std::chrono::steady_clock::time_point start_;
-  int total_ = 0;
+  int done_before_ = 0, total_ = 0;
+  std::string stage_;
   std::map<std::vector<double>, std::size_t> seen_;
 };
 
@@ -133,11 +141,11 @@ void run(nlopt::opt& opt, std::vector<double>& x) {
   }
 }
 
-}  // namespace
-
-design_result optimise_design(const design_spec& spec, const std::function<void(const design_progress&)>& progress,
-                              const std::atomic<bool>* cancel) {
-  search_state state(spec, progress, cancel);
+// One search; a given `start` is evaluated first, so the result is at least as good.
+design_result search_once(const design_spec& spec, const std::function<void(const design_progress&)>& progress,
+                          const std::atomic<bool>* cancel, int done_before, int total, const std::string& stage,
+                          const std::vector<double>& start = {}) {
+  search_state state(spec, progress, cancel, done_before, total, stage);
   const unsigned n = unsigned(spec.variables.size());
   std::vector<double> lo, hi, x;
   for (const design_variable& v : spec.variables) {
@@ -154,6 +162,13 @@ design_result optimise_design(const design_spec& spec, const std::function<void(
     for (constraint_slot& s : slots) opt.add_inequality_constraint(constraint, &s, 0.0);
     opt.set_maxeval(evaluations);
   };
+  if (!start.empty()) {
+    try {
+      state.at(start);
+    } catch (const nlopt::forced_stop&) {
+      return std::move(state.result);
+    }
+  }
   nlopt::srand(spec.search.seed);
   nlopt::opt global(nlopt::GN_ISRES, n);
   configure(global, spec.search.global_evaluations);
@@ -176,6 +191,128 @@ design_result optimise_design(const design_spec& spec, const std::function<void(
     if (state.result.best == start_best) break;
   }
   return std::move(state.result);
+}
+
+// The spec optimising objective `main` alone, the other held at least as good as `level` when given
+// (one more constraint, after the spec's own).
+design_spec front_search_spec(const design_spec& spec, int main, std::optional<double> level) {
+  design_spec sub = spec;
+  sub.front.points = 0;
+  sub.objectives[std::size_t(main)].weight = 1;
+  sub.objectives[std::size_t(1 - main)].weight = 0;
+  if (level) {
+    const design_objective& o = spec.objectives[std::size_t(1 - main)];
+    design_constraint c{o.metric, o.over, std::nullopt, std::nullopt};
+    const double slack = 1e-9 * (1 + std::abs(*level));
+    (o.maximise ? c.min : c.max) = o.maximise ? *level - slack : *level + slack;
+    sub.constraints.push_back(c);
+  }
+  return sub;
+}
+
+// A Pareto front's searches (the epsilon-constraint method, which also finds a front that is not
+// convex): each objective alone, then each end made exact (the other objective's best with this
+// one held at its best), then the first objective's best with the second held at `points` - 2
+// levels evenly between the ends. Every trial is kept, scored by the spec's own weights.
+design_result search_front(const design_spec& spec, const std::function<void(const design_progress&)>& progress,
+                           const std::atomic<bool>* cancel) {
+  const int points = spec.front.points, searches = points + 2;
+  const int budget = spec.search.global_evaluations + spec.search.local_evaluations;
+  design_result merged;
+  std::vector<int> ends(4, -1);  // trials: each objective alone, then each end exact
+  auto end = [&](int i) -> const design_trial& { return merged.trials[std::size_t(ends[std::size_t(i)])]; };
+  for (int k = 0; k < searches && !merged.cancelled; ++k) {
+    int main = k % 2;
+    std::optional<double> level;
+    std::vector<double> start;
+    if (k == 2 || k == 3) {
+      if (ends[std::size_t(k - 2)] < 0) continue;
+      main = 3 - k;  // the other objective, this one held at its best
+      level = end(k - 2).evaluation.objective_values[std::size_t(k - 2)];
+      start = end(k - 2).x;
+    } else if (k >= 4) {
+      if (ends[2] < 0 || ends[3] < 0) break;
+      main = 0;
+      const double a = end(2).evaluation.objective_values[1], b = end(3).evaluation.objective_values[1];
+      level = a + (b - a) * double(k - 3) / double(points - 1);
+    }
+    const design_spec sub = front_search_spec(spec, main, level);
+    const std::string stage = "front " + std::to_string(k + 1) + "/" + std::to_string(searches);
+    const design_result part = search_once(sub, progress, cancel, k * budget, searches * budget, stage, start);
+    merged.cancelled = part.cancelled;
+    const int offset = int(merged.trials.size());
+    for (design_trial t : part.trials) {
+      t.index = int(merged.trials.size());
+      t.phase = stage + " " + t.phase;
+      if (t.valid) {
+        t.evaluation.constraint_values.resize(spec.constraints.size());
+        t.evaluation.broken = broken_constraints(spec, t.evaluation.constraint_values);
+        t.evaluation.score = design_score(spec, t.evaluation.objective_values);
+      }
+      merged.trials.push_back(t);
+      if (merged.best < 0 || better_trial(spec, t, merged.best_trial())) merged.best = t.index;
+    }
+    // An end is the search's best when it met the spec's constraints (and the held level).
+    if (k < 4 && part.best >= 0 && part.best_trial().valid && part.best_trial().evaluation.feasible())
+      ends[std::size_t(k)] = offset + part.best;
+  }
+  return merged;
+}
+
+}  // namespace
+
+design_result optimise_design(const design_spec& spec, const std::function<void(const design_progress&)>& progress,
+                              const std::atomic<bool>* cancel) {
+  const int budget = spec.search.global_evaluations + spec.search.local_evaluations;
+  design_result r =
+      spec.front.points > 0 ? search_front(spec, progress, cancel) : search_once(spec, progress, cancel, 0, budget, "");
+  if (spec.objectives.size() == 2) r.front = pareto_front(spec, r.trials);
+  return r;
+}
+
+std::vector<int> pareto_front(const design_spec& spec, const std::vector<design_trial>& trials) {
+  // Both objectives as larger-is-better.
+  auto gain = [&](const design_trial& t, int i) {
+    return (spec.objectives[std::size_t(i)].maximise ? 1 : -1) * t.evaluation.objective_values[std::size_t(i)];
+  };
+  std::vector<int> front;
+  for (const design_trial& t : trials) {
+    if (!t.valid || !t.evaluation.feasible()) continue;
+    bool dominated = false;
+    for (const design_trial& u : trials) {
+      if (!u.valid || !u.evaluation.feasible()) continue;
+      const bool no_worse = gain(u, 0) >= gain(t, 0) && gain(u, 1) >= gain(t, 1);
+      const bool better = gain(u, 0) > gain(t, 0) || gain(u, 1) > gain(t, 1);
+      // Of equal pairs, the first evaluated stands for them.
+      if ((no_worse && better) || (!better && no_worse && u.index < t.index)) {
+        dominated = true;
+        break;
+      }
+    }
+    if (!dominated) front.push_back(t.index);
+  }
+  std::sort(front.begin(), front.end(), [&](int a, int b) {
+    return trials[std::size_t(a)].evaluation.objective_values[0] <
+           trials[std::size_t(b)].evaluation.objective_values[0];
+  });
+  return front;
+}
+
+std::string design_front_csv(const design_spec& spec, const design_result& r) {
+  std::ostringstream out;
+  out.precision(10);
+  out << "index";
+  for (const design_variable& v : spec.variables) out << "," << v.key;
+  for (const design_objective& o : spec.objectives) out << "," << (o.maximise ? "max " : "min ") << to_string(o.metric);
+  out << "\n";
+  for (int i : r.front) {
+    const design_trial& t = r.trials[std::size_t(i)];
+    out << t.index;
+    for (double v : t.x) out << "," << v;
+    for (double v : t.evaluation.objective_values) out << "," << v;
+    out << "\n";
+  }
+  return out.str();
 }
 
 std::string design_trials_csv(const design_spec& spec, const design_result& r) {

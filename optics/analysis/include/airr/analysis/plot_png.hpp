@@ -15,6 +15,7 @@ struct plot_series {
   std::vector<double> x;
   std::vector<double> y;
   std::optional<cv::Scalar> colour;  // BGR; a palette colour by index if empty
+  bool points = false;               // a dot at each point, no line
 };
 
 struct plot_params {
@@ -29,7 +30,7 @@ struct plot_params {
 // Distinct BGR colours cycled through for series without a colour.
 cv::Scalar plot_palette_colour(int index);
 
-// Line plot on a white background with axes, ticks, tick labels, axis titles and a legend.
+// Line (or dot) plot on a white background with axes, ticks, tick labels, axis titles and a legend.
 cv::Mat render_plot(const std::vector<plot_series>& series, const plot_params& params = {});
 
 // render_plot written as PNG atomically.

@@ -78,6 +78,12 @@ struct design_search {
   std::uint64_t psf_samples = 20000;  // per model PSF
 };
 
+// A Pareto front of the two objectives (points > 0): the best of each alone, then the first's best
+// with the second held at least as good as each of `points` - 2 levels evenly between those ends.
+struct design_front {
+  int points = 0;
+};
+
 struct design_spec {
   std::string path;        // the spec's file
   std::string scene_path;  // the base scene, resolved
@@ -87,6 +93,7 @@ struct design_spec {
   std::vector<design_objective> objectives;
   std::vector<design_constraint> constraints;
   design_search search;
+  design_front front;  // from "pareto"
   std::vector<design_tolerance> tolerances;
   tolerance_settings tolerance;
 };

@@ -27,6 +27,12 @@ struct design_evaluation {
   bool feasible() const { return broken.empty(); }
 };
 
+// The weighted objective of the objectives' values (the spec's weights; minimised ones negative).
+double design_score(const design_spec& spec, const std::vector<double>& objective_values);
+
+// The constraints the values break, one line each ("size_z_mm 260 > max 250").
+std::vector<std::string> broken_constraints(const design_spec& spec, const std::vector<double>& constraint_values);
+
 // Evaluates s (a layout the spec's variables made) on the spec's metrics; the model PSFs are
 // seeded by the spec, so equal layouts score equally whatever the threads.
 design_evaluation evaluate_design(const design_spec& spec, const scene& s);

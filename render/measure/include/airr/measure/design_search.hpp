@@ -1,9 +1,10 @@
 #pragma once
 // The optimiser of a design spec: a global search over the variables' box (NLopt's ISRES, which
 // keeps to the constraints, seeded by the spec), then a local polish from the best point found
-// (NLopt's COBYLA, constraints kept). Each evaluation builds the layout the variables make and
-// scores it (design_metrics.hpp); a layout that is no valid layout (parts meeting) counts as
-// breaking every constraint.
+// (NLopt's Nelder-Mead, or COBYLA keeping the constraints), restarted while it improves. A spec
+// asking for a Pareto front runs one such search per point of it. Each evaluation builds the layout the variables make
+// and scores it (design_metrics.hpp); a layout that is no valid layout (parts meeting) counts as breaking every
+// constraint.
 #include <atomic>
 #include <functional>
 #include <string>
@@ -16,7 +17,7 @@ namespace airr {
 
 struct design_trial {
   int index = 0;
-  std::string phase;  // "global" or "local"
+  std::string phase;  // "global" or "local"; for a Pareto front's searches e.g. "front 3/7 local"
   std::vector<double> x;
   bool valid = true;    // a layout at all
   std::string problem;  // why not
@@ -25,6 +26,7 @@ struct design_trial {
 
 struct design_progress {
   int done = 0, total = 0;
+  std::string stage;  // "global", "local", or e.g. "front 3/7 local"
   double seconds = 0;
   bool have_best = false;
   double best_score = 0;
@@ -35,6 +37,7 @@ struct design_result {
   std::vector<design_trial> trials;
   int best = -1;  // the trial: the best feasible one, or when none is, the least infeasible
   bool cancelled = false;
+  std::vector<int> front;  // of two objectives: the feasible trials no other beats in both, by the first's value
   const design_trial& best_trial() const { return trials.at(std::size_t(best)); }
 };
 
@@ -42,6 +45,13 @@ struct design_result {
 // for the spec (its seed included).
 design_result optimise_design(const design_spec& spec, const std::function<void(const design_progress&)>& progress = {},
                               const std::atomic<bool>* cancel = nullptr);
+
+// The feasible trials no other feasible trial is at least as good as in both objectives and
+// better in one (of equal ones the first), ordered by the first objective's value.
+std::vector<int> pareto_front(const design_spec& spec, const std::vector<design_trial>& trials);
+
+// The front as CSV: index, the variables, the two objectives' values.
+std::string design_front_csv(const design_spec& spec, const design_result& r);
 
 // Every trial as CSV: index, phase, the variables, the objectives' and constraints' values, the
 // score, feasible (1 or 0) and valid (1 or 0).
