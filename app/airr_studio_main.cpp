@@ -14,6 +14,7 @@
 #include <CLI/CLI.hpp>
 
 #include "airr/core/assets.hpp"
+#include "airr/formats/design_spec.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/ui/screenshot.hpp"
 #include "airr/ui/studio.hpp"
@@ -38,6 +39,8 @@ struct options {
   std::string component;           // the render view shows this component (empty: the whole image)
   std::string plots = "mtf";       // the Plots window's tab
   std::string zone;                // the viewing zone's quantity; a full one is computed before the screenshot
+  std::string design;              // a design spec for the Optimise and Tolerance windows
+  airr::ui::design_script design_run;
 };
 
 struct app_state {
@@ -118,6 +121,12 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"mtf", "bokeh"}));
   cli.add_option("--component", opt.component, "The render view shows one component of the image")
       ->check(CLI::IsMember({"aerial", "direct", "reflection", "rest"}));
+  cli.add_option("--design", opt.design, "A design spec (airr-design) for the Optimise and Tolerance windows");
+  cli.add_flag("--optimise", opt.design_run.optimise, "After the scripted frames, run the Optimise window's search");
+  cli.add_flag("--tolerance", opt.design_run.tolerance,
+               "After the scripted frames, run the Tolerance window's analysis");
+  cli.add_flag("--apply-optimised", opt.design_run.apply, "Then apply the optimised layout (one undoable step)");
+  cli.add_option("--undo", opt.design_run.undo, "Then undo this many steps")->check(CLI::Range(0, 100));
   CLI11_PARSE(cli, argc, argv);
   if (!opt.screenshot.empty() && opt.frames == 0) opt.frames = 60;
 
@@ -212,6 +221,17 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
+  if (!opt.design.empty()) {
+    try {
+      st.design.spec = airr::load_design_spec(opt.design);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return 1;
+    }
+    st.design.spec_started = true;
+    st.design.show_optimise = opt.design_run.optimise || !opt.design_run.tolerance;
+    st.design.show_tolerance = opt.design_run.tolerance;
+  }
   if (opt.predict_preset) {
     st.show_fit = true;
     st.predict_samples = opt.predict_samples;
@@ -294,6 +314,10 @@ int main(int argc, char** argv) {
           std::fprintf(stderr, "error: fit failed: %s\n", st.fit_job_->error().c_str());
           exit_code = 1;
         }
+        glfwSwapBuffers(window);
+        continue;
+      }
+      if (airr::ui::run_design_script(st, opt.design_run)) {
         glfwSwapBuffers(window);
         continue;
       }
@@ -407,6 +431,10 @@ int main(int argc, char** argv) {
         } else {
           std::fprintf(stderr, "%s; plot data in %s\n", said.c_str(), csv.c_str());
         }
+      }
+      if (!opt.design_run.error.empty()) {
+        std::fprintf(stderr, "error: %s\n", opt.design_run.error.c_str());
+        exit_code = 1;
       }
       if (!opt.save_as.empty() && !airr::ui::studio_save(st, opt.save_as)) {
         std::fprintf(stderr, "error: %s\n", st.status.c_str());

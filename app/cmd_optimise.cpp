@@ -5,7 +5,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
+
+#include <tbb/global_control.h>
 
 #include "airr/analysis/plot_png.hpp"
 #include "airr/core/error.hpp"
@@ -24,6 +27,7 @@ std::atomic<bool> interrupted{false};
 
 struct options {
   std::string spec, output, csv;
+  int threads = 0;
 };
 
 // The Pareto front of two objectives as CSV, and as a PNG over every feasible evaluation.
@@ -56,6 +60,9 @@ void write_front(const airr::design_spec& spec, const airr::design_result& r, co
 }
 
 void run(const options& opt) {
+  // The evaluations use every core unless told (the results do not depend on it).
+  std::optional<tbb::global_control> threads;
+  if (opt.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(opt.threads));
   const airr::design_spec spec = airr::load_design_spec(opt.spec);
   if (spec.variables.empty()) throw airr::input_error(opt.spec + ": variables: the optimiser needs at least one");
   const std::string csv =
@@ -109,5 +116,6 @@ void add_optimise_command(CLI::App& app) {
   cmd->add_option("spec", opt->spec, "Design spec (format airr-design; see docs/design.md)")->required();
   cmd->add_option("-o,--output", opt->output, "Scene file to write the best layout to")->required();
   cmd->add_option("--csv", opt->csv, "CSV of every evaluation (default: beside the output, <name>_evaluations.csv)");
+  cmd->add_option("--threads", opt->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
   cmd->callback([opt] { run(*opt); });
 }

@@ -6,8 +6,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
+
+#include <tbb/global_control.h>
 
 #include "airr/analysis/plot_png.hpp"
 #include "airr/core/error.hpp"
@@ -26,6 +29,7 @@ std::atomic<bool> interrupted{false};
 
 struct options {
   std::string spec, scene, csv, png;
+  int threads = 0;
 };
 
 std::string samples_csv(const airr::tolerance_result& r) {
@@ -47,18 +51,8 @@ void write_histograms(const airr::tolerance_result& r, const std::string& dir) {
   for (std::size_t m = 0; m < r.metrics.size(); ++m) {
     const auto& d = r.metrics[m];
     if (d.values.empty()) continue;
-    const auto [lo_it, hi_it] = std::minmax_element(d.values.begin(), d.values.end());
-    const double lo = *lo_it, hi = std::max(*hi_it, lo + 1e-12);
-    const int bins = 40;
-    std::vector<double> count(bins, 0.0);
-    for (double v : d.values) count[std::size_t(std::min(bins - 1, int((v - lo) / (hi - lo) * bins)))] += 1;
-    airr::analysis::plot_series s{d.name, {}, {}, std::nullopt};
-    for (int b = 0; b < bins; ++b) {
-      for (const double edge : {lo + (hi - lo) * b / bins, lo + (hi - lo) * (b + 1) / bins}) {
-        s.x.push_back(edge);
-        s.y.push_back(count[std::size_t(b)]);
-      }
-    }
+    const airr::histogram_steps h = airr::metric_histogram(d);
+    const airr::analysis::plot_series s{d.name, h.x, h.y, std::nullopt, false};
     std::string file = d.name.substr(0, d.name.find(' '));
     airr::analysis::plot_params p;
     p.title = d.name + " over " + std::to_string(d.values.size()) + " layouts";
@@ -70,6 +64,9 @@ void write_histograms(const airr::tolerance_result& r, const std::string& dir) {
 }
 
 void run(const options& opt) {
+  // The evaluations use every core unless told (the results do not depend on it).
+  std::optional<tbb::global_control> threads;
+  if (opt.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(opt.threads));
   const airr::design_spec spec = airr::load_design_spec(opt.spec);
   const airr::scene nominal = opt.scene.empty() ? spec.base : airr::load_scene(opt.scene);
   progress_bar bar("tolerance");
@@ -118,5 +115,6 @@ void add_tolerance_command(CLI::App& app) {
   cmd->add_option("--scene", opt->scene, "The nominal layout (default the spec's scene; e.g. what optimise wrote)");
   cmd->add_option("-o,--output", opt->csv, "CSV of every layout's metrics (default: beside the spec)");
   cmd->add_option("--png", opt->png, "Folder for one histogram PNG per metric");
+  cmd->add_option("--threads", opt->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
   cmd->callback([opt] { run(*opt); });
 }

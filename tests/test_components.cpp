@@ -120,3 +120,30 @@ TEST(Components, FullViewingZoneAgreesWithThePsfRouteAndHasNoStrayLight) {
   EXPECT_NEAR(m.visible[12], 1.0, 1e-6);
   EXPECT_EQ(m.visible[0], 0.0);  // (-200, -200): beyond the sheet
 }
+
+// The stray-light ratio of one eye, as the design metric takes it, is the full pass's number for
+// that eye: 0 where no stray path reaches the aerial image's outline, and a positive share above
+// the two-sheet kiosk (its second sheet's light).
+TEST(Components, TheStrayLightRatioOfOneEyeIsTheFullPasss) {
+  eye_grid g;
+  g.nx = g.ny = 5;
+  g.x_min = g.y_min = -200;
+  g.x_max = g.y_max = 200;
+  const full_zone_params p{.rows_per_eye = 16, .render_size = 32, .render_spp = 8};
+  for (const auto& [name, s] : {std::pair{"looking down", looking_down("rf-an")},
+                                std::pair{"kiosk", load_scene(asset_dir() + "/scenes/two_sheet_kiosk.json")}}) {
+    const full_zone_map m = full_viewing_zone(s, g, p);
+    for (std::size_t e : {std::size_t(12), std::size_t(16), std::size_t(17)}) {
+      const double one = stray_light_ratio(s, eye_position(s, g, g.x_at(int(e % 5)), g.y_at(int(e / 5))), p);
+      std::printf("%s, eye %zu: stray-light ratio %.5f (full pass %.5f)\n", name, e, one, m.stray_ratio[e]);
+      if (std::isnan(m.stray_ratio[e])) {
+        EXPECT_TRUE(std::isnan(one));
+      } else {
+        EXPECT_EQ(one, m.stray_ratio[e]) << name << " eye " << e;
+      }
+    }
+    if (std::string(name) == "kiosk") {
+      EXPECT_GT(m.stray_ratio[17], 0.05);
+    }
+  }
+}

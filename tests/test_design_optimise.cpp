@@ -17,6 +17,7 @@
 #include "airr/formats/design_spec.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
+#include "airr/layout/viewing_zone.hpp"
 #include "airr/measure/design_search.hpp"
 #include "airr/measure/sweep.hpp"
 #include "polygon_visible_fraction.hpp"
@@ -66,6 +67,49 @@ TEST(DesignSpec, BadSpecsAreOneLineErrorsNamingTheField) {
   expect(error_for(var + obj + R"(, "constraints": [{"metric": "size_z_mm"}])"), {"constraints[0]", "min, a max"});
   expect(error_for(var + obj + R"(, "search": {"global_evaluations": 0})"), {"search.global_evaluations"});
   expect(error_for(var + obj + R"(, "pareto": {"points": 5})"), {"pareto.points", "exactly two objectives"});
+  expect(error_for(var + obj + R"(, "eye_zone": {"x": [-10, 10], "y": [-10, 10], "n": [30, 30]})"),
+         {"eye_zone.n", "at most 400"});
+  expect(
+      error_for(var + R"("objectives": [{"metric": "visible_fraction", "goal": "maximise", "over": "share_above"}])"),
+      {"objectives[0].threshold", "missing"});
+}
+
+// A spec written as text reads back the same, over a scene at hand too (as the designer runs it).
+TEST(DesignSpec, WrittenTextReadsBackTheSame) {
+  test::temp_dir dir;
+  write_text(
+      dir.file("spec.json"),
+      spec_text(R"("variables": [{"key": "tilt_deg", "min": 10, "max": 40}], "eyes_mm": [[1, 2, 450]], )"
+                R"("objectives": [{"metric": "r50_mm", "goal": "minimise"}, )"
+                R"({"metric": "visible_fraction", "goal": "maximise", "over": "min", "weight": 2}], )"
+                R"("constraints": [{"metric": "size_z_mm", "max": 350}, {"metric": "brightness", "min": 0.1}, )"
+                R"({"metric": "visible_fraction", "over": "share_above", "threshold": 0.8, "min": 0.5}], )"
+                R"("eye_zone": {"shape": "sphere", "distance_mm": 400, "x": [-20, 20], "y": [0, 10], "n": [3, 2]}, )"
+                R"("pareto": {"points": 5}, "search": {"seed": 7, "global_evaluations": 20}, )"
+                R"("tolerances": [{"key": "tilt_deg", "sd": 0.5}, {"key": "floating_distance_mm", )"
+                R"("distribution": "uniform", "half_width": 2, "percent": true}], "tolerance": {"samples": 50})"));
+  const design_spec a = load_design_spec(dir.file("spec.json"));
+  const std::string text = design_spec_text(a);
+  write_text(dir.file("again.json"), text);
+  for (const design_spec& b : {load_design_spec(dir.file("again.json")), parse_design_spec(text, "window", a.base)}) {
+    EXPECT_EQ(design_spec_text(b), text);
+    EXPECT_TRUE(b.base == a.base);
+    ASSERT_EQ(b.constraints.size(), 3u);
+    EXPECT_EQ(b.constraints[2].over, over_eyes::share_above);
+    EXPECT_EQ(b.constraints[2].threshold, 0.8);
+    ASSERT_TRUE(b.eye_zone);
+    EXPECT_EQ(b.eye_zone->kind, eye_grid::shape::sphere);
+    EXPECT_EQ(design_eyes(b).size(), 7u);
+    EXPECT_EQ(b.constraints[1].min, 0.1);
+    EXPECT_FALSE(b.constraints[1].max);
+    EXPECT_EQ(b.objectives[1].over, over_eyes::min);
+    EXPECT_EQ(b.front.points, 5);
+    EXPECT_TRUE(b.tolerances[1].uniform && b.tolerances[1].percent);
+  }
+  EXPECT_NE(test::error_of([&] {
+              parse_design_spec(R"({"format": "airr-design", "version": 1})", "window", a.base);
+            }).find("window: objectives: missing"),
+            std::string::npos);
 }
 
 namespace {
@@ -285,4 +329,34 @@ TEST(DesignOptimise, TheParetoFrontOfTwoObjectivesIsTheSweepsFront) {
   while (std::getline(csv, line)) ++rows;
   EXPECT_EQ(rows, front.size() + 1);
   EXPECT_GT(std::filesystem::file_size(dir.file("best_pareto.png")), 10000u);
+}
+
+// A zone of eyes: its eyes are the viewing zone's grid (row by row), and over them a metric's mean
+// and its share above a threshold are those of the eyes taken one at a time.
+TEST(DesignSpec, AZoneOfEyesIsTheViewingZonesGrid) {
+  test::temp_dir dir;
+  const design_spec zone =
+      spec_from(dir, R"("eye_zone": {"distance_mm": 300, "x": [-120, 120], "y": [-60, 60], "n": [5, 3]}, )"
+                     R"("objectives": [{"metric": "visible_fraction", "goal": "maximise"}, )"
+                     R"({"metric": "visible_fraction", "goal": "maximise", "over": "share_above", "threshold": 0.9}])");
+  ASSERT_TRUE(zone.eyes_mm.empty());
+  const std::vector<glm::dvec3> eyes = design_eyes(zone);
+  ASSERT_EQ(eyes.size(), 15u);
+  EXPECT_EQ(eyes[7], eye_position(zone.base, *zone.eye_zone, 0, 0));
+  EXPECT_EQ(eyes[14], eye_position(zone.base, *zone.eye_zone, 120, 60));
+  const design_evaluation e = evaluate_design(zone, zone.base);
+  double sum = 0;
+  int above = 0;
+  const viewing_parts parts(zone.base);
+  for (const glm::dvec3& eye : eyes) {
+    const double v = visible_fraction(parts, eye);
+    sum += v;
+    above += v >= 0.9;
+  }
+  std::printf("zone of 15 eyes: mean visible fraction %.5f, share at least 0.9: %.4f (%d eyes)\n",
+              e.objective_values[0], e.objective_values[1], above);
+  EXPECT_NEAR(e.objective_values[0], sum / 15, 1e-12);
+  EXPECT_EQ(e.objective_values[1], above / 15.0);
+  EXPECT_GT(above, 0);
+  EXPECT_LT(above, 15);
 }

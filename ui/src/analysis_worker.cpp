@@ -75,7 +75,8 @@ predicted_plots compute_predicted(const scene& s, std::uint64_t generation, cons
     g.nx = g.ny = p.zone_grid;
     g.x_min = g.y_min = -p.zone_reach_deg;
     g.x_max = g.y_max = p.zone_reach_deg;
-    out.zone = geometric_viewing_zone(s, g, scene_prop_hits(s), p.zone_rows);
+    // Redrawn on every edit: the midpoint rule's half the cost is worth more than its last percent.
+    out.zone = geometric_viewing_zone(s, g, scene_prop_hits(s), p.zone_rows, {}, nullptr, false);
     out.zone_ms = ms_since(t2);
   } catch (const std::exception&) {
     out.zone = {};

@@ -15,9 +15,18 @@ namespace airr::ui {
 
 namespace {
 
-// One row: slider over [lo, hi], a typed field (may go beyond the slider), label with unit.
+// A row the designer picked, by its --set key, from the row's context menu: a variable of the
+// Optimise window or a tolerance of the Tolerance window.
+struct design_pick {
+  std::string key;
+  bool tolerance = false;
+};
+std::optional<design_pick> picked;
+
+// One row: slider over [lo, hi], a typed field (may go beyond the slider), label with unit. With
+// its --set key, the label's context menu offers the row to the Optimise and Tolerance windows.
 bool edit_number(const char* label, double& v, double lo, double hi, const char* unit, const char* fmt = "%.2f",
-                 const char* help = nullptr) {
+                 const char* help = nullptr, const std::string& key = {}) {
   ImGui::PushID(label);
   const float w = ImGui::GetContentRegionAvail().x;
   bool changed = false;
@@ -40,7 +49,15 @@ bool edit_number(const char* label, double& v, double lo, double hi, const char*
   } else {
     ImGui::TextUnformatted(label);
   }
-  if (help && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", help);
+  if (ImGui::IsItemHovered() && (help || !key.empty())) {
+    const std::string menu = key.empty() ? "" : "right-click: optimise over " + key + " or add it as a tolerance";
+    ImGui::SetTooltip("%s%s%s", help ? help : "", help && !menu.empty() ? "\n" : "", menu.c_str());
+  }
+  if (!key.empty() && ImGui::BeginPopupContextItem("##design")) {
+    if (ImGui::MenuItem("Optimise over this value")) picked = design_pick{key, false};
+    if (ImGui::MenuItem("Add as an assembly tolerance")) picked = design_pick{key, true};
+    ImGui::EndPopup();
+  }
   ImGui::PopID();
   return changed;
 }
@@ -53,17 +70,24 @@ bool edit_int(const char* label, int& v, int lo, int hi, const char* unit) {
 }
 
 // The pose rows of a part: centre and the three angles.
-void edit_pose(pose& p, double reach_mm) {
+// `part`: the part's --set key, e.g. "half_mirror".
+void edit_pose(pose& p, double reach_mm, const std::string& part) {
   static const char* axes[3] = {"centre x", "centre y", "centre z"};
-  for (int i = 0; i < 3; ++i) edit_number(axes[i], p.center_mm[i], -reach_mm, reach_mm, "mm", "%.1f");
-  edit_number("yaw", p.yaw_deg, -180, 180, "deg", "%.1f", "turns the part about the world's y axis");
-  edit_number("pitch", p.pitch_deg, -180, 180, "deg", "%.1f", "raises the part's normal towards +y");
-  edit_number("roll", p.roll_deg, -180, 180, "deg", "%.1f", "turns the part about its own normal");
+  for (int i = 0; i < 3; ++i) {
+    edit_number(axes[i], p.center_mm[i], -reach_mm, reach_mm, "mm", "%.1f", nullptr,
+                part + ".pose.center_mm." + std::to_string(i));
+  }
+  edit_number("yaw", p.yaw_deg, -180, 180, "deg", "%.1f", "turns the part about the world's y axis",
+              part + ".pose.yaw_deg");
+  edit_number("pitch", p.pitch_deg, -180, 180, "deg", "%.1f", "raises the part's normal towards +y",
+              part + ".pose.pitch_deg");
+  edit_number("roll", p.roll_deg, -180, 180, "deg", "%.1f", "turns the part about its own normal",
+              part + ".pose.roll_deg");
 }
 
-void edit_part_size(part_params& p, double max_mm) {
-  edit_number("width", p.width_mm, 1, max_mm, "mm", "%.1f");
-  edit_number("height", p.height_mm, 1, max_mm, "mm", "%.1f");
+void edit_part_size(part_params& p, double max_mm, const std::string& part) {
+  edit_number("width", p.width_mm, 1, max_mm, "mm", "%.1f", nullptr, part + ".width_mm");
+  edit_number("height", p.height_mm, 1, max_mm, "mm", "%.1f", nullptr, part + ".height_mm");
 }
 
 std::vector<std::string> shipped_presets() {
@@ -78,13 +102,14 @@ std::vector<std::string> shipped_presets() {
 
 // One model field as a row, driven by its description.
 void edit_model_field(const model_field& f, retro_model_params& m, const model_values& v, const retro_model_kind& kind,
-                      const studio& st, double theta_deg) {
+                      const studio& st, double theta_deg, const std::string& key) {
   ImGui::PushID(f.key.c_str());
   const double hi = f.slider_hi > 0 ? std::min(f.slider_hi, f.hi) : f.hi;
   switch (f.kind) {
     case field_kind::number: {
       double x = v.number(f.key);
-      if (edit_number(f.key.c_str(), x, f.lo, hi, f.unit.c_str(), "%.4f", f.help.c_str())) set_model_value(m, f.key, x);
+      if (edit_number(f.key.c_str(), x, f.lo, hi, f.unit.c_str(), "%.4f", f.help.c_str(), key))
+        set_model_value(m, f.key, x);
       break;
     }
     case field_kind::optional_number: {
@@ -107,7 +132,7 @@ void edit_model_field(const model_field& f, retro_model_params& m, const model_v
       ImGui::SameLine();
       if (x) {
         double y = *x;
-        if (edit_number(f.key.c_str(), y, f.lo, hi, f.unit.c_str(), "%.4f", f.help.c_str()))
+        if (edit_number(f.key.c_str(), y, f.lo, hi, f.unit.c_str(), "%.4f", f.help.c_str(), key))
           set_model_value(m, f.key, y);
       } else if (has_derived) {
         ImGui::TextDisabled("%s: unset (%g %s at the chief ray)", f.key.c_str(), derived, f.unit.c_str());
@@ -152,7 +177,7 @@ void edit_model_field(const model_field& f, retro_model_params& m, const model_v
   ImGui::PopID();
 }
 
-void model_section(studio& st, retroreflector_params& sheet, double theta_deg) {
+void model_section(studio& st, retroreflector_params& sheet, double theta_deg, const std::string& part) {
   retro_model_params& m = sheet.model;
   if (ImGui::BeginCombo("model", m.type.c_str())) {
     for (const retro_model_kind* k : retro_model_kinds()) {
@@ -164,7 +189,7 @@ void model_section(studio& st, retroreflector_params& sheet, double theta_deg) {
   const retro_model_kind& kind = find_retro_model_kind(m.type);
   const retro_model_params before = m;  // the rows read the values as they were this frame
   const model_values v(before, kind.fields, "model");
-  for (const auto& f : kind.fields) edit_model_field(f, m, v, kind, st, theta_deg);
+  for (const auto& f : kind.fields) edit_model_field(f, m, v, kind, st, theta_deg, part + ".model." + f.key);
 }
 
 void observer_section(scene& s) {
@@ -187,9 +212,12 @@ void observer_section(scene& s) {
     o.placement = observer_placement(placement);
   }
   if (o.placement == observer_placement::orbit) {
-    edit_number("azimuth", o.azimuth_deg, -90, 90, "deg", "%.1f", "from +z towards +x, about the aerial image");
-    edit_number("elevation", o.elevation_deg, -60, 60, "deg", "%.1f", "towards +y, about the aerial image");
-    edit_number("distance", o.distance_mm, 50, 2000, "mm", "%.0f", "from the aerial image's centre");
+    edit_number("azimuth", o.azimuth_deg, -90, 90, "deg", "%.1f", "from +z towards +x, about the aerial image",
+                "observer.azimuth_deg");
+    edit_number("elevation", o.elevation_deg, -60, 60, "deg", "%.1f", "towards +y, about the aerial image",
+                "observer.elevation_deg");
+    edit_number("distance", o.distance_mm, 50, 2000, "mm", "%.0f", "from the aerial image's centre",
+                "observer.distance_mm");
   } else {
     static const char* p[3] = {"position x", "position y", "position z"};
     static const char* t[3] = {"look at x", "look at y", "look at z"};
@@ -258,7 +286,7 @@ void props_section(studio& st) {
         }
       }
       edit_number("scale", p.scale, 0.01, 10, "", "%.3f", "on top of glTF's metres to millimetres");
-      edit_pose(p.pose, 1000);
+      edit_pose(p.pose, 1000, "props." + std::to_string(i));
       if (ImGui::Button("remove this prop")) remove = i;
       ImGui::TreePop();
     }
@@ -279,14 +307,15 @@ void draw_layout_panel(studio& st) {
   if (ImGui::CollapsingHeader("Arrangement", ImGuiTreeNodeFlags_DefaultOpen)) {
     double d = floating_distance(s);
     if (edit_number("floating distance D", d, 30, 400, "mm", "%.1f",
-                    "half mirror centre to aerial image centre; moves the display") &&
+                    "half mirror centre to aerial image centre; moves the display", "floating_distance_mm") &&
         d > 0) {
       try {
         set_floating_distance(s, d);
       } catch (const std::exception&) {
       }
     }
-    edit_number("retroreflector tilt", s.sheet().pose.pitch_deg, -45, 60, "deg", "%.1f", "the first sheet's pitch");
+    edit_number("retroreflector tilt", s.sheet().pose.pitch_deg, -45, 60, "deg", "%.1f", "the first sheet's pitch",
+                "tilt_deg");
     const glm::dvec3 a = aerial_image_center(s);
     ImGui::Text("aerial image at (%.1f, %.1f, %.1f) mm", a.x + 0.0, a.y + 0.0, a.z + 0.0);  // + 0: no "-0.0"
   }
@@ -295,7 +324,7 @@ void draw_layout_panel(studio& st) {
     ImGui::SetNextItemWidth(-5.0f * ImGui::GetFontSize());
     ImGui::InputText("image", &s.source.image);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("empty: uniform white; drop an image file on the window to use it");
-    edit_part_size(s.source, 300);
+    edit_part_size(s.source, 300, "source");
     edit_number("intensity", s.source.intensity, 0, 100, "radiance", "%.2f");
     edit_number("bezel", s.source.bezel_mm, 0, 50, "mm", "%.1f", "black border around the emitting area");
     ImGui::SetNextItemWidth(-8.0f * ImGui::GetFontSize());
@@ -303,15 +332,17 @@ void draw_layout_panel(studio& st) {
     if (ImGui::IsItemHovered()) {
       ImGui::SetTooltip("CSV angle_deg,relative_luminance; empty: Lambertian (assets/displays/lcd_typical.csv)");
     }
-    edit_pose(s.source.pose, 500);
+    edit_pose(s.source.pose, 500, "source");
     ImGui::PopID();
   }
   if (ImGui::CollapsingHeader("Half mirror")) {
     ImGui::PushID("mirror");
-    edit_number("reflectance R", s.half_mirror.reflectance, 0, 1, "fraction", "%.3f");
-    edit_number("transmittance T", s.half_mirror.transmittance, 0, 1, "fraction", "%.3f");
-    edit_part_size(s.half_mirror, 1000);
-    edit_pose(s.half_mirror.pose, 500);
+    edit_number("reflectance R", s.half_mirror.reflectance, 0, 1, "fraction", "%.3f", nullptr,
+                "half_mirror.reflectance");
+    edit_number("transmittance T", s.half_mirror.transmittance, 0, 1, "fraction", "%.3f", nullptr,
+                "half_mirror.transmittance");
+    edit_part_size(s.half_mirror, 1000, "half_mirror");
+    edit_pose(s.half_mirror.pose, 500, "half_mirror");
     ImGui::PopID();
   }
   if (ImGui::CollapsingHeader("Retroreflectors", ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -323,9 +354,10 @@ void draw_layout_panel(studio& st) {
         retroreflector_params& r = s.retroreflectors[i];
         const double theta = polar_angle_deg(to_local(
             retroreflector_frame(s, i), glm::normalize(aerial_image_center(s) - retroreflector_frame(s, i).center)));
-        model_section(st, r, theta);
-        edit_part_size(r, 1000);
-        edit_pose(r.pose, 500);
+        const std::string part = "retroreflectors." + std::to_string(i);
+        model_section(st, r, theta, part);
+        edit_part_size(r, 1000, part);
+        edit_pose(r.pose, 500, part);
         if (s.retroreflectors.size() > 1 && ImGui::Button("remove this sheet")) remove = i;
         ImGui::TreePop();
       }
@@ -359,6 +391,10 @@ void draw_layout_panel(studio& st) {
     ImGui::PopID();
   }
   ImGui::End();
+  if (picked) {
+    add_design_pick(st, picked->key, picked->tolerance);
+    picked.reset();
+  }
 }
 
 }  // namespace airr::ui

@@ -162,6 +162,13 @@ plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, cons
       dl->AddQuadFilled(ImVec2(sx(x0), sy(hi0)), ImVec2(sx(x1), sy(hi1)), ImVec2(sx(x1), sy(lo1)),
                         ImVec2(sx(x0), sy(lo0)), band_col);
     }
+    if (c.points) {
+      for (std::size_t i = 0; i < c.x.size() && i < c.y.size(); ++i) {
+        if (std::isfinite(c.x[i]) && std::isfinite(c.y[i]))
+          dl->AddCircleFilled(ImVec2(sx(c.x[i]), sy(c.y[i])), 3 * scale, col);
+      }
+      continue;
+    }
     for (std::size_t i = 1; i < c.x.size() && i < c.y.size(); ++i) {
       if (!std::isfinite(c.y[i - 1]) || !std::isfinite(c.y[i])) continue;
       const ImVec2 p0(sx(c.x[i - 1]), sy(c.y[i - 1])), p1(sx(c.x[i]), sy(c.y[i]));
@@ -189,8 +196,11 @@ plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, cons
     const float lx = b.x - w - 2.6f * line_h;
     dl->AddRectFilled(ImVec2(lx - 0.3f * line_h, ly - 0.1f * line_h), ImVec2(b.x - 0.2f * line_h, ly + 1.05f * line_h),
                       ImGui::GetColorU32(ImGuiCol_PopupBg, 0.85f));
-    dl->AddLine(ImVec2(lx, ly + line_h / 2), ImVec2(lx + 1.6f * line_h, ly + line_h / 2),
-                c.colour ? c.colour : plot_palette(int(ci)), 2.0f * scale);
+    const ImU32 col = c.colour ? c.colour : plot_palette(int(ci));
+    if (c.points)
+      dl->AddCircleFilled(ImVec2(lx + 0.8f * line_h, ly + line_h / 2), 3 * scale, col);
+    else
+      dl->AddLine(ImVec2(lx, ly + line_h / 2), ImVec2(lx + 1.6f * line_h, ly + line_h / 2), col, 2.0f * scale);
     dl->AddText(ImVec2(lx + 2.0f * line_h, ly), axis_col, c.label.c_str());
     ly += 1.15f * line_h;
   }

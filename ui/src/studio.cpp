@@ -63,6 +63,14 @@ void studio_start(studio& st, const scene& s, const std::string& path) {
   }
   st.analysis.submit_scene(s, st.generation, {});
   st.view.uploaded_generation = ~0ull;
+  // Another scene: its own history, and no results of the last one's design runs.
+  st.history.reset(s);
+  st.design.job.reset();
+  st.design.optimised.reset();
+  st.design.tolerances.reset();
+  st.design.ghost.reset();
+  st.design.chosen = -1;
+  st.design.spec_started = false;
   if (!st.doc_path.empty()) add_recent_file(st.settings, st.doc_path);
 }
 
@@ -104,6 +112,9 @@ void studio_frame(studio& st, double now) {
   place(left_w + mid_w, 0, right_w, h);
   draw_plots_panel(st);
   draw_fit_window(st);
+  collect_design_job(st);
+  draw_optimise_window(st);
+  draw_tolerance_window(st);
 
   // Status bar.
   ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x, vp->WorkPos.y + vp->WorkSize.y - ImGui::GetFrameHeight()));
@@ -120,8 +131,17 @@ void studio_frame(studio& st, double now) {
   draw_save_prompt(st);
   draw_recovery_prompt(st);
   handle_dialog(st);
+  st.history.settle(st.doc, ImGui::IsAnyItemActive());
   studio_apply_edits(st, now);
   studio_keep_recovery(st, now);
+}
+
+void studio_undo(studio& st) {
+  if (st.history.undo(st.doc)) st.status = "undid " + st.history.redo_name();
+}
+
+void studio_redo(studio& st) {
+  if (st.history.redo(st.doc)) st.status = "redid " + st.history.undo_name();
 }
 
 }  // namespace airr::ui

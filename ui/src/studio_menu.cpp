@@ -124,6 +124,17 @@ void draw_menu(studio& st) {
     if (ImGui::MenuItem("Quit", "Ctrl+Q")) ask_or_run(st, studio::pending_action::quit);
     ImGui::EndMenu();
   }
+  if (ImGui::BeginMenu("Edit")) {
+    const std::string undo = "Undo " + st.history.undo_name(), redo = "Redo " + st.history.redo_name();
+    if (ImGui::MenuItem(undo.c_str(), "Ctrl+Z", false, st.history.can_undo())) studio_undo(st);
+    if (ImGui::MenuItem(redo.c_str(), "Ctrl+Y", false, st.history.can_redo())) studio_redo(st);
+    ImGui::EndMenu();
+  }
+  if (ImGui::BeginMenu("Design")) {
+    if (ImGui::MenuItem("Optimise...")) st.design.show_optimise = true;
+    if (ImGui::MenuItem("Tolerance...")) st.design.show_tolerance = true;
+    ImGui::EndMenu();
+  }
   ImGui::TextDisabled("  %s%s", display_name(st).c_str(), studio_dirty(st) ? " (unsaved changes)" : "");
   ImGui::EndMainMenuBar();
 }
@@ -200,6 +211,8 @@ void handle_shortcuts(studio& st) {
   // ImGui 1.86 indexes keys by the backend's codes; GLFW's letter codes are their ASCII capitals.
   if (ImGui::IsKeyPressed('S')) save_or_ask(st);
   if (ImGui::IsKeyPressed('O')) ask_or_run(st, studio::pending_action::open_file);
+  if (ImGui::IsKeyPressed('Z')) io.KeyShift ? studio_redo(st) : studio_undo(st);
+  if (ImGui::IsKeyPressed('Y')) studio_redo(st);
 }
 
 }  // namespace airr::ui

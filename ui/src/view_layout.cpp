@@ -99,6 +99,14 @@ void draw_projection(studio& st, projection proj, ImVec2 canvas0, ImVec2 canvas,
   for (const auto& [f, style] : v.parts) outline(f, style.colour, style.width * lw);
   outline(v.emitting, IM_COL32(255, 255, 255, 255), 3 * lw);  // the emitting area inside the bezel
   outline(aerial, IM_COL32(255, 120, 200, 255), 2 * lw);
+  if (const std::optional<scene>& g = st.design.ghost) {
+    // The optimiser's best layout so far, or the one chosen to apply, over the scene's own.
+    const ImU32 ghost = IM_COL32(255, 200, 60, 190);
+    outline(half_mirror_frame(*g), ghost, 1.5f * lw);
+    outline(source_panel_frame(*g), ghost, 1.5f * lw);
+    for (std::size_t i = 0; i < g->retroreflectors.size(); ++i) outline(retroreflector_frame(*g, i), ghost, 1.5f * lw);
+    outline(aerial_image_frame(*g), ghost, 1.5f * lw);
+  }
   const ImVec2 es = m.to_screen(eye);
   dl->AddCircleFilled(es, 4 * lw, IM_COL32(200, 200, 200, 255));
 
@@ -224,8 +232,9 @@ void draw_layout_view(studio& st) {
 
   char info[200];
   const glm::dvec3 a = aerial_image_center(st.doc);
-  std::snprintf(info, sizeof info, "D %.1f mm   aerial image at (%.1f, %.1f, %.1f) mm   %.4f mm/px",
-                floating_distance(st.doc), a.x + 0.0, a.y + 0.0, a.z + 0.0, make_camera(st.doc).mm_per_pixel);
+  std::snprintf(info, sizeof info, "D %.1f mm   aerial image at (%.1f, %.1f, %.1f) mm   %.4f mm/px%s",
+                floating_distance(st.doc), a.x + 0.0, a.y + 0.0, a.z + 0.0, make_camera(st.doc).mm_per_pixel,
+                st.design.ghost ? "   amber: the optimiser's layout" : "");
   ImGui::GetWindowDrawList()->AddText(
       ImVec2(canvas0.x + 0.5f * ImGui::GetFontSize(), canvas0.y + canvas.y + 0.2f * ImGui::GetFontSize()),
       IM_COL32(220, 220, 220, 255), info);

@@ -25,12 +25,13 @@ struct metric_name {
   const char* name;
   bool at_eye;
 };
-constexpr std::array<metric_name, 8> metric_names = {{
+constexpr std::array<metric_name, 9> metric_names = {{
     {design_metric::visible_fraction, "visible_fraction", true},
     {design_metric::mean_mtf, "mean_mtf", true},
     {design_metric::mtf50_lp_per_mm, "mtf50_lp_per_mm", true},
     {design_metric::r50_mm, "r50_mm", true},
     {design_metric::brightness, "brightness", true},
+    {design_metric::stray_light, "stray_light", true},
     {design_metric::size_x_mm, "size_x_mm", false},
     {design_metric::size_y_mm, "size_y_mm", false},
     {design_metric::size_z_mm, "size_z_mm", false},
@@ -60,11 +61,42 @@ design_metric read_metric(json_reader& r) {
   return *m;
 }
 
-over_eyes read_over(json_reader& r) {
+// "over" and, for share_above, its "threshold".
+over_eyes read_over(json_reader& r, double& threshold) {
   std::string over = "mean";
   r.string("over", over);
-  if (over != "mean" && over != "min") r.fail(r.field("over"), "must be \"mean\" or \"min\"");
-  return over == "min" ? over_eyes::min : over_eyes::mean;
+  if (over != "mean" && over != "min" && over != "share_above")
+    r.fail(r.field("over"), "must be \"mean\", \"min\" or \"share_above\"");
+  if (over != "share_above") return over == "min" ? over_eyes::min : over_eyes::mean;
+  threshold = r.number("threshold");
+  return over_eyes::share_above;
+}
+
+// "eye_zone": {"shape": "plane" or "sphere", "distance_mm", "x": [lo, hi], "y": [lo, hi], "n": [nx, ny]}.
+eye_grid read_eye_zone(json_reader z) {
+  eye_grid g;
+  std::string shape = "plane";
+  z.string("shape", shape);
+  if (shape != "plane" && shape != "sphere") z.fail(z.field("shape"), "must be \"plane\" or \"sphere\"");
+  g.kind = shape == "sphere" ? eye_grid::shape::sphere : eye_grid::shape::plane;
+  z.number("distance_mm", g.distance_mm);
+  auto pair = [&](const char* key) {
+    const std::vector<double> v = z.number_array(key);
+    if (v.size() != 2) z.fail(z.field(key), "must be [first, last]");
+    return v;
+  };
+  const std::vector<double> x = pair("x"), y = pair("y"), n = pair("n");
+  g.x_min = x[0], g.x_max = x[1], g.y_min = y[0], g.y_max = y[1];
+  if (n[0] != std::floor(n[0]) || n[1] != std::floor(n[1]) || n[0] < 1 || n[1] < 1 || n[0] * n[1] > 400)
+    z.fail(z.field("n"), "must be [nx, ny], whole numbers, at most 400 eyes in all");
+  g.nx = int(n[0]), g.ny = int(n[1]);
+  try {
+    check_eye_grid(g);
+  } catch (const input_error& e) {
+    z.fail(z.field("x"), e.what());
+  }
+  z.finish();
+  return g;
 }
 
 }  // namespace
@@ -93,8 +125,12 @@ std::string design_metric_names() {
   return out;
 }
 
-design_spec load_design_spec(const std::string& path) {
-  const nlohmann::json j = read_json_file(path);
+namespace {
+
+// The spec in j; its scene is `base` when given, else the file its "scene" names (relative to
+// base_dir).
+design_spec read_design_spec(const nlohmann::json& j, const std::string& path, const std::string& base_dir,
+                             const scene* base) {
   json_reader r(j, path, "");
   std::string format;
   r.string("format", format);
@@ -104,12 +140,16 @@ design_spec load_design_spec(const std::string& path) {
   if (version != design_version) r.fail("version", "unsupported version " + std::to_string(version));
   design_spec spec;
   spec.path = path;
-  const std::string base_dir = std::filesystem::absolute(path).parent_path().string();
-  spec.scene_path = resolve_path(r.string("scene"), base_dir);
-  try {
-    spec.base = load_scene(spec.scene_path);
-  } catch (const input_error& e) {
-    r.fail("scene", e.what());
+  if (base) {
+    spec.base = *base;
+    if (r.has("scene")) r.string("scene", spec.scene_path);
+  } else {
+    spec.scene_path = resolve_path(r.string("scene"), base_dir);
+    try {
+      spec.base = load_scene(spec.scene_path);
+    } catch (const input_error& e) {
+      r.fail("scene", e.what());
+    }
   }
   each_object(r, "variables", false, [&](json_reader& v, std::size_t) {
     design_variable var;
@@ -138,13 +178,13 @@ design_spec load_design_spec(const std::string& path) {
       }
       spec.eyes_mm.push_back(e);
     }
-  } else {
-    spec.eyes_mm.push_back(observer_position(spec.base));
   }
+  if (r.has("eye_zone")) spec.eye_zone = read_eye_zone(r.child("eye_zone"));
+  if (spec.eyes_mm.empty() && !spec.eye_zone) spec.eyes_mm.push_back(observer_position(spec.base));
   each_object(r, "objectives", true, [&](json_reader& o, std::size_t) {
     design_objective obj;
     obj.metric = read_metric(o);
-    obj.over = read_over(o);
+    obj.over = read_over(o, obj.threshold);
     const std::string goal = o.string("goal");
     if (goal != "maximise" && goal != "minimise") o.fail(o.field("goal"), "must be \"maximise\" or \"minimise\"");
     obj.maximise = goal == "maximise";
@@ -155,7 +195,7 @@ design_spec load_design_spec(const std::string& path) {
   each_object(r, "constraints", false, [&](json_reader& c, std::size_t) {
     design_constraint con;
     con.metric = read_metric(c);
-    con.over = read_over(c);
+    con.over = read_over(c, con.threshold);
     con.min = c.optional_number("min");
     con.max = c.optional_number("max");
     if (!con.min && !con.max) c.fail(c.field("metric"), "a constraint needs a min, a max or both");
@@ -212,6 +252,81 @@ design_spec load_design_spec(const std::string& path) {
   }
   r.finish();
   return spec;
+}
+
+const char* goal_name(bool maximise) { return maximise ? "maximise" : "minimise"; }
+const char* over_name(over_eyes o) {
+  return o == over_eyes::min ? "min" : o == over_eyes::share_above ? "share_above" : "mean";
+}
+
+}  // namespace
+
+design_spec load_design_spec(const std::string& path) {
+  return read_design_spec(read_json_file(path), path, std::filesystem::absolute(path).parent_path().string(), nullptr);
+}
+
+design_spec parse_design_spec(const std::string& text, const std::string& origin, const scene& base) {
+  return read_design_spec(parse_json(text, origin), origin, "", &base);
+}
+
+std::string design_spec_text(const design_spec& spec) {
+  nlohmann::ordered_json j;
+  j["format"] = design_format;
+  j["version"] = design_version;
+  if (!spec.scene_path.empty()) j["scene"] = spec.scene_path;
+  j["variables"] = nlohmann::ordered_json::array();
+  for (const design_variable& v : spec.variables)
+    j["variables"].push_back({{"key", v.key}, {"min", v.min}, {"max", v.max}});
+  j["eyes_mm"] = nlohmann::ordered_json::array();
+  for (const glm::dvec3& e : spec.eyes_mm) j["eyes_mm"].push_back({e.x, e.y, e.z});
+  if (const auto& z = spec.eye_zone) {
+    j["eye_zone"] = {{"shape", z->kind == eye_grid::shape::sphere ? "sphere" : "plane"},
+                     {"distance_mm", z->distance_mm},
+                     {"x", {z->x_min, z->x_max}},
+                     {"y", {z->y_min, z->y_max}},
+                     {"n", {z->nx, z->ny}}};
+  }
+  j["objectives"] = nlohmann::ordered_json::array();
+  for (const design_objective& o : spec.objectives) {
+    nlohmann::ordered_json obj = {{"metric", to_string(o.metric)},
+                                  {"goal", goal_name(o.maximise)},
+                                  {"over", over_name(o.over)},
+                                  {"weight", o.weight}};
+    if (o.over == over_eyes::share_above) obj["threshold"] = o.threshold;
+    j["objectives"].push_back(obj);
+  }
+  j["constraints"] = nlohmann::ordered_json::array();
+  for (const design_constraint& c : spec.constraints) {
+    nlohmann::ordered_json o = {{"metric", to_string(c.metric)}, {"over", over_name(c.over)}};
+    if (c.over == over_eyes::share_above) o["threshold"] = c.threshold;
+    if (c.min) o["min"] = *c.min;
+    if (c.max) o["max"] = *c.max;
+    j["constraints"].push_back(o);
+  }
+  j["search"] = {{"seed", spec.search.seed},
+                 {"global_evaluations", spec.search.global_evaluations},
+                 {"local_evaluations", spec.search.local_evaluations},
+                 {"psf_samples", spec.search.psf_samples}};
+  if (spec.front.points > 0) j["pareto"] = {{"points", spec.front.points}};
+  j["tolerances"] = nlohmann::ordered_json::array();
+  for (const design_tolerance& t : spec.tolerances) {
+    nlohmann::ordered_json o = {{"key", t.key}, {"distribution", t.uniform ? "uniform" : "normal"}};
+    o[t.uniform ? "half_width" : "sd"] = t.size;
+    o["percent"] = t.percent;
+    j["tolerances"].push_back(o);
+  }
+  j["tolerance"] = {{"samples", spec.tolerance.samples}, {"seed", spec.tolerance.seed}};
+  return j.dump(2) + "\n";
+}
+
+std::vector<glm::dvec3> design_eyes(const design_spec& spec) {
+  std::vector<glm::dvec3> eyes = spec.eyes_mm;
+  if (const auto& z = spec.eye_zone) {
+    for (int j = 0; j < z->ny; ++j) {
+      for (int i = 0; i < z->nx; ++i) eyes.push_back(eye_position(spec.base, *z, z->x_at(i), z->y_at(j)));
+    }
+  }
+  return eyes;
 }
 
 scene_override design_override(const std::string& key, double v) {

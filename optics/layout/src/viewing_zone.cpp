@@ -7,6 +7,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <tbb/parallel_for.h>
 
@@ -125,12 +126,16 @@ double slab_area(const viewing_parts& parts, const glm::dvec3& eye, double y0, d
 
 }  // namespace
 
-double visible_fraction(const viewing_parts& parts, const glm::dvec3& eye, int rows) {
+double visible_fraction(const viewing_parts& parts, const glm::dvec3& eye, int rows, bool refine) {
   const part_frame& a = parts.aerial;
+  double total = 0;
+  if (!refine) {
+    for (int j = 0; j < rows; ++j) total += visible_width(parts, eye, ((j + 0.5) / rows - 0.5) * a.height);
+    return total / (rows * a.width);
+  }
   auto y_at = [&](int j) {
     return std::clamp((double(j) / rows - 0.5) * a.height, -0.5 * a.height + 1e-9, 0.5 * a.height - 1e-9);
   };
-  double total = 0;
   double w0 = visible_width(parts, eye, y_at(0));
   for (int j = 0; j < rows; ++j) {
     const double w1 = visible_width(parts, eye, y_at(j + 1));
@@ -187,7 +192,7 @@ void check_eye_grid(const eye_grid& g) {
 
 viewing_zone_map geometric_viewing_zone(const scene& s, const eye_grid& g, const prop_hit_function& prop_hits,
                                         int rows_per_eye, const std::function<void(int, int)>& progress,
-                                        const std::atomic<bool>* cancel) {
+                                        const std::atomic<bool>* cancel, bool refine) {
   check_eye_grid(g);
   if (rows_per_eye < 1 || rows_per_eye > 100000) throw input_error("viewing zone: rows per eye must be 1 to 100000");
   const auto t0 = std::chrono::steady_clock::now();
@@ -202,7 +207,7 @@ viewing_zone_map geometric_viewing_zone(const scene& s, const eye_grid& g, const
     if (cancel && cancel->load(std::memory_order_relaxed)) return;
     for (int i = 0; i < g.nx; ++i) {
       map.visible[std::size_t(j) * g.nx + i] =
-          visible_fraction(parts, eye_position(s, g, g.x_at(i), g.y_at(j)), rows_per_eye);
+          visible_fraction(parts, eye_position(s, g, g.x_at(i), g.y_at(j)), rows_per_eye, refine);
     }
     const int n = ++done;
     if (progress) {

@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <functional>
 #include <limits>
 #include <map>
 #include <optional>
+
+#include <tbb/parallel_for.h>
 
 #include "airr/core/error.hpp"
 #include "airr/layout/layout.hpp"
@@ -13,6 +16,7 @@
 #include "airr/layout/sheet_models.hpp"
 #include "airr/layout/viewing_zone.hpp"
 #include "airr/measure/mtf_routes.hpp"
+#include "airr/measure/viewing_zone_full.hpp"
 #include "airr/render/prop_hits.hpp"
 
 namespace airr {
@@ -22,13 +26,16 @@ namespace {
 // The eye metrics of one layout at one eye, each worked out once when first asked for.
 class eye_metrics {
  public:
-  // `parts` gives the layout's viewing parts, built on first use.
-  eye_metrics(const design_spec& spec, const scene& s, const glm::dvec3& eye,
-              const std::function<const viewing_parts&()>& parts)
+  // `parts`: the layout's viewing parts, when a visible fraction is asked for.
+  eye_metrics(const design_spec& spec, const scene& s, const glm::dvec3& eye, const viewing_parts* parts)
       : spec_(spec), s_(observer_at(s, eye)), eye_(eye), parts_(parts) {}
 
   double value(design_metric m) {
-    if (m == design_metric::visible_fraction) return visible_fraction(parts_(), eye_);
+    if (m == design_metric::visible_fraction) return visible_fraction(*parts_, eye_);
+    if (m == design_metric::stray_light) {
+      const double r = stray_light_ratio(s_, eye_);
+      return std::isnan(r) ? std::numeric_limits<double>::infinity() : r;  // none of the aerial image seen
+    }
     const psf_samples& p = psf();
     switch (m) {
       case design_metric::mean_mtf:
@@ -57,7 +64,7 @@ class eye_metrics {
   const design_spec& spec_;
   scene s_;
   glm::dvec3 eye_;
-  const std::function<const viewing_parts&()>& parts_;
+  const viewing_parts* parts_;
   std::optional<psf_samples> psf_;
   std::optional<mtf_summary> mtf_;
 };
@@ -110,31 +117,45 @@ std::vector<std::string> broken_constraints(const design_spec& spec, const std::
 }
 
 design_evaluation evaluate_design(const design_spec& spec, const scene& s) {
-  // Only a visible fraction needs the viewing parts (and the props' Embree scene).
-  std::optional<viewing_parts> built;
-  const std::function<const viewing_parts&()> parts = [&]() -> const viewing_parts& {
-    if (!built) built.emplace(s, scene_prop_hits(s));
-    return *built;
-  };
-  std::vector<eye_metrics> eyes;
-  for (const glm::dvec3& e : spec.eyes_mm) eyes.emplace_back(spec, s, e, parts);
+  std::vector<design_metric> asked;  // the eye metrics the spec names
+  for (const design_objective& o : spec.objectives) asked.push_back(o.metric);
+  for (const design_constraint& c : spec.constraints) asked.push_back(c.metric);
+  std::erase_if(asked, [](design_metric m) { return !metric_at_eye(m); });
+  std::sort(asked.begin(), asked.end());
+  asked.erase(std::unique(asked.begin(), asked.end()), asked.end());
+  // Only a visible fraction needs the viewing parts (and the props' Embree scene); built once,
+  // before the eyes are measured in parallel (each eye's values alone, so any threads agree).
+  std::optional<viewing_parts> parts;
+  if (std::find(asked.begin(), asked.end(), design_metric::visible_fraction) != asked.end())
+    parts.emplace(s, scene_prop_hits(s));
+  const std::vector<glm::dvec3> eyes = design_eyes(spec);
+  std::vector<std::map<design_metric, double>> at_eye(eyes.size());
+  tbb::parallel_for(std::size_t(0), eyes.size(), [&](std::size_t i) {
+    eye_metrics e(spec, s, eyes[i], parts ? &*parts : nullptr);
+    for (design_metric m : asked) at_eye[i][m] = e.value(m);
+  });
   const glm::dvec3 size = device_size_mm(s);
-  auto value = [&](design_metric m, over_eyes over) {
+  auto value = [&](design_metric m, over_eyes over, double threshold) {
     if (m == design_metric::size_x_mm) return size.x;
     if (m == design_metric::size_y_mm) return size.y;
     if (m == design_metric::size_z_mm) return size.z;
     double sum = 0, least = std::numeric_limits<double>::infinity();
-    for (eye_metrics& e : eyes) {
-      const double v = e.value(m);
+    int above = 0;
+    for (const auto& values : at_eye) {
+      const double v = values.at(m);
       sum += v;
       least = std::min(least, v);
+      above += v >= threshold;
     }
-    return over == over_eyes::min ? least : sum / double(eyes.size());
+    if (over == over_eyes::share_above) return double(above) / double(at_eye.size());
+    return over == over_eyes::min ? least : sum / double(at_eye.size());
   };
   design_evaluation out;
-  for (const design_objective& o : spec.objectives) out.objective_values.push_back(value(o.metric, o.over));
+  for (const design_objective& o : spec.objectives)
+    out.objective_values.push_back(value(o.metric, o.over, o.threshold));
   out.score = design_score(spec, out.objective_values);
-  for (const design_constraint& c : spec.constraints) out.constraint_values.push_back(value(c.metric, c.over));
+  for (const design_constraint& c : spec.constraints)
+    out.constraint_values.push_back(value(c.metric, c.over, c.threshold));
   out.broken = broken_constraints(spec, out.constraint_values);
   return out;
 }

@@ -91,6 +91,7 @@ class search_state {
       if (p.have_best) {
         p.best_score = result.best_trial().evaluation.score;
         p.best_feasible = result.best_trial().evaluation.feasible();
+        p.best_x = result.best_trial().x;
       }
       progress_(p);
     }
@@ -123,7 +124,8 @@ struct constraint_slot {
 
 double objective(const std::vector<double>& x, std::vector<double>&, void* data) {
   const design_trial& t = static_cast<search_state*>(data)->at(x);
-  return t.valid ? -t.evaluation.score : invalid_violation;
+  // A metric that is not a number here (nothing seen) scores as no layout.
+  return t.valid && std::isfinite(t.evaluation.score) ? -t.evaluation.score : invalid_violation;
 }
 
 double constraint(const std::vector<double>& x, std::vector<double>&, void* data) {

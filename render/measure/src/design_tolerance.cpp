@@ -5,6 +5,8 @@
 #include <limits>
 #include <optional>
 
+#include <tbb/parallel_for.h>
+
 #include "airr/core/error.hpp"
 #include "airr/core/geometry.hpp"
 #include "airr/core/random.hpp"
@@ -62,31 +64,44 @@ tolerance_result run_tolerance(const design_spec& spec, const scene& nominal,
     out.metrics.push_back({std::string(to_string(o.metric)) + " (objective)", {}, 0, 0, 0, 0, 0});
   for (const design_constraint& c : spec.constraints)
     out.metrics.push_back({std::string(to_string(c.metric)) + " (constraint)", {}, 0, 0, 0, 0, 0});
-  const int total = spec.tolerance.samples + 2 * int(spec.tolerances.size());
-  int done = 0, passing = 0;
+  const int samples = spec.tolerance.samples, total = samples + 2 * int(spec.tolerances.size());
+  // Every layout's offsets are drawn first, in order, so the samples are the same on any number of
+  // threads; the layouts are then evaluated in parallel, a batch at a time (cancel and progress
+  // between batches), and taken in order.
+  std::vector<std::vector<double>> draws(std::size_t(samples), std::vector<double>(spec.tolerances.size()));
   pcg32 rng(spec.tolerance.seed, 11);
-  for (int i = 0; i < spec.tolerance.samples; ++i) {
+  for (std::vector<double>& offsets : draws) {
+    for (std::size_t t = 0; t < spec.tolerances.size(); ++t) {
+      const double u1 = rng.next_double(), u2 = rng.next_double();
+      offsets[t] = spec.tolerances[t].uniform ? sizes[t] * (2 * u1 - 1)
+                                              : sizes[t] * std::sqrt(-2 * std::log(1 - u1)) * std::cos(2 * pi * u2);
+    }
+  }
+  auto evaluate_all = [&](const std::vector<std::vector<double>>& offsets, std::size_t first, std::size_t end) {
+    std::vector<std::optional<design_evaluation>> e(end - first);
+    tbb::parallel_for(
+        first, end, [&](std::size_t i) { e[i - first] = evaluate_offsets(spec, nominal, nominal_values, offsets[i]); });
+    return e;
+  };
+  int passing = 0;
+  const std::size_t batch = 16;
+  for (std::size_t first = 0; first < draws.size(); first += batch) {
     if (cancel && cancel->load()) {
       out.cancelled = true;
       break;
     }
-    std::vector<double> offsets;
-    for (std::size_t t = 0; t < spec.tolerances.size(); ++t) {
-      const double u1 = rng.next_double(), u2 = rng.next_double();
-      offsets.push_back(spec.tolerances[t].uniform
-                            ? sizes[t] * (2 * u1 - 1)
-                            : sizes[t] * std::sqrt(-2 * std::log(1 - u1)) * std::cos(2 * pi * u2));
-    }
-    const auto e = evaluate_offsets(spec, nominal, nominal_values, offsets);
-    ++out.samples;
-    if (!e) {
-      ++out.invalid;
-    } else {
+    const std::size_t end = std::min(draws.size(), first + batch);
+    for (const std::optional<design_evaluation>& e : evaluate_all(draws, first, end)) {
+      ++out.samples;
+      if (!e) {
+        ++out.invalid;
+        continue;
+      }
       const std::vector<double> v = metric_values(*e);
       for (std::size_t m = 0; m < v.size(); ++m) out.metrics[m].values.push_back(v[m]);
       if (e->feasible()) ++passing;
     }
-    if (progress) progress(++done, total);
+    if (progress) progress(int(end), total);
   }
   out.yield = out.samples > 0 ? double(passing) / out.samples : 0;
   for (metric_distribution& m : out.metrics) {
@@ -102,22 +117,44 @@ tolerance_result run_tolerance(const design_spec& spec, const scene& nominal,
     m.p50 = percentile(sorted, 0.5);
     m.p95 = percentile(sorted, 0.95);
   }
-  for (std::size_t t = 0; t < spec.tolerances.size() && !out.cancelled; ++t) {
-    std::vector<double> up(spec.tolerances.size(), 0.0), down = up;
-    up[t] = sizes[t];
-    down[t] = -sizes[t];
-    const auto a = evaluate_offsets(spec, nominal, nominal_values, up);
-    const auto b = evaluate_offsets(spec, nominal, nominal_values, down);
-    std::vector<double> change(out.metrics.size(), NAN);
-    if (a && b) {
-      const std::vector<double> va = metric_values(*a), vb = metric_values(*b);
-      for (std::size_t m = 0; m < change.size(); ++m) change[m] = 0.5 * (va[m] - vb[m]);
+  if (!out.cancelled) {
+    // Each tolerance alone at +size and -size.
+    std::vector<std::vector<double>> alone;
+    for (std::size_t t = 0; t < spec.tolerances.size(); ++t) {
+      for (double sign : {1.0, -1.0}) {
+        alone.emplace_back(spec.tolerances.size(), 0.0);
+        alone.back()[t] = sign * sizes[t];
+      }
     }
-    out.sensitivity.push_back(change);
-    done += 2;
-    if (progress) progress(done, total);
+    const auto e = evaluate_all(alone, 0, alone.size());
+    for (std::size_t t = 0; t < spec.tolerances.size(); ++t) {
+      const auto &a = e[2 * t], &b = e[2 * t + 1];
+      std::vector<double> change(out.metrics.size(), NAN);
+      if (a && b) {
+        const std::vector<double> va = metric_values(*a), vb = metric_values(*b);
+        for (std::size_t m = 0; m < change.size(); ++m) change[m] = 0.5 * (va[m] - vb[m]);
+      }
+      out.sensitivity.push_back(change);
+    }
+    if (progress) progress(total, total);
   }
   return out;
+}
+
+histogram_steps metric_histogram(const metric_distribution& d, int bins) {
+  histogram_steps h;
+  if (d.values.empty() || bins < 1) return h;
+  const auto [lo_it, hi_it] = std::minmax_element(d.values.begin(), d.values.end());
+  const double lo = *lo_it, hi = std::max(*hi_it, lo + 1e-12);
+  std::vector<double> count(std::size_t(bins), 0.0);
+  for (double v : d.values) count[std::size_t(std::clamp(int((v - lo) / (hi - lo) * bins), 0, bins - 1))] += 1;
+  for (int b = 0; b < bins; ++b) {
+    for (const double edge : {lo + (hi - lo) * b / bins, lo + (hi - lo) * (b + 1) / bins}) {
+      h.x.push_back(edge);
+      h.y.push_back(count[std::size_t(b)]);
+    }
+  }
+  return h;
 }
 
 }  // namespace airr

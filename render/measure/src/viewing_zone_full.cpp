@@ -36,7 +36,18 @@ bool inside_quad(const std::array<glm::dvec2, 4>& q, double x, double y) {
 
 struct eye_render {
   double aerial = 0, stray = 0, direct = 0;  // mean luminance of each inside the aerial outline
+  double stray_ratio() const { return aerial > 0 ? stray / aerial : nan; }
 };
+
+// The eye's render: small, through a pinhole, its field holding the aerial image with a quarter
+// to spare.
+void frame_eye_render(scene& eye, const part_frame& aerial, const full_zone_params& p) {
+  eye.observer.width = eye.observer.height = p.render_size;
+  eye.observer.lens = observer_lens::pinhole;
+  const double reach = 0.5 * std::hypot(aerial.width, aerial.height) * 1.25;
+  eye.observer.fov_deg =
+      degrees(2 * std::atan(reach / std::max(1.0, glm::length(observer_position(eye) - aerial.center))));
+}
 
 // A small render of the aerial image from the eye, split into components: the aerial image and
 // everything else, averaged over the aerial image's outline as the eye sees it.
@@ -99,6 +110,20 @@ double display_luminance(const tracer_scene& ts) {
 
 }  // namespace
 
+double stray_light_ratio(const scene& s, const glm::dvec3& eye, const full_zone_params& p) {
+  scene at = s;
+  const part_frame aerial = aerial_image_frame(s);
+  at.observer.placement = observer_placement::look_at;
+  at.observer.position_mm = {eye.x, eye.y, eye.z};
+  at.observer.look_at_mm = {aerial.center.x, aerial.center.y, aerial.center.z};
+  frame_eye_render(at, aerial, p);
+  tracer_scene ts;
+  ts.use_model_image = false;
+  ts.retro = make_sheet_models(s);
+  const embree_device device;
+  return render_from(ts, device, at, p, nullptr).stray_ratio();
+}
+
 full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zone_params& p,
                                 const std::function<void(int, int)>& progress, const std::atomic<bool>* cancel) {
   check_eye_grid(g);
@@ -129,19 +154,14 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
     const int i = int(e % std::size_t(g.nx)), j = int(e / std::size_t(g.nx));
     scene eye = s;
     place_observer(eye, g, g.x_at(i), g.y_at(j));
-    eye.observer.width = eye.observer.height = p.render_size;
-    eye.observer.lens = observer_lens::pinhole;
-    // A field that holds the aerial image with a quarter to spare.
-    const double reach = 0.5 * std::hypot(aerial.width, aerial.height) * 1.25;
-    eye.observer.fov_deg =
-        degrees(2 * std::atan(reach / std::max(1.0, glm::length(observer_position(eye) - aerial.center))));
+    frame_eye_render(eye, aerial, p);
     out.visible[e] = visible_fraction(parts, observer_position(eye), p.rows_per_eye);
     // Every eye is rendered: the display may be seen directly where the aerial image is not.
     const eye_render r = render_from(ts, device, eye, p, cancel);
     out.direct[e] = r.direct / display_luminance(ts);
     if (out.visible[e] > 0) {
       out.brightness[e] = r.aerial;
-      out.stray_ratio[e] = r.aerial > 0 ? r.stray / r.aerial : nan;
+      out.stray_ratio[e] = r.stray_ratio();
       try {
         out.mean_mtf[e] = psf_route_mtf(scene_psf(eye, models, p.psf_samples), 0.0).mean_mtf;
       } catch (const input_error&) {

@@ -13,6 +13,7 @@ struct plot_curve {
   unsigned colour = 0;  // ImU32; 0 picks from the palette by index
   bool dashed = false;
   std::vector<double> band{};  // optional half-width at each x: a translucent band y +- band
+  bool points = false;         // a dot at each point, no line
 };
 
 // Values on a grid drawn as coloured cells under the curves (viridis from value_min to

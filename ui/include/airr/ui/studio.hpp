@@ -18,6 +18,8 @@
 #include "airr/models/preset.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/ui/analysis_worker.hpp"
+#include "airr/ui/design_job.hpp"
+#include "airr/ui/edit_history.hpp"
 #include "airr/ui/file_dialog.hpp"
 #include "airr/ui/fit_job.hpp"
 #include "airr/ui/gl_layout_renderer.hpp"
@@ -54,8 +56,25 @@ struct view_3d_state {
   std::unique_ptr<gl_layout_renderer> renderer;
 };
 
+// The Optimise and Tolerance windows: the design spec they edit (its base becomes the applied
+// layout when a run starts), the run, and the last results.
+struct design_windows {
+  bool show_optimise = false, show_tolerance = false;
+  design_spec spec;           // variables, eyes, objectives, constraints, search, tolerances
+  bool spec_started = false;  // filled with a first variable and objective for the opened scene
+  std::string error;          // why the spec cannot run
+  std::unique_ptr<design_job> job;
+  std::optional<design_result> optimised;  // the last finished search, and its spec
+  design_spec optimised_spec;
+  int chosen = -1;                             // the trial to apply: the best, or a Pareto front's member clicked
+  std::optional<scene> ghost;                  // drawn in the layout views: the best so far, or the chosen trial
+  std::optional<tolerance_result> tolerances;  // the last finished analysis, and its spec
+  design_spec tolerance_spec;
+};
+
 struct studio {
   scene doc;                   // what the panels edit
+  edit_history history;        // undo and redo of `doc`
   std::string doc_path;        // empty: untitled
   std::optional<scene> saved;  // as last loaded or saved, for "unsaved changes"; empty: never saved
   scene applied;               // as last handed to the session
@@ -119,6 +138,8 @@ struct studio {
     std::array<float, 2> marker{};
     std::array<double, 2> marker_d_tilt{};
   } bokeh_shown;
+
+  design_windows design;
 
   // Crash recovery: unsaved edits are copied to config_dir()/recovery.json every few seconds.
   bool keep_recovery = true;  // off in scripted runs
@@ -187,5 +208,34 @@ void start_preset_prediction(studio& st);
 void save_fitted_preset(studio& st, const std::string& path);
 // Saves the preset (to config_dir()/presets unless saved already) and points the model at it.
 void apply_fitted_preset(studio& st, const sheet_preset& preset);
+
+// The Optimise and Tolerance windows (panel_optimise.cpp, panel_tolerance.cpp).
+void draw_optimise_window(studio& st);
+void draw_tolerance_window(studio& st);
+// A layout panel row picked by its --set key: a variable of the Optimise window (its range about
+// the value) or a tolerance of the Tolerance window; opens the window.
+void add_design_pick(studio& st, const std::string& key, bool tolerance);
+// Starts the search or the analysis of the windows' spec over the applied layout (false with
+// design.error when the spec cannot run).
+bool start_design_job(studio& st, design_job::kind k);
+// Takes a finished run's result into the windows (call once per frame); true when one finished.
+bool collect_design_job(studio& st);
+// Puts the chosen trial's layout into the scene as one undoable step (false when there is none).
+bool apply_design_choice(studio& st);
+// A scripted run of the design windows (airr-studio --optimise, --tolerance): once the scene's
+// edits are applied, the search and then the analysis run to their ends; then the optimised layout
+// is applied and `undo` steps undone, as asked.
+struct design_script {
+  bool optimise = false, tolerance = false, apply = false;
+  int undo = 0;
+  bool optimise_started = false, tolerance_started = false, finished = false;
+  std::string error;  // why it failed
+};
+// Advances the script by a frame: true while it needs more frames.
+bool run_design_script(studio& st, design_script& script);
+
+// Undo and redo of the scene (Edit menu, Ctrl+Z, Ctrl+Y).
+void studio_undo(studio& st);
+void studio_redo(studio& st);
 
 }  // namespace airr::ui

@@ -13,6 +13,7 @@
 
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/scene.hpp"
+#include "airr/layout/viewing_zone.hpp"
 
 namespace airr {
 
@@ -23,6 +24,7 @@ enum class design_metric {
   mtf50_lp_per_mm,   // where that MTF first falls to 0.5
   r50_mm,            // radius holding half the model PSF's energy
   brightness,        // the model PSF's light relative to the display's
+  stray_light,       // the stray-light ratio seen from the eye (a small render split into components)
   size_x_mm,         // the device's bounding box (display panel, half mirror, sheets) along x, y, z
   size_y_mm,
   size_z_mm,
@@ -40,20 +42,23 @@ struct design_variable {
   double min = 0, max = 0;
 };
 
-// Over several eyes, an eye metric is their mean or their minimum.
-enum class over_eyes { mean, min };
+// Over several eyes, an eye metric is their mean, their minimum, or the share of them where it is
+// at least a threshold (e.g. the part of a zone of eyes that sees 90% of the aerial image).
+enum class over_eyes { mean, min, share_above };
 
 struct design_objective {
   design_metric metric = design_metric::visible_fraction;
   over_eyes over = over_eyes::mean;
   bool maximise = true;
   double weight = 1;
+  double threshold = 0;  // for share_above
 };
 
 struct design_constraint {
   design_metric metric = design_metric::visible_fraction;
   over_eyes over = over_eyes::mean;
   std::optional<double> min, max;
+  double threshold = 0;  // for share_above
 };
 
 // An assembly tolerance: a scene value (by its --set key) off its nominal by a normal error of
@@ -89,7 +94,8 @@ struct design_spec {
   std::string scene_path;  // the base scene, resolved
   scene base;              // read and checked
   std::vector<design_variable> variables;
-  std::vector<glm::dvec3> eyes_mm;  // the scene's observer when the spec gives none
+  std::vector<glm::dvec3> eyes_mm;   // listed; the scene's observer when the spec gives no eyes at all
+  std::optional<eye_grid> eye_zone;  // a grid of eyes besides, as `airr viewzone` places them
   std::vector<design_objective> objectives;
   std::vector<design_constraint> constraints;
   design_search search;
@@ -102,6 +108,15 @@ struct design_spec {
 // unknown keys, empty or reversed ranges, values that are not finite, unknown metrics, variables
 // the scene does not have, no objective.
 design_spec load_design_spec(const std::string& path);
+// The same read of spec text over a scene at hand (the designer's layout): a "scene" the text names
+// is kept as scene_path but not read. Errors name `origin`.
+design_spec parse_design_spec(const std::string& text, const std::string& origin, const scene& base);
+// The spec as the text load_design_spec reads (its scene as scene_path says, when it says).
+std::string design_spec_text(const design_spec& spec);
+
+// Every eye the metrics are taken at: those listed, then the zone's row by row (placed about the
+// base scene's aerial image).
+std::vector<glm::dvec3> design_eyes(const design_spec& spec);
 
 // The override setting `key` to exactly v (all 17 digits), as variables and tolerances set values.
 scene_override design_override(const std::string& key, double v);

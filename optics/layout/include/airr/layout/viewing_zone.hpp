@@ -36,7 +36,9 @@ bool aerial_point_visible(const viewing_parts& parts, const glm::dvec3& eye, con
 // The visible fraction at `eye`: `rows` slabs across the aerial image, each a trapezoid between
 // its edge rows, halved where its middle row shows a corner of the visible region. On each row the
 // visible stretches are found by stepping and their ends by bisection (to 1e-6 of the row).
-double visible_fraction(const viewing_parts& parts, const glm::dvec3& eye, int rows = 64);
+// Without `refine`, the midpoint rule over `rows` rows: half the cost, off by up to half a row
+// where the visible region's top or bottom is flat (for maps that are redrawn on every edit).
+double visible_fraction(const viewing_parts& parts, const glm::dvec3& eye, int rows = 64, bool refine = true);
 
 // A grid of eye positions: on a plane `distance_mm` in front of the aerial image's centre (the
 // observer's orbit at azimuth and elevation 0; x to the right, y up, in mm), or on the sphere of
@@ -69,9 +71,10 @@ struct viewing_zone_map {
 };
 
 // The visible fraction over the grid, rows of eyes in parallel; `progress(done, total)` after each
-// row of eyes. Empty `visible` when `cancel` was set. `prop_hits` as for viewing_parts.
+// row of eyes. Empty `visible` when `cancel` was set. `prop_hits` and `refine` as for
+// viewing_parts and visible_fraction.
 viewing_zone_map geometric_viewing_zone(const scene& s, const eye_grid& g, const prop_hit_function& prop_hits,
                                         int rows_per_eye = 64, const std::function<void(int, int)>& progress = {},
-                                        const std::atomic<bool>* cancel = nullptr);
+                                        const std::atomic<bool>* cancel = nullptr, bool refine = true);
 
 }  // namespace airr

@@ -31,6 +31,7 @@ struct design_progress {
   bool have_best = false;
   double best_score = 0;
   bool best_feasible = false;
+  std::vector<double> best_x;  // the variables of the best so far
 };
 
 struct design_result {

@@ -31,6 +31,13 @@ struct tolerance_result {
   bool cancelled = false;
 };
 
+// A metric's values counted in `bins` equal bins over their range, as a step line: each bin's two
+// edges at its count.
+struct histogram_steps {
+  std::vector<double> x, y;
+};
+histogram_steps metric_histogram(const metric_distribution& d, int bins = 40);
+
 // Runs the Monte Carlo about `nominal` (the spec's base scene, or a layout the optimiser wrote);
 // deterministic for the spec's tolerance seed. `progress(done, total)` after each layout.
 tolerance_result run_tolerance(const design_spec& spec, const scene& nominal,

@@ -31,6 +31,12 @@ struct full_zone_map {
   double seconds = 0;
 };
 
+// The stray-light ratio at `eye` (the observer there, looking at the aerial image's centre): in a
+// small render (p's render size and samples), the light of every image component but the aerial
+// image over the aerial image's own, inside the aerial image's outline; NaN when none of the
+// aerial image's light is seen. The same number the full pass maps.
+double stray_light_ratio(const scene& s, const glm::dvec3& eye, const full_zone_params& p = {});
+
 // Eyes run in parallel (each eye's render on one core; the maps do not depend on the number of
 // cores); `progress(done, total)` after every eye, from one worker at a time. Empty maps when
 // `cancel` was set.
