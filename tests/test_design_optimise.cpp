@@ -18,6 +18,7 @@
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/layout/viewing_zone.hpp"
+#include "airr/measure/design_metrics.hpp"
 #include "airr/measure/design_search.hpp"
 #include "airr/measure/sweep.hpp"
 #include "polygon_visible_fraction.hpp"
@@ -246,6 +247,51 @@ TEST(DesignOptimise, ABoundingBoxLimitIsKeptAndAnImpossibleOneIsNamed) {
   for (const char* part : {"impossible.json", "infeasible", "size_z_mm"})
     EXPECT_NE(error.find(part), std::string::npos) << cli.out;
   EXPECT_FALSE(std::filesystem::exists(dir.file("best.json")));
+}
+
+// A plate prop standing across the path of the sheet's top edge: the sheet cuts it once tilted
+// beyond 20 deg, the more the further. Kept out of it, the search for the least r50 (which
+// lies beyond 20 deg, as the bounding-box test shows) ends on 20 deg.
+TEST(DesignOptimise, PartsKeepOutOfProps) {
+  test::temp_dir dir;
+  scene s = load_scene(default_scene_path());
+  s.sheet().pose.pitch_deg = 20;
+  glm::dvec3 edge(0, 0, -1e9);  // the middle of the edge that rises as the sheet tilts
+  for (const glm::dvec3& c : corners(retroreflector_frame(s))) edge = c.z > edge.z ? c : edge;
+  edge.x = 0;
+  prop_params plate;  // the 1 m unit panel at 0.04: 40 mm square, in the plane x = 0, above the edge
+  plate.mesh = asset_dir() + "/models/panel.gltf";
+  plate.scale = 0.04;
+  plate.pose = pose_from_rotation(glm::dmat3(glm::dvec3(0, 1, 0), glm::dvec3(0, 0, 1), glm::dvec3(1, 0, 0)),
+                                  edge + glm::dvec3(0, 0, 20));
+  s.props.push_back(plate);
+  auto cut_at = [&](double tilt) {
+    scene t = s;
+    t.sheet().pose.pitch_deg = tilt;
+    return prop_cut_length_mm(t);
+  };
+  // The sheet's middle line from the plate's lower edge up to the sheet's own edge.
+  const double h = 0.5 * s.sheet().height_mm, rise = h * std::sin(glm::radians(20.0));
+  for (double tilt : {21.0, 22.0}) {  // (the line meets the plate's lower edge within its width)
+    const double expected = (h * std::sin(glm::radians(tilt)) - rise) / std::sin(glm::radians(tilt));
+    EXPECT_NEAR(cut_at(tilt), expected, 1e-6) << tilt;
+  }
+  EXPECT_EQ(cut_at(19.9), 0.0);
+  EXPECT_EQ(cut_at(0), 0.0);
+
+  s.sheet().pose.pitch_deg = 0;
+  save_scene(rebase_scene_paths(s, dir.path.string()), dir.file("plate.json"));
+  const std::string members = R"("variables": [{"key": "tilt_deg", "min": 0, "max": 40}], )"
+                              R"("objectives": [{"metric": "r50_mm", "goal": "minimise"}], )"
+                              R"("constraints": [{"metric": "prop_cut_mm", "max": 0}], )"
+                              R"("search": {"global_evaluations": 40, "local_evaluations": 30})";
+  const design_result r = optimise_design(spec_from(dir, members, dir.file("plate.json")));
+  const design_trial& best = r.best_trial();
+  std::printf("kept out of the plate: tilt %.3f deg, cut %.4f mm, r50 %.5f\n", best.x[0],
+              best.evaluation.constraint_values[0], best.evaluation.objective_values[0]);
+  EXPECT_TRUE(best.evaluation.feasible());
+  EXPECT_EQ(best.evaluation.constraint_values[0], 0.0);
+  EXPECT_NEAR(best.x[0], 20.0, 0.3);
 }
 
 // The same spec and seed give the same search on one thread and on two.

@@ -65,6 +65,30 @@ TEST(Layout, IntersectingPartsAreALayoutError) {
   EXPECT_NO_THROW(check_layout(s, "x"));
 }
 
+TEST(Layout, ATrianglesCutThroughAPartIsTheOverlapOfTheirChords) {
+  part_frame f;  // 2 x 2 mm in the xy plane
+  f.width = f.height = 2;
+  // A triangle in the plane x = 0.3, reaching from z = -1 to z = 1 and from y = -3 to y = 3 at z = 0:
+  // the plane z = 0 meets it in y in [-2, 2] (its chord there), the part in y in [-1, 1].
+  std::array<glm::dvec3, 3> t = {glm::dvec3(0.3, -4, -1), glm::dvec3(0.3, 4, -1), glm::dvec3(0.3, 0, 1)};
+  EXPECT_NEAR(part_cut_length(f, t), 2.0, 1e-12);
+  for (auto& p : t) p.y += 2.5;  // its chord y in [0.5, 4.5] overlaps the part's in [0.5, 1]
+  EXPECT_NEAR(part_cut_length(f, t), 0.5, 1e-12);
+  for (auto& p : t) p.x += 0.8;  // x = 1.1: beyond the part's edge
+  EXPECT_EQ(part_cut_length(f, t), 0.0);
+  // In the plane x = z: it meets z = 0 on the line x = 0.
+  t = {glm::dvec3(-1, -5, -1), glm::dvec3(1, -5, 1), glm::dvec3(0, 0, 0)};
+  EXPECT_NEAR(part_cut_length(f, t), 1.0, 1e-12);  // its chord at z = 0 runs from y = -5 to y = 0
+  // Touching from one side (a corner or an edge on the plane) and lying in the plane do not cut.
+  t = {glm::dvec3(0, -0.5, 0), glm::dvec3(0, 0.5, 0), glm::dvec3(0, 0, 1)};
+  EXPECT_EQ(part_cut_length(f, t), 0.0);
+  t = {glm::dvec3(-0.5, -0.5, 0), glm::dvec3(0.5, -0.5, 0), glm::dvec3(0, 0.5, 0)};
+  EXPECT_EQ(part_cut_length(f, t), 0.0);
+  // The rectangle's own edge can end the cut: a triangle across the part's corner region.
+  t = {glm::dvec3(0.5, -1.5, -1), glm::dvec3(0.5, -1.5, 1), glm::dvec3(0.5, 10, 0)};
+  EXPECT_NEAR(part_cut_length(f, t), 2.0, 1e-12);  // y from -1.5 (clipped to -1) to 10 (clipped to 1)
+}
+
 TEST(Layout, RectangleIntersectionAgreesWithHandCases) {
   part_frame a, b;
   a.width = a.height = b.width = b.height = 2;

@@ -83,7 +83,7 @@ bool design_key_combo(const char* label, std::string& key, const scene& s) {
 bool design_metric_combo(const char* id, design_metric& m) {
   bool changed = false;
   if (ImGui::BeginCombo(id, to_string(m))) {
-    for (int k = 0; k <= int(design_metric::size_z_mm); ++k) {
+    for (int k = 0; k < design_metric_count; ++k) {
       const auto metric = design_metric(k);
       if (ImGui::Selectable(to_string(metric), metric == m)) {
         m = metric;

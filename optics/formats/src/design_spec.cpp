@@ -25,7 +25,7 @@ struct metric_name {
   const char* name;
   bool at_eye;
 };
-constexpr std::array<metric_name, 9> metric_names = {{
+constexpr std::array<metric_name, design_metric_count> metric_names = {{
     {design_metric::visible_fraction, "visible_fraction", true},
     {design_metric::mean_mtf, "mean_mtf", true},
     {design_metric::mtf50_lp_per_mm, "mtf50_lp_per_mm", true},
@@ -35,6 +35,7 @@ constexpr std::array<metric_name, 9> metric_names = {{
     {design_metric::size_x_mm, "size_x_mm", false},
     {design_metric::size_y_mm, "size_y_mm", false},
     {design_metric::size_z_mm, "size_z_mm", false},
+    {design_metric::prop_cut_mm, "prop_cut_mm", false},
 }};
 
 // Each element of the array at `key` (required when `required`), read as an object.

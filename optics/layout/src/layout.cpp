@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "airr/core/error.hpp"
 
@@ -171,6 +172,43 @@ bool parts_intersect(const part_frame& a, const part_frame& b) {
       std::abs(std::abs(glm::dot(a.n, b.n)) - 1) < 1e-12 && std::abs(glm::dot(a.center - b.center, b.n)) < 1e-9;
   if (coplanar) return overlaps_in_plane(a, b) || overlaps_in_plane(b, a);
   return edges_hit(a, b) || edges_hit(b, a);
+}
+
+// Where a convex polygon crosses the plane through `c` with normal `n`, as the interval of its
+// crossing points' positions along `d`; empty (lo > hi) unless it has corners strictly on both
+// sides.
+template <std::size_t N>
+static glm::dvec2 plane_crossing(const std::array<glm::dvec3, N>& poly, const glm::dvec3& c, const glm::dvec3& n,
+                                 const glm::dvec3& d) {
+  constexpr double eps = 1e-9;  // mm: a corner this close to the plane lies on it
+  std::array<double, N> s;
+  bool below = false, above = false;
+  for (std::size_t i = 0; i < N; ++i) {
+    s[i] = glm::dot(poly[i] - c, n);
+    below |= s[i] < -eps;
+    above |= s[i] > eps;
+  }
+  glm::dvec2 t(std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity());
+  if (!below || !above) return t;
+  auto add = [&](const glm::dvec3& p) { t = {std::min(t[0], glm::dot(p, d)), std::max(t[1], glm::dot(p, d))}; };
+  for (std::size_t i = 0; i < N; ++i) {
+    const std::size_t j = (i + 1) % N;
+    if (std::abs(s[i]) <= eps) add(poly[i]);
+    if ((s[i] < -eps && s[j] > eps) || (s[i] > eps && s[j] < -eps))
+      add(poly[i] + (poly[j] - poly[i]) * (s[i] / (s[i] - s[j])));
+  }
+  return t;
+}
+
+double part_cut_length(const part_frame& f, const std::array<glm::dvec3, 3>& triangle) {
+  const glm::dvec3 tn = glm::cross(triangle[1] - triangle[0], triangle[2] - triangle[0]);
+  const glm::dvec3 d = glm::cross(f.n, tn);
+  if (glm::length(d) < 1e-12 * glm::length(tn) || glm::length(tn) == 0) return 0;  // parallel planes, or no triangle
+  const glm::dvec3 dir = glm::normalize(d);
+  // Both polygons meet the line where their planes cross in an interval; the cut is their overlap.
+  const glm::dvec2 a = plane_crossing(corners(f), triangle[0], glm::normalize(tn), dir);
+  const glm::dvec2 b = plane_crossing(triangle, f.center, f.n, dir);
+  return std::max(0.0, std::min(a[1], b[1]) - std::max(a[0], b[0]));
 }
 
 namespace {

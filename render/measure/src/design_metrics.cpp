@@ -11,6 +11,7 @@
 #include <tbb/parallel_for.h>
 
 #include "airr/core/error.hpp"
+#include "airr/formats/mesh_gltf.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/layout/psf.hpp"
 #include "airr/layout/sheet_models.hpp"
@@ -90,6 +91,24 @@ glm::dvec3 device_size_mm(const scene& s) {
   return hi - lo;
 }
 
+double prop_cut_length_mm(const scene& s) {
+  std::vector<part_frame> parts = {source_panel_frame(s), half_mirror_frame(s)};
+  for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) parts.push_back(retroreflector_frame(s, i));
+  double length = 0;
+  for (const prop_params& p : s.props) {
+    if (!p.visible) continue;
+    const auto mesh = cached_prop_mesh(resolve_scene_path(s, p.mesh), p.node);
+    const glm::dmat4 to_world = prop_transform(p);
+    for (std::size_t t = 0; t + 2 < mesh->indices.size(); t += 3) {
+      std::array<glm::dvec3, 3> tri;
+      for (int k = 0; k < 3; ++k)
+        tri[k] = glm::dvec3(to_world * glm::dvec4(glm::dvec3(mesh->positions[mesh->indices[t + k]]), 1.0));
+      for (const part_frame& f : parts) length += part_cut_length(f, tri);
+    }
+  }
+  return length;
+}
+
 double constraint_violation(const design_constraint& c, double value) {
   double v = 0;
   if (c.min && value < *c.min) v = *c.min - value;
@@ -135,10 +154,17 @@ design_evaluation evaluate_design(const design_spec& spec, const scene& s) {
     for (design_metric m : asked) at_eye[i][m] = e.value(m);
   });
   const glm::dvec3 size = device_size_mm(s);
+  const bool cuts_asked =
+      std::any_of(spec.constraints.begin(), spec.constraints.end(),
+                  [](const design_constraint& c) { return c.metric == design_metric::prop_cut_mm; }) ||
+      std::any_of(spec.objectives.begin(), spec.objectives.end(),
+                  [](const design_objective& o) { return o.metric == design_metric::prop_cut_mm; });
+  const double cut = cuts_asked ? prop_cut_length_mm(s) : 0;
   auto value = [&](design_metric m, over_eyes over, double threshold) {
     if (m == design_metric::size_x_mm) return size.x;
     if (m == design_metric::size_y_mm) return size.y;
     if (m == design_metric::size_z_mm) return size.z;
+    if (m == design_metric::prop_cut_mm) return cut;
     double sum = 0, least = std::numeric_limits<double>::infinity();
     int above = 0;
     for (const auto& values : at_eye) {

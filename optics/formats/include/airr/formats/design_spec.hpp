@@ -28,7 +28,9 @@ enum class design_metric {
   size_x_mm,         // the device's bounding box (display panel, half mirror, sheets) along x, y, z
   size_y_mm,
   size_z_mm,
+  prop_cut_mm,  // the length of the lines where the display panel, the half mirror and the sheets cut props
 };
+inline constexpr int design_metric_count = int(design_metric::prop_cut_mm) + 1;
 // The spec's name of a metric, and the metric a name stands for (empty for an unknown name).
 const char* to_string(design_metric m);
 std::optional<design_metric> design_metric_named(const std::string& name);

@@ -69,6 +69,10 @@ std::array<glm::dvec3, 4> corners(const part_frame& f);
 // Whether two rectangles share a point (touching counts).
 bool parts_intersect(const part_frame& a, const part_frame& b);
 
+// The length of the segment along which a triangle cuts through a part (mm): 0 when they do not
+// meet, only touch, or lie in one plane.
+double part_cut_length(const part_frame& f, const std::array<glm::dvec3, 3>& triangle);
+
 // Throws input_error "<origin>: <field>: ..." for intersecting parts, an observer inside a part or
 // behind the half mirror, a display whose aerial image would form behind the half mirror, or a
 // degenerate pose.

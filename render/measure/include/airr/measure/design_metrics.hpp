@@ -2,7 +2,7 @@
 // A layout's design metrics (spec section 9) as a design spec names them: at each of its eyes (the
 // observer placed there, looking at the aerial image's centre) the visible fraction and the model
 // PSF's mean MTF, MTF50, r50 and brightness, over the eyes their mean or minimum; and the device's
-// bounding box.
+// bounding box and how far its parts cut its props.
 #include <string>
 #include <vector>
 
@@ -16,6 +16,11 @@ scene observer_at(scene s, const glm::dvec3& eye);
 
 // The extent along x, y and z of the display panel, the half mirror and the sheets (mm).
 glm::dvec3 device_size_mm(const scene& s);
+
+// The length of the lines along which the display panel, the half mirror and the sheets cut
+// through the visible props' surfaces (mm; 0 when no part cuts a prop). Throws input_error when a
+// prop's mesh cannot be read.
+double prop_cut_length_mm(const scene& s);
 
 // What one layout scores on a spec: each objective's and constraint's metric value, the weighted
 // objective (larger is better), and the constraints it breaks.
