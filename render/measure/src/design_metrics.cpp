@@ -99,12 +99,19 @@ double prop_cut_length_mm(const scene& s) {
     if (!p.visible) continue;
     const auto mesh = cached_prop_mesh(resolve_scene_path(s, p.mesh), p.node);
     const glm::dmat4 to_world = prop_transform(p);
-    for (std::size_t t = 0; t + 2 < mesh->indices.size(); t += 3) {
-      std::array<glm::dvec3, 3> tri;
-      for (int k = 0; k < 3; ++k)
-        tri[k] = glm::dvec3(to_world * glm::dvec4(glm::dvec3(mesh->positions[mesh->indices[t + k]]), 1.0));
-      for (const part_frame& f : parts) length += part_cut_length(f, tri);
-    }
+    // Fixed blocks of triangles summed in order: the same length on any number of threads.
+    constexpr std::size_t block = 4096;
+    const std::size_t triangles = mesh->indices.size() / 3;
+    std::vector<double> sums((triangles + block - 1) / block, 0.0);
+    tbb::parallel_for(std::size_t(0), sums.size(), [&](std::size_t b) {
+      for (std::size_t t = b * block; t < std::min(triangles, (b + 1) * block); ++t) {
+        std::array<glm::dvec3, 3> tri;
+        for (int k = 0; k < 3; ++k)
+          tri[k] = glm::dvec3(to_world * glm::dvec4(glm::dvec3(mesh->positions[mesh->indices[3 * t + k]]), 1.0));
+        for (const part_frame& f : parts) sums[b] += part_cut_length(f, tri);
+      }
+    });
+    for (double v : sums) length += v;
   }
   return length;
 }
