@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   add_tolerance_command(app);
   add_viewzone_command(app);
   add_export_gltf_command(app);
+  add_merge_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

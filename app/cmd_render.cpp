@@ -1,14 +1,18 @@
 // airr render SCENE -o OUT.exr|OUT.png [--spp N] [--seed S] [--components | --component NAME]
-//             [--set key=value ...]
+//             [--set key=value ...] [--shard i/N]
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <thread>
+#include <tuple>
 
 #include "airr/core/error.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/render/render_metadata.hpp"
 #include "airr/render/render_session.hpp"
+#include "airr/render/render_shards.hpp"
+#include "airr_version.hpp"
 #include "commands.hpp"
 #include "progress_bar.hpp"
 
@@ -22,6 +26,7 @@ void add_render_command(CLI::App& app) {
     int threads = 0;
     bool components = false;
     std::string component;
+    std::string shard;
   };
   auto opt = std::make_shared<options>();
   auto* cmd = app.add_subcommand("render", "Render a scene to EXR (linear) or PNG (sRGB)");
@@ -40,6 +45,9 @@ void add_render_command(CLI::App& app) {
                   "Write one component instead of the whole image: aerial, direct, reflection or rest")
       ->check(CLI::IsMember({"aerial", "direct", "reflection", "rest"}))
       ->excludes(layers);
+  cmd->add_option("--shard", opt->shard,
+                  "Render rows of shard i of N (0 <= i < N) alone into an EXR for airr merge (e.g. a Slurm array "
+                  "task's share)");
   cmd->callback([opt] {
     std::vector<airr::scene_override> overrides;
     for (const auto& s : opt->sets) overrides.push_back(airr::parse_override(s));
@@ -49,7 +57,17 @@ void add_render_command(CLI::App& app) {
     if (opt->components && !opt->out.ends_with(".exr")) {
       throw airr::input_error(opt->out + ": --components needs an EXR output (layers); use --component for a PNG");
     }
-    airr::render_session session(s, {.threads = opt->threads, .target_spp = opt->spp, .components = split});
+    std::optional<airr::shard_index> shard;
+    airr::session_params params{.threads = opt->threads, .target_spp = opt->spp, .components = split};
+    if (!opt->shard.empty()) {
+      shard = airr::parse_shard(opt->shard, "--shard");
+      if (!opt->out.ends_with(".exr")) throw airr::input_error(opt->out + ": a shard is written to an EXR file");
+      if (shard->count > s.observer.height)
+        throw airr::input_error("--shard: " + std::to_string(shard->count) + " shards of an image " +
+                                std::to_string(s.observer.height) + " rows high (at most one shard per row)");
+      std::tie(params.first_row, params.end_row) = airr::shard_rows(*shard, s.observer.height);
+    }
+    airr::render_session session(s, params);
     progress_bar bar("render");
     airr::render_snapshot snap;
     while ((snap = session.snapshot()).spp < opt->spp) {
@@ -72,6 +90,16 @@ void add_render_command(CLI::App& app) {
     }
     airr::image_metadata meta = airr::render_metadata(s, snap, exposure);
     if (!opt->component.empty()) meta["airr:component"] = opt->component;
+    if (shard) {
+      airr::render_image whole{image, {}, meta};
+      for (const auto& l : layers) whole.layers.emplace_back(l.name, *l.image);
+      airr::write_render_shard(opt->out, whole, *shard, AIRR_VERSION);
+      const auto [first, end] = airr::shard_rows(*shard, snap.height);
+      std::fprintf(stderr, "wrote %s (shard %s: rows %d to %d of %dx%d, %llu spp)\n", opt->out.c_str(),
+                   opt->shard.c_str(), first, end - 1, snap.width, snap.height,
+                   static_cast<unsigned long long>(snap.spp));
+      return;
+    }
     airr::write_image(opt->out, image, meta, exposure, layers);
     std::fprintf(stderr, "wrote %s (%dx%d, %llu spp, %.6g mm/pixel)\n", opt->out.c_str(), snap.width, snap.height,
                  static_cast<unsigned long long>(snap.spp), snap.mm_per_pixel);

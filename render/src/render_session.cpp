@@ -194,11 +194,18 @@ void lower_thread_priority(int nice) {
   ::setpriority(PRIO_PROCESS, pid_t(::syscall(SYS_gettid)), nice);
 }
 
-bool render_session::render_wave(std::uint64_t first, std::uint64_t count, accumulation& acc, std::uint64_t& rays) {
+template <class Body>
+void render_session::traced_rows(const Body& body) const {
   const int h = scene_.camera.height;
+  const int first = std::clamp(params_.first_row, 0, h);
+  const int end = params_.end_row > 0 ? std::clamp(params_.end_row, first, h) : h;
+  detail::parallel_rows(end - first, params_.threads, [&](int y0, int y1) { body(first + y0, first + y1); });
+}
+
+bool render_session::render_wave(std::uint64_t first, std::uint64_t count, accumulation& acc, std::uint64_t& rays) {
   std::atomic<std::uint64_t> total_rays{0};
   std::atomic<bool> complete{true};
-  detail::parallel_rows(h, params_.threads, [&](int y0, int y1) {
+  traced_rows([&](int y0, int y1) {
     if (params_.background_priority) lower_thread_priority();
     std::uint64_t local = 0;
     if (!trace_rows(scene_, y0, y1, first, count, acc.sums, cancel_, local, &acc.odd_sums,
@@ -405,7 +412,7 @@ void render_session::run() {
       // short (an edit or a pause), they are dropped and redone.
       scene_.model = model_arrived;
       std::atomic<bool> complete{true};
-      detail::parallel_rows(scene_.camera.height, params_.threads, [&](int y0, int y1) {
+      traced_rows([&](int y0, int y1) {
         if (params_.background_priority) lower_thread_priority();
         if (!add_predictions(scene_, y0, y1, 0, spp, acc.predictions, cancel_)) complete = false;
       });

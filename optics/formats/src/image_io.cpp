@@ -1,6 +1,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -261,6 +262,35 @@ std::vector<std::string> read_image_layer_names(const std::string& path) {
     if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
   }
   return names;
+}
+
+image_rgb load_image_layer(const std::string& path, const std::string& name) {
+  const image_rgb size = load_image(path).pixels;  // the same checks of the file and its size
+  const library_chatter_filter quiet;
+  auto in = ImageInput::open(path);
+  if (!in) throw input_error(path + ": cannot read image: " + one_line(geterror()));
+  const ImageSpec spec = in->spec();
+  std::array<int, 3> at{-1, -1, -1};
+  for (int c = 0; c < spec.nchannels; ++c) {
+    for (int k = 0; k < 3; ++k)
+      if (spec.channelnames[std::size_t(c)] == name + "." + "RGB"[k]) at[std::size_t(k)] = c;
+  }
+  if (std::find(at.begin(), at.end(), -1) != at.end()) throw input_error(path + ": no layer '" + name + "'");
+  std::vector<float> px(std::size_t(spec.width) * spec.height * spec.nchannels);
+  if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, px.data()))
+    throw input_error(path + ": cannot read pixels: " + one_line(in->geterror()));
+  image_rgb img;
+  img.width = size.width;
+  img.height = size.height;
+  img.rgb.resize(size.rgb.size());
+  for (std::size_t i = 0; i < std::size_t(img.width) * img.height; ++i) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      const float v = px[i * std::size_t(spec.nchannels) + std::size_t(at[k])];
+      if (!std::isfinite(v)) throw input_error(path + ": layer '" + name + "' contains NaN or infinite values");
+      img.rgb[3 * i + k] = v;
+    }
+  }
+  return img;
 }
 
 image_metadata read_image_metadata(const std::string& path) {

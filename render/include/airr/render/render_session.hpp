@@ -42,6 +42,11 @@ struct session_params {
   // Also accumulate the image's components (tracer.hpp, component_names), for snapshots'
   // component_image.
   bool components = false;
+  // The rows traced, [first_row, end_row) (end_row 0: to the last), e.g. one shard of a render
+  // split across processes; the other rows hold the model image's value alone. A pixel's estimate
+  // does not depend on which rows are traced with it.
+  int first_row = 0;
+  int end_row = 0;
 };
 
 // An immutable picture of the accumulation after a whole wave.
@@ -127,6 +132,9 @@ class render_session {
     prediction_sums predictions;
   };
   void run();
+  // body(y0, y1) over the rows the session traces, in parallel.
+  template <class Body>
+  void traced_rows(const Body& body) const;
   bool render_wave(std::uint64_t first, std::uint64_t count, accumulation& acc, std::uint64_t& rays);
   void publish(std::uint64_t gen, std::uint64_t spp, const accumulation& acc, std::uint64_t rays, double seconds);
   bool render_preview(std::vector<float>& rgb, std::uint64_t& rays);

@@ -71,6 +71,11 @@ std::string encode_png(const image_rgb& img, bool sixteen_bit, const std::string
 // The layer names of an image file's channels "<name>.<channel>" (in order, each once).
 std::vector<std::string> read_image_layer_names(const std::string& path);
 
+// The layer "<name>" of an image file (channels "<name>.R", "<name>.G", "<name>.B", as write_image
+// writes them), linear as written. Throws input_error "<path>: ..." when the file has no such
+// layer or load_image would refuse it.
+image_rgb load_image_layer(const std::string& path, const std::string& name);
+
 // Reads back the string metadata of an image file (only keys starting with "airr:").
 image_metadata read_image_metadata(const std::string& path);
 

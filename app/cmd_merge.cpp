@@ -1,0 +1,29 @@
+// airr merge SHARD... -o OUT.exr|OUT.png: the render its shards (airr render --shard i/N) make up.
+#include <cstdlib>
+
+#include "airr/core/error.hpp"
+#include "airr/render/render_shards.hpp"
+#include "commands.hpp"
+
+void add_merge_command(CLI::App& app) {
+  struct options {
+    std::vector<std::string> shards;
+    std::string out;
+  };
+  auto opt = std::make_shared<options>();
+  auto* cmd = app.add_subcommand("merge", "Put the shards of a render (airr render --shard i/N) together");
+  cmd->add_option("shards", opt->shards, "The shards' EXR files, all N of them, in any order")->required();
+  cmd->add_option("-o,--output", opt->out, "The whole render (.exr or .png), as one process writes it")->required();
+  cmd->callback([opt] {
+    const airr::render_image whole = airr::merge_render_shards(opt->shards);
+    std::vector<airr::image_layer> layers;
+    for (const auto& [name, img] : whole.layers) layers.push_back({name, &img});
+    if (!layers.empty() && !opt->out.ends_with(".exr"))
+      throw airr::input_error(opt->out + ": the shards hold the image's components; write them to an EXR");
+    const auto exposure = whole.meta.find("airr:exposure");
+    const float scale = exposure == whole.meta.end() ? 1.0f : std::strtof(exposure->second.c_str(), nullptr);
+    airr::write_image(opt->out, whole.rgb, whole.meta, scale, layers);
+    std::fprintf(stderr, "wrote %s (%dx%d from %zu shards)\n", opt->out.c_str(), whole.rgb.width, whole.rgb.height,
+                 opt->shards.size());
+  });
+}

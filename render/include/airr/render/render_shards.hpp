@@ -1,0 +1,43 @@
+#pragma once
+// A render split across processes (Slurm array tasks, cluster nodes): shard i of N traces rows
+// [i h / N, (i + 1) h / N) and writes them, with the render's metadata and their place, to an EXR;
+// merge_render_shards puts the shards together into the image one process would have written,
+// and refuses shards that are missing, repeated, or of another render.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "airr/formats/image.hpp"
+
+namespace airr {
+
+struct shard_index {
+  int index = 0;
+  int count = 1;
+};
+
+// Parses "i/N" (0 <= i < N); throws input_error "<what>: ...".
+shard_index parse_shard(const std::string& text, const std::string& what);
+
+// The rows [first, end) shard s holds of an image `height` rows high.
+std::pair<int, int> shard_rows(const shard_index& s, int height);
+
+// A render's pixels, its layers (the image's components) and its metadata.
+struct render_image {
+  image_rgb rgb;
+  std::vector<std::pair<std::string, image_rgb>> layers;
+  image_metadata meta;
+};
+
+// Writes shard s's rows of a whole-size render to `path` (EXR), marked with their place and the
+// program's `version` (shards of different builds are not merged). Throws input_error.
+void write_render_shard(const std::string& path, const render_image& whole, const shard_index& s,
+                        const std::string& version);
+
+// The whole render from its shards (paths in any order), with the metadata one process would
+// have written. Throws input_error "<file>: <problem>" for a file that is no shard, a shard of
+// another render (another scene, seed, samples, size, layers or version) or one given twice, and
+// names a missing shard and the files given.
+render_image merge_render_shards(const std::vector<std::string>& paths);
+
+}  // namespace airr

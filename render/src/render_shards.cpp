@@ -1,0 +1,180 @@
+#include "airr/render/render_shards.hpp"
+
+#include <charconv>
+#include <map>
+#include <optional>
+
+#include "airr/core/error.hpp"
+
+namespace airr {
+
+namespace {
+
+constexpr const char* shard_key = "airr:shard";
+constexpr const char* rows_key = "airr:rows";
+constexpr const char* height_key = "airr:height";
+constexpr const char* version_key = "airr:version";
+
+std::optional<int> whole_number(const std::string& text) {
+  int v = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), v);
+  if (ec != std::errc() || end != text.data() + text.size()) return std::nullopt;
+  return v;
+}
+
+image_rgb rows_of(const image_rgb& img, int first, int end) {
+  image_rgb out;
+  out.width = img.width;
+  out.height = end - first;
+  out.rgb.assign(img.rgb.begin() + std::ptrdiff_t(3) * img.width * first,
+                 img.rgb.begin() + std::ptrdiff_t(3) * img.width * end);
+  return out;
+}
+
+struct read_shard {
+  std::string path;
+  shard_index place;
+  int height = 0;
+  render_image image;
+};
+
+read_shard read_one(const std::string& path) {
+  read_shard s;
+  s.path = path;
+  s.image.meta = read_image_metadata(path);
+  auto take = [&](const char* key) {
+    const auto it = s.image.meta.find(key);
+    if (it == s.image.meta.end())
+      throw input_error(path + ": not a render shard (no " + key + "; shards are written by airr render --shard)");
+    std::string v = it->second;
+    s.image.meta.erase(it);
+    return v;
+  };
+  s.place = parse_shard(take(shard_key), path + ": " + shard_key);
+  const std::string rows = take(rows_key);
+  const auto height = whole_number(take(height_key));
+  if (!height || *height < s.place.count) throw input_error(path + ": " + height_key + " is not a valid image height");
+  s.height = *height;
+  const auto [first, end] = shard_rows(s.place, s.height);
+  if (rows != std::to_string(first) + " " + std::to_string(end))
+    throw input_error(path + ": " + rows_key + " '" + rows + "' are not shard " + std::to_string(s.place.index) + "/" +
+                      std::to_string(s.place.count) + "'s rows of " + std::to_string(s.height));
+  s.image.rgb = load_image(path, image_encoding::linear).pixels;
+  if (s.image.rgb.height != end - first)
+    throw input_error(path + ": holds " + std::to_string(s.image.rgb.height) + " rows, not its shard's " +
+                      std::to_string(end - first));
+  for (const std::string& name : read_image_layer_names(path))
+    s.image.layers.emplace_back(name, load_image_layer(path, name));
+  return s;
+}
+
+// Why shard b is not of the render shard a is of (empty when it is).
+std::string differs(const read_shard& a, const read_shard& b) {
+  if (a.place.count != b.place.count)
+    return "split into " + std::to_string(b.place.count) + " shards, not " + std::to_string(a.place.count);
+  if (a.height != b.height || a.image.rgb.width != b.image.rgb.width) return "an image of another size";
+  // The likeliest differences first, each said in its own words.
+  const std::pair<const char*, const char*> named[] = {{version_key, "written by another build"},
+                                                       {"airr:seed", "another seed"},
+                                                       {"airr:spp", "another number of samples"},
+                                                       {"airr:layout", "another scene"}};
+  auto value_of = [](const read_shard& s, const std::string& key) {
+    const auto it = s.image.meta.find(key);
+    return it == s.image.meta.end() ? std::optional<std::string>() : it->second;
+  };
+  for (const auto& [key, what] : named) {
+    if (value_of(a, key) != value_of(b, key)) return std::string(what) + " (" + key + " differs)";
+  }
+  for (const auto& [key, value] : a.image.meta) {
+    if (value_of(b, key) != value) return "another render (" + key + " differs)";
+  }
+  if (a.image.meta.size() != b.image.meta.size()) return "another render (its metadata differs)";
+  std::vector<std::string> la, lb;
+  for (const auto& l : a.image.layers) la.push_back(l.first);
+  for (const auto& l : b.image.layers) lb.push_back(l.first);
+  if (la != lb) return "a render with other layers";
+  return "";
+}
+
+}  // namespace
+
+shard_index parse_shard(const std::string& text, const std::string& what) {
+  const auto slash = text.find('/');
+  const auto i = whole_number(text.substr(0, slash));
+  const auto n = slash == std::string::npos ? std::nullopt : whole_number(text.substr(slash + 1));
+  if (!i || !n || *n < 1 || *i < 0 || *i >= *n)
+    throw input_error(what + ": '" + text + "' is not a shard i/N with 0 <= i < N");
+  return {*i, *n};
+}
+
+std::pair<int, int> shard_rows(const shard_index& s, int height) {
+  const auto at = [&](int i) { return int(std::int64_t(i) * height / s.count); };
+  return {at(s.index), at(s.index + 1)};
+}
+
+void write_render_shard(const std::string& path, const render_image& whole, const shard_index& s,
+                        const std::string& version) {
+  if (s.count > whole.rgb.height)
+    throw input_error(path + ": " + std::to_string(s.count) + " shards of an image " +
+                      std::to_string(whole.rgb.height) + " rows high (at most one shard per row)");
+  const auto [first, end] = shard_rows(s, whole.rgb.height);
+  image_metadata meta = whole.meta;
+  meta[shard_key] = std::to_string(s.index) + "/" + std::to_string(s.count);
+  meta[rows_key] = std::to_string(first) + " " + std::to_string(end);
+  meta[height_key] = std::to_string(whole.rgb.height);
+  meta[version_key] = version;
+  std::vector<image_rgb> layer_rows;
+  for (const auto& l : whole.layers) layer_rows.push_back(rows_of(l.second, first, end));
+  std::vector<image_layer> layers;
+  for (std::size_t k = 0; k < layer_rows.size(); ++k) layers.push_back({whole.layers[k].first, &layer_rows[k]});
+  write_image(path, rows_of(whole.rgb, first, end), meta, 1.0f, layers);
+}
+
+render_image merge_render_shards(const std::vector<std::string>& paths) {
+  if (paths.empty()) throw input_error("merge: no shards given");
+  std::vector<read_shard> shards;
+  std::map<int, std::string> held;  // shard index -> file
+  for (const std::string& p : paths) {
+    read_shard s = read_one(p);
+    if (!shards.empty()) {
+      if (const std::string why = differs(shards.front(), s); !why.empty())
+        throw input_error(p + ": not a shard of the render " + shards.front().path + " is a shard of: " + why);
+    }
+    if (const auto it = held.find(s.place.index); it != held.end())
+      throw input_error(p + ": shard " + std::to_string(s.place.index) + "/" + std::to_string(s.place.count) +
+                        " again (" + it->second + " holds it too)");
+    held[s.place.index] = p;
+    shards.push_back(std::move(s));
+  }
+  const int count = shards.front().place.count;
+  for (int i = 0; i < count; ++i) {
+    if (held.count(i)) continue;
+    std::string given;
+    for (const auto& [k, p] : held) given += (given.empty() ? "" : ", ") + p + " (" + std::to_string(k) + ")";
+    throw input_error("merge: shard " + std::to_string(i) + "/" + std::to_string(count) + " is missing; given " +
+                      given);
+  }
+  const read_shard& first = shards.front();
+  render_image out;
+  out.meta = first.image.meta;
+  out.meta.erase(version_key);
+  auto blank = [&] {
+    image_rgb img;
+    img.width = first.image.rgb.width;
+    img.height = first.height;
+    img.rgb.assign(std::size_t(3) * img.width * img.height, 0.0f);
+    return img;
+  };
+  out.rgb = blank();
+  for (const auto& l : first.image.layers) out.layers.emplace_back(l.first, blank());
+  for (const read_shard& s : shards) {
+    const std::size_t at = std::size_t(3) * out.rgb.width * std::size_t(shard_rows(s.place, s.height).first);
+    std::copy(s.image.rgb.rgb.begin(), s.image.rgb.rgb.end(), out.rgb.rgb.begin() + std::ptrdiff_t(at));
+    for (std::size_t k = 0; k < s.image.layers.size(); ++k)
+      std::copy(s.image.layers[k].second.rgb.begin(), s.image.layers[k].second.rgb.end(),
+                out.layers[k].second.rgb.begin() + std::ptrdiff_t(at));
+  }
+  return out;
+}
+
+}  // namespace airr
