@@ -6,11 +6,13 @@
 
 #include "airr_version.hpp"
 #include "commands.hpp"
+#include "mpi_job.hpp"
 
 int main(int argc, char** argv) {
   // Past a file-size limit (ulimit -f) a write then fails with an error naming the file, instead
   // of the signal killing the program half-way.
   std::signal(SIGXFSZ, SIG_IGN);
+  const mpi_job& job = this_job();
   CLI::App app{"airr: simulate aerial imaging by retroreflection (AIRR)"};
   app.set_version_flag("--version", std::string("airr ") + AIRR_VERSION);
   app.require_subcommand(1);
@@ -34,8 +36,16 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 1;
+    if (job.size == 1) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return 1;
+    }
+    // The ranks of an MPI job fail alike on bad input: rank 0 says why; any rank's failure ends them all.
+    if (job.root())
+      std::fprintf(stderr, "error: %s\n", e.what());
+    else
+      std::fprintf(stderr, "error: rank %d: %s\n", job.rank, e.what());
+    abort_job(1);
   }
   return 0;
 }

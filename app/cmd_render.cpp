@@ -14,6 +14,7 @@
 #include "airr/render/render_shards.hpp"
 #include "airr_version.hpp"
 #include "commands.hpp"
+#include "mpi_job.hpp"
 #include "progress_bar.hpp"
 
 void add_render_command(CLI::App& app) {
@@ -57,32 +58,50 @@ void add_render_command(CLI::App& app) {
     if (opt->components && !opt->out.ends_with(".exr")) {
       throw airr::input_error(opt->out + ": --components needs an EXR output (layers); use --component for a PNG");
     }
-    std::optional<airr::shard_index> shard;
+    const mpi_job& job = this_job();
+    std::optional<airr::shard_index> shard;  // this process's rows go to a shard file
     airr::session_params params{.threads = opt->threads, .target_spp = opt->spp, .components = split};
     if (!opt->shard.empty()) {
+      if (job.size > 1) throw airr::input_error("--shard: not under mpirun or srun, whose ranks split the render");
       shard = airr::parse_shard(opt->shard, "--shard");
       if (!opt->out.ends_with(".exr")) throw airr::input_error(opt->out + ": a shard is written to an EXR file");
-      if (shard->count > s.observer.height)
-        throw airr::input_error("--shard: " + std::to_string(shard->count) + " shards of an image " +
-                                std::to_string(s.observer.height) + " rows high (at most one shard per row)");
-      std::tie(params.first_row, params.end_row) = airr::shard_rows(*shard, s.observer.height);
+    }
+    // Under mpirun or srun each rank traces the rows of its shard, and rank 0 gathers them.
+    const std::optional<airr::shard_index> rows = shard ? shard
+                                                  : job.size > 1
+                                                      ? std::optional<airr::shard_index>({job.rank, job.size})
+                                                      : std::nullopt;
+    if (rows) {
+      if (rows->count > s.observer.height)
+        throw airr::input_error(std::string(shard ? "--shard: " : "mpirun/srun: ") + std::to_string(rows->count) +
+                                (shard ? " shards" : " ranks") + " for an image " + std::to_string(s.observer.height) +
+                                " rows high (at most one per row)");
+      std::tie(params.first_row, params.end_row) = airr::shard_rows(*rows, s.observer.height);
     }
     airr::render_session session(s, params);
-    progress_bar bar("render");
+    // Rank 0's share stands for the job's progress: the ranks' shares are equal.
+    std::optional<progress_bar> bar;
+    if (job.root()) bar.emplace(job.size > 1 ? "render (rank 0 of " + std::to_string(job.size) + ")" : "render");
     airr::render_snapshot snap;
     while ((snap = session.snapshot()).spp < opt->spp) {
-      bar.update(double(snap.spp) / double(opt->spp), std::to_string(snap.spp) + " spp");
+      if (bar) bar->update(double(snap.spp) / double(opt->spp), std::to_string(snap.spp) + " spp");
       session.wait_for(0, std::min<std::uint64_t>(opt->spp, snap.spp + 1));
     }
     session.stop();
-    bar.finish(std::to_string(snap.spp) + " spp, " +
-               std::to_string(std::uint64_t(snap.rays / std::max(snap.seconds, 1e-9))) + " rays/s");
+    if (bar)
+      bar->finish(std::to_string(snap.spp) + " spp, " +
+                  std::to_string(std::uint64_t(snap.rays / std::max(snap.seconds, 1e-9))) + " rays/s");
     const float exposure = opt->exposure > 0 ? float(opt->exposure) : float(airr::default_exposure(s));
-    const std::vector<airr::image_rgb> parts = snap.component_images();
+    std::vector<airr::image_rgb> parts = snap.component_images();
     std::vector<airr::image_layer> layers;
     for (int k = 0; k < int(parts.size()) && opt->components; ++k)
       layers.push_back({airr::component_names[k], &parts[k]});
     airr::image_rgb image = snap.image();
+    if (job.size > 1) {
+      image = gather_rows(image, params.first_row, params.end_row);
+      for (auto& p : parts) p = gather_rows(p, params.first_row, params.end_row);
+      if (!job.root()) return;
+    }
     if (!opt->component.empty()) {
       for (int k = 0; k < airr::component_count; ++k) {
         if (opt->component == airr::component_names[k]) image = parts[std::size_t(k)];

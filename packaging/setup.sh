@@ -8,7 +8,7 @@ packages=(
   build-essential cmake pkg-config git
   libembree-dev libtbb-dev libglm-dev
   libopenimageio-dev openimageio-tools libtinygltf-dev nlohmann-json3-dev libcli11-dev
-  libopencv-dev libfftw3-dev libnlopt-cxx-dev
+  libopencv-dev libfftw3-dev libnlopt-cxx-dev openmpi-bin libopenmpi-dev
   libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri xvfb xauth x11-xserver-utils fonts-dejavu-core
   libgtest-dev libgmock-dev clang-format python3
   librsvg2-bin help2man file desktop-file-utils

@@ -1,0 +1,80 @@
+#include "mpi_job.hpp"
+
+#include <cstdlib>
+#include <stdexcept>
+
+#ifdef AIRR_WITH_MPI
+#include <mpi.h>
+#endif
+
+namespace {
+
+// Whether an MPI launcher started this process: Open MPI's mpirun, or srun with PMI or PMIx.
+bool launched_by_mpi() {
+  for (const char* var : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE"})
+    if (std::getenv(var)) return true;
+  return false;
+}
+
+}  // namespace
+
+const mpi_job& this_job() {
+  static const mpi_job job = [] {
+    mpi_job j;
+#ifdef AIRR_WITH_MPI
+    if (launched_by_mpi()) {
+      MPI_Init(nullptr, nullptr);
+      std::atexit([] { MPI_Finalize(); });
+      MPI_Comm_rank(MPI_COMM_WORLD, &j.rank);
+      MPI_Comm_size(MPI_COMM_WORLD, &j.size);
+    }
+#else
+    (void)launched_by_mpi;
+#endif
+    return j;
+  }();
+  return job;
+}
+
+std::vector<float> gather_floats(const std::vector<float>& mine) {
+  const mpi_job& job = this_job();
+  if (job.size == 1) return mine;
+#ifdef AIRR_WITH_MPI
+  const int count = int(mine.size());
+  std::vector<int> counts(job.root() ? job.size : 0), offsets(counts.size());
+  MPI_Gather(&count, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  std::vector<float> all;
+  if (job.root()) {
+    std::size_t total = 0;
+    for (int r = 0; r < job.size; ++r) {
+      offsets[std::size_t(r)] = int(total);
+      total += std::size_t(counts[std::size_t(r)]);
+    }
+    all.resize(total);
+  }
+  MPI_Gatherv(mine.data(), count, MPI_FLOAT, all.data(), counts.data(), offsets.data(), MPI_FLOAT, 0, MPI_COMM_WORLD);
+  return all;
+#else
+  throw std::logic_error("an MPI job in a build without MPI");
+#endif
+}
+
+airr::image_rgb gather_rows(const airr::image_rgb& whole, int first_row, int end_row) {
+  const std::size_t row = std::size_t(3) * std::size_t(whole.width);
+  const std::vector<float> mine(whole.rgb.begin() + std::ptrdiff_t(row * std::size_t(first_row)),
+                                whole.rgb.begin() + std::ptrdiff_t(row * std::size_t(end_row)));
+  airr::image_rgb out;
+  out.rgb = gather_floats(mine);
+  if (!this_job().root()) return {};
+  if (out.rgb.size() != whole.rgb.size()) throw std::logic_error("the ranks' rows do not make up the image");
+  out.width = whole.width;
+  out.height = whole.height;
+  return out;
+}
+
+void abort_job(int code) {
+#ifdef AIRR_WITH_MPI
+  if (this_job().size > 1) MPI_Abort(MPI_COMM_WORLD, code);
+#endif
+  std::exit(code);
+}

@@ -1,0 +1,26 @@
+#pragma once
+// The processes of an MPI job when `airr` runs under mpirun or srun (a build with AIRR_MPI), or
+// this process alone. MPI starts only under a launcher, so `airr` alone never needs one.
+#include <vector>
+
+#include "airr/formats/image.hpp"
+
+struct mpi_job {
+  int rank = 0;
+  int size = 1;
+  bool root() const { return rank == 0; }
+};
+
+// This process's place in its job (MPI initialised on first call when launched by mpirun or srun,
+// and finalised at exit).
+const mpi_job& this_job();
+
+// Every rank's floats at rank 0, in rank order (the other ranks get nothing back).
+std::vector<float> gather_floats(const std::vector<float>& mine);
+
+// The whole image at rank 0, from each rank's rows [first_row, end_row) of its `whole`-sized
+// image (the ranks' rows in rank order, together every row); the other ranks get an empty image.
+airr::image_rgb gather_rows(const airr::image_rgb& whole, int first_row, int end_row);
+
+// Ends every rank of the job with `code`: one rank's error must not leave the others waiting.
+[[noreturn]] void abort_job(int code);

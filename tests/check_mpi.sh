@@ -1,0 +1,56 @@
+#!/usr/bin/env bash
+# `airr render` under mpirun (Open MPI, one machine, more ranks than cores): 2 and 3 ranks (an odd
+# split) write the file one process writes (PNG byte for byte; EXR with the image's components
+# equal in every channel); a rank killed mid-run ends the job within seconds with an error and
+# leaves no output file; --shard under mpirun is refused.
+set -euo pipefail
+airr="$1"
+default_scene="$2/assets/scenes/default.json"
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+# One machine, any user (containers run as root), no shared-memory copy through ptrace.
+export OMPI_MCA_btl_vader_single_copy_mechanism=none OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+mpi=(mpirun --oversubscribe)
+args=(--spp 8 --set observer.width=80 --set observer.height=61)
+
+"$airr" render "$default_scene" -o "$tmp/one.png" "${args[@]}" 2>/dev/null
+"$airr" render "$default_scene" -o "$tmp/one.exr" "${args[@]}" --components 2>/dev/null
+for n in 2 3; do
+  "${mpi[@]}" -np $n "$airr" render "$default_scene" -o "$tmp/ranks$n.png" "${args[@]}" 2>"$tmp/log$n"
+  cmp "$tmp/one.png" "$tmp/ranks$n.png" || { echo "$n ranks: the PNG differs from one process's"; exit 1; }
+  "${mpi[@]}" -np $n "$airr" render "$default_scene" -o "$tmp/ranks$n.exr" "${args[@]}" --components 2>/dev/null
+  idiff -fail 0 -failpercent 0 -warn 0 "$tmp/one.exr" "$tmp/ranks$n.exr" >"$tmp/idiff$n" ||
+    { cat "$tmp/idiff$n"; echo "$n ranks: the EXR differs from one process's"; exit 1; }
+  grep -q "rank 0 of $n" "$tmp/log$n" || { cat "$tmp/log$n"; echo "$n ranks: no progress from rank 0"; exit 1; }
+  echo "$n ranks: the same files as one process"
+done
+
+# --shard is for separate processes, not for an MPI job's ranks.
+if "${mpi[@]}" -np 2 "$airr" render "$default_scene" -o "$tmp/x.exr" "${args[@]}" --shard 0/2 2>"$tmp/shard.log"; then
+  echo "--shard under mpirun was not refused"; exit 1
+fi
+grep -q "error: --shard: not under mpirun" "$tmp/shard.log" || { cat "$tmp/shard.log"; exit 1; }
+
+# A rank killed mid-run: the job ends with an error, without the output file.
+"${mpi[@]}" -np 2 "$airr" render "$default_scene" -o "$tmp/killed.png" --spp 100000 \
+  --set observer.width=128 --set observer.height=128 >"$tmp/killed.log" 2>&1 &
+job=$!
+victim=""
+for _ in $(seq 100); do
+  victim=$(pgrep -f "killed.png" | while read -r p; do
+    [ "$(ps -o comm= -p "$p")" = airr ] && grep -qz "OMPI_COMM_WORLD_RANK=1" "/proc/$p/environ" && echo "$p"
+  done | head -1) || true
+  [ -n "$victim" ] && break
+  sleep 0.1
+done
+[ -n "$victim" ] || { kill $job; echo "rank 1 never started"; exit 1; }
+sleep 1
+kill -9 "$victim"
+start=$(date +%s)
+for _ in $(seq 300); do kill -0 $job 2>/dev/null || break; sleep 0.1; done
+if kill -0 $job 2>/dev/null; then kill -9 $job; echo "the job still ran 30 s after a rank was killed"; exit 1; fi
+status=0
+wait $job || status=$?
+[ $status -ne 0 ] || { cat "$tmp/killed.log"; echo "the job exited 0 after a rank was killed"; exit 1; }
+[ ! -e "$tmp/killed.png" ] || { echo "an output file was left after a rank was killed"; exit 1; }
+echo "a killed rank ended the job in $(($(date +%s) - start)) s with exit code $status and no output"
