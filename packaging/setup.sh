@@ -11,7 +11,7 @@ packages=(
   libopencv-dev libfftw3-dev libnlopt-cxx-dev openmpi-bin libopenmpi-dev
   libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri xvfb xauth x11-xserver-utils fonts-dejavu-core
   libgtest-dev libgmock-dev clang-format python3
-  librsvg2-bin help2man file desktop-file-utils procps
+  librsvg2-bin help2man file desktop-file-utils procps slurm-wlm munge
 )
 if [ "${1:-}" = "--fuzz" ]; then packages+=(clang libclang-rt-14-dev); fi
 # The Khronos glTF-Validator (npm) judges the glTF files the tests write; it needs Node.js.
