@@ -19,6 +19,7 @@
 #include "airr/formats/scene_json.hpp"
 #include "airr/measure/design_tolerance.hpp"
 #include "commands.hpp"
+#include "mpi_job.hpp"
 #include "progress_bar.hpp"
 
 namespace {
@@ -63,12 +64,58 @@ void write_histograms(const airr::tolerance_result& r, const std::string& dir) {
   }
 }
 
+// Layouts evaluated by the ranks of an MPI job, each rank's share on its threads, and every
+// evaluation given to every rank: its metrics travel, its score and broken constraints follow.
+std::vector<std::optional<airr::design_evaluation>> shared_evaluations(const airr::design_spec& spec, std::size_t n,
+                                                                       const airr::layout_evaluation& evaluate) {
+  const std::size_t objectives = spec.objectives.size(), width = 1 + objectives + spec.constraints.size();
+  const std::vector<double> values = share_items(n, width, [&](std::size_t i, double* out) {
+    const std::optional<airr::design_evaluation> e = evaluate(i);
+    out[0] = e ? 1 : 0;
+    if (!e) return;
+    std::copy(e->objective_values.begin(), e->objective_values.end(), out + 1);
+    std::copy(e->constraint_values.begin(), e->constraint_values.end(), out + 1 + objectives);
+  });
+  std::vector<std::optional<airr::design_evaluation>> out(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* v = values.data() + i * width;
+    if (v[0] == 0) continue;
+    airr::design_evaluation e;
+    e.objective_values.assign(v + 1, v + 1 + objectives);
+    e.constraint_values.assign(v + 1 + objectives, v + width);
+    e.score = airr::design_score(spec, e.objective_values);
+    e.broken = airr::broken_constraints(spec, e.constraint_values);
+    out[i] = std::move(e);
+  }
+  return out;
+}
+
+void report(const options& opt, const airr::design_spec& spec, const airr::tolerance_result& r, double seconds);
+
 void run(const options& opt) {
   // The evaluations use every core unless told (the results do not depend on it).
   std::optional<tbb::global_control> threads;
   if (opt.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, std::size_t(opt.threads));
   const airr::design_spec spec = airr::load_design_spec(opt.spec);
   const airr::scene nominal = opt.scene.empty() ? spec.base : airr::load_scene(opt.scene);
+  const mpi_job& job = this_job();
+  if (job.size > 1) {
+    // The ranks share each batch of layouts and all take every result, in step: no rank may stop
+    // on its own (mpirun ends the whole job on Ctrl-C), and only rank 0 reports and writes.
+    std::optional<progress_bar> bar;
+    if (job.root()) bar.emplace("tolerance (" + std::to_string(job.size) + " ranks)");
+    const airr::tolerance_result r = airr::run_tolerance(
+        spec, nominal,
+        [&](int done, int total) {
+          if (bar) bar->update(double(done) / total);
+        },
+        nullptr,
+        [&](std::size_t n, const airr::layout_evaluation& evaluate) { return shared_evaluations(spec, n, evaluate); });
+    if (!bar) return;
+    bar->finish("done");
+    report(opt, spec, r, bar->seconds());
+    return;
+  }
   progress_bar bar("tolerance");
   interrupted = false;
   const auto previous = std::signal(SIGINT, [](int) { interrupted = true; });
@@ -76,8 +123,13 @@ void run(const options& opt) {
       spec, nominal, [&](int done, int total) { bar.update(double(done) / total); }, &interrupted);
   std::signal(SIGINT, previous);
   bar.finish(r.cancelled ? "cancelled" : "done");
+  report(opt, spec, r, bar.seconds());
+}
+
+// What the run found, on stdout, and the CSV and histograms.
+void report(const options& opt, const airr::design_spec& spec, const airr::tolerance_result& r, double seconds) {
   std::printf("%d layouts (%d no valid layout) in %.1f s; yield %.4f (every constraint met)\n", r.samples, r.invalid,
-              bar.seconds(), r.yield);
+              seconds, r.yield);
   std::printf("%-28s %12s %12s %12s %12s %12s\n", "metric", "mean", "sd", "p5", "p50", "p95");
   for (const auto& m : r.metrics)
     std::printf("%-28s %12.6g %12.6g %12.6g %12.6g %12.6g\n", m.name.c_str(), m.mean, m.sd, m.p5, m.p50, m.p95);

@@ -1,7 +1,10 @@
 #include "mpi_job.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <stdexcept>
+
+#include <tbb/parallel_for.h>
 
 #ifdef AIRR_WITH_MPI
 #include <mpi.h>
@@ -53,6 +56,34 @@ std::vector<float> gather_floats(const std::vector<float>& mine) {
     all.resize(total);
   }
   MPI_Gatherv(mine.data(), count, MPI_FLOAT, all.data(), counts.data(), offsets.data(), MPI_FLOAT, 0, MPI_COMM_WORLD);
+  return all;
+#else
+  throw std::logic_error("an MPI job in a build without MPI");
+#endif
+}
+
+std::vector<double> share_items(std::size_t n, std::size_t width,
+                                const std::function<void(std::size_t, double*)>& compute) {
+  const mpi_job& job = this_job();
+  const std::size_t ranks = std::size_t(job.size), rank = std::size_t(job.rank);
+  const auto items_of = [&](std::size_t r) { return r < n ? (n - r + ranks - 1) / ranks : 0; };
+  std::vector<double> mine(items_of(rank) * width);
+  tbb::parallel_for(std::size_t(0), items_of(rank),
+                    [&](std::size_t k) { compute(rank + k * ranks, mine.data() + k * width); });
+  if (ranks == 1) return mine;
+#ifdef AIRR_WITH_MPI
+  std::vector<int> counts(ranks), offsets(ranks);
+  for (std::size_t r = 0, at = 0; r < ranks; at += counts[r], ++r) {
+    counts[r] = int(items_of(r) * width);
+    offsets[r] = int(at);
+  }
+  std::vector<double> by_rank(n * width), all(n * width);
+  MPI_Allgatherv(mine.data(), int(mine.size()), MPI_DOUBLE, by_rank.data(), counts.data(), offsets.data(), MPI_DOUBLE,
+                 MPI_COMM_WORLD);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* from = by_rank.data() + std::size_t(offsets[i % ranks]) + (i / ranks) * width;
+    std::copy(from, from + width, all.data() + i * width);
+  }
   return all;
 #else
   throw std::logic_error("an MPI job in a build without MPI");

@@ -1,6 +1,8 @@
 #pragma once
 // The processes of an MPI job when `airr` runs under mpirun or srun (a build with AIRR_MPI), or
 // this process alone. MPI starts only under a launcher, so `airr` alone never needs one.
+#include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "airr/formats/image.hpp"
@@ -14,6 +16,11 @@ struct mpi_job {
 // This process's place in its job (MPI initialised on first call when launched by mpirun or srun,
 // and finalised at exit).
 const mpi_job& this_job();
+
+// Items 0 to n - 1 of `width` doubles each (compute(i, out) writes item i), computed by rank
+// i % size on its threads and shared: every rank gets all n x width values, in item order.
+std::vector<double> share_items(std::size_t n, std::size_t width,
+                                const std::function<void(std::size_t, double*)>& compute);
 
 // Every rank's floats at rank 0, in rank order (the other ranks get nothing back).
 std::vector<float> gather_floats(const std::vector<float>& mine);

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# `airr render` under mpirun (Open MPI, one machine, more ranks than cores): 2 and 3 ranks (an odd
-# split) write the file one process writes (PNG byte for byte; EXR with the image's components
-# equal in every channel); a rank killed mid-run ends the job within seconds with an error and
+# `airr render` and `airr tolerance` under mpirun (Open MPI, one machine, more ranks than cores):
+# 2 and 3 ranks (an odd split) write the files one process writes (PNG byte for byte; EXR with the
+# image's components equal in every channel; the tolerance CSV, statistics and histograms); a rank killed mid-run ends the job within seconds with an error and
 # leaves no output file; --shard under mpirun is refused.
 set -euo pipefail
 airr="$1"
@@ -23,6 +23,26 @@ for n in 2 3; do
     { cat "$tmp/idiff$n"; echo "$n ranks: the EXR differs from one process's"; exit 1; }
   grep -q "rank 0 of $n" "$tmp/log$n" || { cat "$tmp/log$n"; echo "$n ranks: no progress from rank 0"; exit 1; }
   echo "$n ranks: the same files as one process"
+done
+
+# A small tolerance study: the samples' CSV, the printed statistics and the histograms as one
+# process's.
+cat >"$tmp/spec.json" <<SPEC
+{"format": "airr-design", "version": 1, "scene": "$default_scene",
+ "objectives": [{"metric": "r50_mm", "goal": "minimise"}, {"metric": "visible_fraction", "goal": "maximise"}],
+ "constraints": [{"metric": "r50_mm", "max": 0.5}],
+ "search": {"psf_samples": 5000},
+ "tolerances": [{"key": "retroreflectors.0.pose.pitch_deg", "sd": 0.5}, {"key": "floating_distance_mm", "sd": 5}],
+ "tolerance": {"samples": 40, "seed": 3}}
+SPEC
+"$airr" tolerance "$tmp/spec.json" -o "$tmp/tol1.csv" --png "$tmp/h1" 2>/dev/null | grep -v "layouts (\|wrote" >"$tmp/tol1.out"
+for n in 2 3; do
+  "${mpi[@]}" -np $n "$airr" tolerance "$tmp/spec.json" -o "$tmp/tol$n.csv" --png "$tmp/h$n" 2>/dev/null |
+    grep -v "layouts (\|wrote" >"$tmp/tol$n.out"
+  cmp "$tmp/tol1.csv" "$tmp/tol$n.csv" || { echo "$n ranks: the tolerance CSV differs"; exit 1; }
+  cmp "$tmp/tol1.out" "$tmp/tol$n.out" || { diff "$tmp/tol1.out" "$tmp/tol$n.out"; exit 1; }
+  for f in "$tmp"/h1/*.png; do cmp "$f" "$tmp/h$n/$(basename "$f")" || exit 1; done
+  echo "$n ranks: the same tolerance study as one process ($(($(wc -l <"$tmp/tol1.csv") - 1)) samples)"
 done
 
 # --shard is for separate processes, not for an MPI job's ranks.

@@ -52,7 +52,8 @@ double percentile(std::vector<double> sorted, double p) {
 }  // namespace
 
 tolerance_result run_tolerance(const design_spec& spec, const scene& nominal,
-                               const std::function<void(int, int)>& progress, const std::atomic<bool>* cancel) {
+                               const std::function<void(int, int)>& progress, const std::atomic<bool>* cancel,
+                               const layout_batch& batch) {
   if (spec.tolerances.empty()) throw input_error(spec.path + ": tolerances: none given");
   std::vector<double> nominal_values, sizes;
   for (const design_tolerance& t : spec.tolerances) {
@@ -78,19 +79,22 @@ tolerance_result run_tolerance(const design_spec& spec, const scene& nominal,
     }
   }
   auto evaluate_all = [&](const std::vector<std::vector<double>>& offsets, std::size_t first, std::size_t end) {
+    const layout_evaluation evaluate = [&](std::size_t i) {
+      return evaluate_offsets(spec, nominal, nominal_values, offsets[first + i]);
+    };
+    if (batch) return batch(end - first, evaluate);
     std::vector<std::optional<design_evaluation>> e(end - first);
-    tbb::parallel_for(
-        first, end, [&](std::size_t i) { e[i - first] = evaluate_offsets(spec, nominal, nominal_values, offsets[i]); });
+    tbb::parallel_for(std::size_t(0), end - first, [&](std::size_t i) { e[i] = evaluate(i); });
     return e;
   };
   int passing = 0;
-  const std::size_t batch = 16;
-  for (std::size_t first = 0; first < draws.size(); first += batch) {
+  const std::size_t batch_size = 16;
+  for (std::size_t first = 0; first < draws.size(); first += batch_size) {
     if (cancel && cancel->load()) {
       out.cancelled = true;
       break;
     }
-    const std::size_t end = std::min(draws.size(), first + batch);
+    const std::size_t end = std::min(draws.size(), first + batch_size);
     for (const std::optional<design_evaluation>& e : evaluate_all(draws, first, end)) {
       ++out.samples;
       if (!e) {

@@ -6,11 +6,13 @@
 // differences at +-size).
 #include <atomic>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "airr/formats/design_spec.hpp"
 #include "airr/layout/scene.hpp"
+#include "airr/measure/design_metrics.hpp"
 
 namespace airr {
 
@@ -38,10 +40,16 @@ struct histogram_steps {
 };
 histogram_steps metric_histogram(const metric_distribution& d, int bins = 40);
 
+// Evaluates layouts 0 to n - 1 (`evaluate(i)`: empty when it is no valid layout) and returns
+// them in order. By default on this machine's threads; an MPI job shares them among its ranks.
+using layout_evaluation = std::function<std::optional<design_evaluation>(std::size_t)>;
+using layout_batch =
+    std::function<std::vector<std::optional<design_evaluation>>(std::size_t n, const layout_evaluation&)>;
+
 // Runs the Monte Carlo about `nominal` (the spec's base scene, or a layout the optimiser wrote);
 // deterministic for the spec's tolerance seed. `progress(done, total)` after each layout.
 tolerance_result run_tolerance(const design_spec& spec, const scene& nominal,
                                const std::function<void(int, int)>& progress = {},
-                               const std::atomic<bool>* cancel = nullptr);
+                               const std::atomic<bool>* cancel = nullptr, const layout_batch& batch = {});
 
 }  // namespace airr
