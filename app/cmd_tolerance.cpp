@@ -64,32 +64,6 @@ void write_histograms(const airr::tolerance_result& r, const std::string& dir) {
   }
 }
 
-// Layouts evaluated by the ranks of an MPI job, each rank's share on its threads, and every
-// evaluation given to every rank: its metrics travel, its score and broken constraints follow.
-std::vector<std::optional<airr::design_evaluation>> shared_evaluations(const airr::design_spec& spec, std::size_t n,
-                                                                       const airr::layout_evaluation& evaluate) {
-  const std::size_t objectives = spec.objectives.size(), width = 1 + objectives + spec.constraints.size();
-  const std::vector<double> values = share_items(n, width, [&](std::size_t i, double* out) {
-    const std::optional<airr::design_evaluation> e = evaluate(i);
-    out[0] = e ? 1 : 0;
-    if (!e) return;
-    std::copy(e->objective_values.begin(), e->objective_values.end(), out + 1);
-    std::copy(e->constraint_values.begin(), e->constraint_values.end(), out + 1 + objectives);
-  });
-  std::vector<std::optional<airr::design_evaluation>> out(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double* v = values.data() + i * width;
-    if (v[0] == 0) continue;
-    airr::design_evaluation e;
-    e.objective_values.assign(v + 1, v + 1 + objectives);
-    e.constraint_values.assign(v + 1 + objectives, v + width);
-    e.score = airr::design_score(spec, e.objective_values);
-    e.broken = airr::broken_constraints(spec, e.constraint_values);
-    out[i] = std::move(e);
-  }
-  return out;
-}
-
 void report(const options& opt, const airr::design_spec& spec, const airr::tolerance_result& r, double seconds);
 
 void run(const options& opt) {
@@ -109,8 +83,7 @@ void run(const options& opt) {
         [&](int done, int total) {
           if (bar) bar->update(double(done) / total);
         },
-        nullptr,
-        [&](std::size_t n, const airr::layout_evaluation& evaluate) { return shared_evaluations(spec, n, evaluate); });
+        nullptr, share_items);
     if (!bar) return;
     bar->finish("done");
     report(opt, spec, r, bar->seconds());

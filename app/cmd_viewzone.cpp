@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "airr/measure/viewing_zone_full.hpp"
 #include "airr/render/prop_hits.hpp"
 #include "commands.hpp"
+#include "mpi_job.hpp"
 #include "progress_bar.hpp"
 
 namespace {
@@ -111,14 +113,26 @@ void add_viewzone_command(CLI::App& app) {
     airr::check_eye_grid(g);
     if (s.retroreflectors.empty()) throw airr::input_error(opt->scene_path + ": no retroreflector, no aerial image");
 
-    progress_bar bar(opt->full ? "viewzone (full)" : "viewzone");
+    // Under mpirun or srun the full pass's eyes are shared among the ranks (eye i on rank i mod N),
+    // rank 0 showing its share's progress and writing; the geometric pass is rank 0's alone.
+    const mpi_job& job = this_job();
+    if (!job.root() && !opt->full) return;
+    std::optional<progress_bar> bar;
+    if (job.root())
+      bar.emplace(opt->full ? job.size > 1 ? "viewzone (full, rank 0's share of " + std::to_string(job.size) + ")"
+                                           : "viewzone (full)"
+                            : "viewzone");
+    const int share = job.size;
     auto report = [&](int done, int total) {
-      if (done < total)
-        bar.update(double(done) / total, std::to_string(done) + " of " + std::to_string(total) + " eyes");
+      if (bar && done * share < total)
+        bar->update(double(done * share) / total,
+                    std::to_string(done * share) + " of " + std::to_string(total) + " eyes");
     };
     airr::full_zone_map map;
     if (opt->full) {
-      map = airr::full_viewing_zone(s, g, {.rows_per_eye = opt->rows, .render_spp = opt->spp}, report);
+      map = airr::full_viewing_zone(s, g, {.rows_per_eye = opt->rows, .render_spp = opt->spp}, report, nullptr,
+                                    job.size > 1 ? airr::item_share(share_items) : airr::item_share());
+      if (!job.root()) return;
     } else {
       const airr::viewing_zone_map geometric =
           airr::geometric_viewing_zone(s, g, airr::scene_prop_hits(s), opt->rows, report);
@@ -126,7 +140,7 @@ void add_viewzone_command(CLI::App& app) {
       map.visible = geometric.visible;
       map.seconds = geometric.seconds;
     }
-    bar.finish();
+    bar->finish();
     std::vector<zone_column> columns = {
         {"visible_fraction", "visible fraction of the aerial image", "", &map.visible, 0, 1}};
     if (opt->full) {

@@ -62,8 +62,7 @@ std::vector<float> gather_floats(const std::vector<float>& mine) {
 #endif
 }
 
-std::vector<double> share_items(std::size_t n, std::size_t width,
-                                const std::function<void(std::size_t, double*)>& compute) {
+std::vector<double> share_items(std::size_t n, std::size_t width, const airr::item_compute& compute) {
   const mpi_job& job = this_job();
   const std::size_t ranks = std::size_t(job.size), rank = std::size_t(job.rank);
   const auto items_of = [&](std::size_t r) { return r < n ? (n - r + ranks - 1) / ranks : 0; };

@@ -5,6 +5,7 @@
 #include <functional>
 #include <vector>
 
+#include "airr/core/item_share.hpp"
 #include "airr/formats/image.hpp"
 
 struct mpi_job {
@@ -17,10 +18,9 @@ struct mpi_job {
 // and finalised at exit).
 const mpi_job& this_job();
 
-// Items 0 to n - 1 of `width` doubles each (compute(i, out) writes item i), computed by rank
-// i % size on its threads and shared: every rank gets all n x width values, in item order.
-std::vector<double> share_items(std::size_t n, std::size_t width,
-                                const std::function<void(std::size_t, double*)>& compute);
+// The job's item_share (airr/core/item_share.hpp): item i computed by rank i % size, on its
+// threads, and every rank given all n x width numbers, in item order.
+std::vector<double> share_items(std::size_t n, std::size_t width, const airr::item_compute& compute);
 
 // Every rank's floats at rank 0, in rank order (the other ranks get nothing back).
 std::vector<float> gather_floats(const std::vector<float>& mine);

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# `airr render` and `airr tolerance` under mpirun (Open MPI, one machine, more ranks than cores):
-# 2 and 3 ranks (an odd split) write the files one process writes (PNG byte for byte; EXR with the
-# image's components equal in every channel; the tolerance CSV, statistics and histograms); a rank killed mid-run ends the job within seconds with an error and
+# `airr render`, `airr tolerance` and `airr viewzone --full` under mpirun (Open MPI, one machine,
+# more ranks than cores): 2 and 3 ranks (an odd split) write the files one process writes (PNG byte for byte; EXR with the
+# image's components equal in every channel; the tolerance CSV, statistics and histograms; the
+# zone's CSV and maps); a rank killed mid-run ends the job within seconds with an error and
 # leaves no output file; --shard under mpirun is refused.
 set -euo pipefail
 airr="$1"
@@ -43,6 +44,16 @@ for n in 2 3; do
   cmp "$tmp/tol1.out" "$tmp/tol$n.out" || { diff "$tmp/tol1.out" "$tmp/tol$n.out"; exit 1; }
   for f in "$tmp"/h1/*.png; do cmp "$f" "$tmp/h$n/$(basename "$f")" || exit 1; done
   echo "$n ranks: the same tolerance study as one process ($(($(wc -l <"$tmp/tol1.csv") - 1)) samples)"
+done
+
+# The full viewing zone: its CSV and maps as one process's.
+zone=(viewzone "$default_scene" --full --grid 5 --spp 4)
+"$airr" "${zone[@]}" -o "$tmp/zone1.csv" --png "$tmp/zone1.png" >/dev/null 2>&1
+for n in 2 3; do
+  "${mpi[@]}" -np $n "$airr" "${zone[@]}" -o "$tmp/zone$n.csv" --png "$tmp/zone$n.png" >/dev/null 2>&1
+  cmp "$tmp/zone1.csv" "$tmp/zone$n.csv" || { echo "$n ranks: the full viewing zone's CSV differs"; exit 1; }
+  for f in "$tmp"/zone1*.png; do cmp "$f" "${f/zone1/zone$n}" || exit 1; done
+  echo "$n ranks: the same full viewing zone as one process"
 done
 
 # --shard is for separate processes, not for an MPI job's ranks.

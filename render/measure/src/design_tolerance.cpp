@@ -35,6 +35,33 @@ std::optional<design_evaluation> evaluate_offsets(const design_spec& spec, const
   }
 }
 
+// Layouts evaluated as shared items: each one's metrics travel as numbers (valid, objectives,
+// constraints); its score and broken constraints follow from them.
+template <class Evaluate>
+std::vector<std::optional<design_evaluation>> shared_evaluations(const design_spec& spec, const item_share& share,
+                                                                 std::size_t n, const Evaluate& evaluate) {
+  const std::size_t objectives = spec.objectives.size(), width = 1 + objectives + spec.constraints.size();
+  const std::vector<double> values = share(n, width, [&](std::size_t i, double* out) {
+    const std::optional<design_evaluation> e = evaluate(i);
+    out[0] = e ? 1 : 0;
+    if (!e) return;
+    std::copy(e->objective_values.begin(), e->objective_values.end(), out + 1);
+    std::copy(e->constraint_values.begin(), e->constraint_values.end(), out + 1 + objectives);
+  });
+  std::vector<std::optional<design_evaluation>> out(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double* v = values.data() + i * width;
+    if (v[0] == 0) continue;
+    design_evaluation e;
+    e.objective_values.assign(v + 1, v + 1 + objectives);
+    e.constraint_values.assign(v + 1 + objectives, v + width);
+    e.score = design_score(spec, e.objective_values);
+    e.broken = broken_constraints(spec, e.constraint_values);
+    out[i] = std::move(e);
+  }
+  return out;
+}
+
 std::vector<double> metric_values(const design_evaluation& e) {
   std::vector<double> v = e.objective_values;
   v.insert(v.end(), e.constraint_values.begin(), e.constraint_values.end());
@@ -53,7 +80,7 @@ double percentile(std::vector<double> sorted, double p) {
 
 tolerance_result run_tolerance(const design_spec& spec, const scene& nominal,
                                const std::function<void(int, int)>& progress, const std::atomic<bool>* cancel,
-                               const layout_batch& batch) {
+                               const item_share& share) {
   if (spec.tolerances.empty()) throw input_error(spec.path + ": tolerances: none given");
   std::vector<double> nominal_values, sizes;
   for (const design_tolerance& t : spec.tolerances) {
@@ -79,10 +106,8 @@ tolerance_result run_tolerance(const design_spec& spec, const scene& nominal,
     }
   }
   auto evaluate_all = [&](const std::vector<std::vector<double>>& offsets, std::size_t first, std::size_t end) {
-    const layout_evaluation evaluate = [&](std::size_t i) {
-      return evaluate_offsets(spec, nominal, nominal_values, offsets[first + i]);
-    };
-    if (batch) return batch(end - first, evaluate);
+    auto evaluate = [&](std::size_t i) { return evaluate_offsets(spec, nominal, nominal_values, offsets[first + i]); };
+    if (share) return shared_evaluations(spec, share, end - first, evaluate);
     std::vector<std::optional<design_evaluation>> e(end - first);
     tbb::parallel_for(std::size_t(0), end - first, [&](std::size_t i) { e[i] = evaluate(i); });
     return e;

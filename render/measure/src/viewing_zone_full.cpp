@@ -125,7 +125,8 @@ double stray_light_ratio(const scene& s, const glm::dvec3& eye, const full_zone_
 }
 
 full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zone_params& p,
-                                const std::function<void(int, int)>& progress, const std::atomic<bool>* cancel) {
+                                const std::function<void(int, int)>& progress, const std::atomic<bool>* cancel,
+                                const item_share& share) {
   check_eye_grid(g);
   if (p.render_size < 8 || p.render_size > 1024 || p.render_spp < 1 || p.render_spp > 65536 || p.psf_samples < 100 ||
       p.rows_per_eye < 1) {
@@ -169,7 +170,7 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
       }
     }
   };
-  detail::parallel_rows(int(n), 0, [&](int e0, int e1) {
+  auto take = [&] {
     std::unique_ptr<tracer_scene> ts;
     {
       std::lock_guard lock(mutex);
@@ -180,15 +181,39 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
       ts->use_model_image = false;  // a few spp per eye: the model image would cost more than it saves
       ts->retro = models;
     }
-    for (int e = e0; e < e1 && !(cancel && cancel->load(std::memory_order_relaxed)); ++e) {
-      one_eye(std::size_t(e), *ts);
-      std::lock_guard lock(mutex);
-      ++done;
-      if (progress) progress(done, int(n));
-    }
+    return ts;
+  };
+  auto give_back = [&](std::unique_ptr<tracer_scene> ts) {
     std::lock_guard lock(mutex);
     pool.push_back(std::move(ts));
-  });
+  };
+  auto count_done = [&] {
+    std::lock_guard lock(mutex);
+    ++done;
+    if (progress) progress(done, int(n));
+  };
+  if (share) {
+    // Each eye's five numbers as a shared item (an MPI job's ranks); every caller gets them all.
+    std::vector<double>* maps[] = {&out.visible, &out.brightness, &out.mean_mtf, &out.stray_ratio, &out.direct};
+    const std::vector<double> values = share(n, 5, [&](std::size_t e, double* o) {
+      std::unique_ptr<tracer_scene> ts = take();
+      one_eye(e, *ts);
+      give_back(std::move(ts));
+      for (int k = 0; k < 5; ++k) o[k] = (*maps[k])[e];
+      count_done();
+    });
+    for (std::size_t e = 0; e < n; ++e)
+      for (std::size_t k = 0; k < 5; ++k) (*maps[k])[e] = values[5 * e + k];
+  } else {
+    detail::parallel_rows(int(n), 0, [&](int e0, int e1) {
+      std::unique_ptr<tracer_scene> ts = take();
+      for (int e = e0; e < e1 && !(cancel && cancel->load(std::memory_order_relaxed)); ++e) {
+        one_eye(std::size_t(e), *ts);
+        count_done();
+      }
+      give_back(std::move(ts));
+    });
+  }
   if (cancel && cancel->load(std::memory_order_relaxed)) return {};
   double best = 0;
   for (double b : out.brightness) {

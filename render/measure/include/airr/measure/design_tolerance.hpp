@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "airr/core/item_share.hpp"
 #include "airr/formats/design_spec.hpp"
 #include "airr/layout/scene.hpp"
 #include "airr/measure/design_metrics.hpp"
@@ -40,16 +41,11 @@ struct histogram_steps {
 };
 histogram_steps metric_histogram(const metric_distribution& d, int bins = 40);
 
-// Evaluates layouts 0 to n - 1 (`evaluate(i)`: empty when it is no valid layout) and returns
-// them in order. By default on this machine's threads; an MPI job shares them among its ranks.
-using layout_evaluation = std::function<std::optional<design_evaluation>(std::size_t)>;
-using layout_batch =
-    std::function<std::vector<std::optional<design_evaluation>>(std::size_t n, const layout_evaluation&)>;
-
 // Runs the Monte Carlo about `nominal` (the spec's base scene, or a layout the optimiser wrote);
-// deterministic for the spec's tolerance seed. `progress(done, total)` after each layout.
+// deterministic for the spec's tolerance seed. The layouts of each batch run on this machine's
+// cores, or as the items of `share` (an MPI job's ranks) when given. `progress(done, total)` after each layout.
 tolerance_result run_tolerance(const design_spec& spec, const scene& nominal,
                                const std::function<void(int, int)>& progress = {},
-                               const std::atomic<bool>* cancel = nullptr, const layout_batch& batch = {});
+                               const std::atomic<bool>* cancel = nullptr, const item_share& share = {});
 
 }  // namespace airr

@@ -8,6 +8,7 @@
 #include <functional>
 #include <vector>
 
+#include "airr/core/item_share.hpp"
 #include "airr/layout/scene.hpp"
 #include "airr/layout/viewing_zone.hpp"
 
@@ -38,10 +39,11 @@ struct full_zone_map {
 double stray_light_ratio(const scene& s, const glm::dvec3& eye, const full_zone_params& p = {});
 
 // Eyes run in parallel (each eye's render on one core; the maps do not depend on the number of
-// cores); `progress(done, total)` after every eye, from one worker at a time. Empty maps when
-// `cancel` was set.
+// cores), or as the items of `share` (an MPI job's ranks) when given; `progress(done, total)` after
+// every eye this process measured, from one worker at a time. Empty maps when `cancel` was set
+// (not heeded with `share`).
 full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zone_params& p = {},
                                 const std::function<void(int, int)>& progress = {},
-                                const std::atomic<bool>* cancel = nullptr);
+                                const std::atomic<bool>* cancel = nullptr, const item_share& share = {});
 
 }  // namespace airr
