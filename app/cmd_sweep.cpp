@@ -7,6 +7,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,7 @@
 #include "airr/layout/layout.hpp"
 #include "airr/measure/sweep.hpp"
 #include "commands.hpp"
+#include "mpi_job.hpp"
 #include "progress_bar.hpp"
 
 namespace {
@@ -137,13 +139,25 @@ void add_sweep_command(CLI::App& app) {
 
     if (!opt->map_png.empty() && opt->vary.size() != 2)
       throw airr::input_error("sweep: --png draws a floating distance x tilt map: give --vary for both");
-    progress_bar bar("sweep");
-    const auto r = airr::run_sweep(s, p, [&](double f, const std::string& detail) {
-      if (f < 1.0)
-        bar.update(f, detail);
-      else
-        bar.finish(detail);
-    });
+    // Under mpirun or srun the points are shared among the ranks (point i on rank i mod N); rank 0
+    // shows its share's progress (scaled to the job) and writes.
+    const mpi_job& job = this_job();
+    std::optional<progress_bar> bar;
+    bool finished = false;
+    if (job.root()) bar.emplace(job.size > 1 ? "sweep (" + std::to_string(job.size) + " ranks)" : "sweep");
+    const auto r = airr::run_sweep(
+        s, p,
+        [&](double f, const std::string& detail) {
+          if (!bar || finished) return;
+          if (f * job.size < 1.0) {
+            bar->update(f * job.size, detail);
+          } else {
+            bar->finish(detail);
+            finished = true;
+          }
+        },
+        job.size > 1 ? airr::item_share(share_items) : airr::item_share());
+    if (!job.root()) return;
 
     std::printf("route: %s; pixel %.6g mm on the aerial-image plane (its aperture is included)\n",
                 p.psf_route ? "model PSF" : ("slanted-edge render, " + std::to_string(p.spp) + " spp").c_str(),

@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
-# `airr render`, `airr tolerance` and `airr viewzone --full` under mpirun (Open MPI, one machine,
-# more ranks than cores): 2 and 3 ranks (an odd split) write the files one process writes (PNG byte for byte; EXR with the
-# image's components equal in every channel; the tolerance CSV, statistics and histograms; the
-# zone's CSV and maps); a rank killed mid-run ends the job within seconds with an error and
-# leaves no output file; --shard under mpirun is refused.
+# `airr render`, `sweep`, `tolerance` and `viewzone --full` under mpirun (Open MPI, one machine,
+# more ranks than cores): 2 and 3 ranks (an odd split) write the files one process writes (PNG
+# byte for byte; EXR with the image's components equal in every channel; the tolerance CSV,
+# statistics and histograms; the zone's and sweeps' CSV and maps); a rank killed mid-run ends the
+# job within seconds with an error and leaves no output file; --shard under mpirun is refused.
 set -euo pipefail
 airr="$1"
 default_scene="$2/assets/scenes/default.json"
@@ -54,6 +54,18 @@ for n in 2 3; do
   cmp "$tmp/zone1.csv" "$tmp/zone$n.csv" || { echo "$n ranks: the full viewing zone's CSV differs"; exit 1; }
   for f in "$tmp"/zone1*.png; do cmp "$f" "${f/zone1/zone$n}" || exit 1; done
   echo "$n ranks: the same full viewing zone as one process"
+done
+
+# Sweeps, by the model PSF and by rendered edges: the CSV and the map as one process's.
+for route in "--psf" "--spp 4"; do
+  sweep=(sweep "$default_scene" --vary floating_distance=150:250:100 --vary tilt=0:10:10 $route --set observer.width=96 --set observer.height=96)
+  "$airr" "${sweep[@]}" -o "$tmp/sweep1.csv" --png "$tmp/sweep1.png" >/dev/null 2>&1
+  for n in 2 3; do
+    "${mpi[@]}" -np $n "$airr" "${sweep[@]}" -o "$tmp/sweep$n.csv" --png "$tmp/sweep$n.png" >/dev/null 2>&1
+    cmp "$tmp/sweep1.csv" "$tmp/sweep$n.csv" || { echo "$n ranks: the sweep ($route) differs"; exit 1; }
+    cmp "$tmp/sweep1.png" "$tmp/sweep$n.png" || { echo "$n ranks: the sweep's map ($route) differs"; exit 1; }
+  done
+  echo "2 and 3 ranks: the same sweep ($route) as one process"
 done
 
 # --shard is for separate processes, not for an MPI job's ranks.

@@ -6,7 +6,9 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 
 #include <tbb/parallel_for.h>
@@ -46,6 +48,35 @@ psf_samples measure_psf(const scene& s, const sweep_params& p, sweep_point& pt) 
   return psf;
 }
 
+// The edge route's MTF at one point: its edge chart rendered to p.spp by `session` (made on first
+// use, edited after: an edit renders what a fresh session would) and measured.
+mtf_summary edge_point_mtf(std::unique_ptr<render_session>& session, const scene& s, const sweep_params& p,
+                           const std::string& label, const std::function<void(std::uint64_t)>& spp_done) {
+  std::uint64_t gen = 0;
+  if (!session) {
+    // No coarse preview: only the finished image is measured.
+    session = std::make_unique<render_session>(
+        s, session_params{.threads = p.threads, .target_spp = p.spp, .preview_stride = 1});
+  } else {
+    gen = session->edit(s);
+  }
+  render_snapshot snap;
+  while (true) {
+    snap = session->snapshot();
+    const bool current = snap.generation == gen;
+    if (current && (!snap.error.empty() || snap.spp >= p.spp)) break;
+    const std::uint64_t done = current ? snap.spp : 0;
+    if (spp_done) spp_done(done);
+    session->wait_for(gen, std::min<std::uint64_t>(p.spp, done + 1));
+  }
+  if (!snap.error.empty()) throw input_error(label + ": " + snap.error);
+  try {
+    return edge_route_mtf(s, snap, p.roi_fraction);
+  } catch (const std::exception& e) {
+    throw std::runtime_error(label + ": " + e.what());
+  }
+}
+
 }  // namespace
 
 sweep_axis parse_sweep_axis(const std::string& text) {
@@ -62,7 +93,8 @@ sweep_axis parse_sweep_axis(const std::string& text) {
 
 std::vector<double> sweep_values(const sweep_axis& a) { return range_values(a.range); }
 
-sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_progress& progress) {
+sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_progress& progress,
+                       const item_share& share) {
   if (p.axes.empty()) throw input_error("--vary: give floating_distance=start:end:step and/or tilt=start:end:step");
   std::vector<double> distances = {airr::floating_distance(base)}, tilts = {base.sheet().pose.pitch_deg};
   bool d_set = false, tilt_set = false;
@@ -106,7 +138,43 @@ sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_pro
     r.points[i].floating_distance_mm = grid[i].first;
     r.points[i].tilt_deg = grid[i].second;
   }
-  if (p.psf_route) {
+  std::unique_ptr<render_session> session;
+  if (share) {
+    // Each point as a shared item (an MPI job's ranks): its numbers travel, the edge route's
+    // render on a session of its own.
+    const std::size_t width = 5 + base.retroreflectors.size();
+    std::mutex mutex;
+    int done = 0;
+    const std::vector<double> values = share(scenes.size(), width, [&](std::size_t i, double* o) {
+      sweep_point pt = r.points[i];
+      const psf_samples psf = measure_psf(scenes[i], p, pt);
+      mtf_summary m;
+      if (p.psf_route) {
+        m = psf_route_mtf(psf, make_camera(scenes[i]).mm_per_pixel);
+      } else {
+        std::unique_ptr<render_session> own;
+        m = edge_point_mtf(own, scenes[i], p, point_label(pt.floating_distance_mm, pt.tilt_deg), {});
+        own->stop();
+      }
+      o[0] = m.mean_mtf;
+      o[1] = m.mtf50_lp_per_mm.value_or(std::numeric_limits<double>::quiet_NaN());
+      o[2] = pt.r50_mm;
+      o[3] = pt.brightness;
+      o[4] = double(std::min(pt.sheet_brightness.size(), width - 5));
+      for (std::size_t k = 0; k < std::size_t(o[4]); ++k) o[5 + k] = pt.sheet_brightness[k];
+      std::lock_guard lock(mutex);
+      if (progress) progress(double(++done) / n, detail_of(pt));
+    });
+    for (std::size_t i = 0; i < scenes.size(); ++i) {
+      const double* v = values.data() + i * width;
+      sweep_point& pt = r.points[i];
+      pt.mean_mtf = v[0];
+      if (!std::isnan(v[1])) pt.mtf50_lp_per_mm = v[1];
+      pt.r50_mm = v[2];
+      pt.brightness = v[3];
+      pt.sheet_brightness.assign(v + 5, v + 5 + std::size_t(v[4]));
+    }
+  } else if (p.psf_route) {
     // Points in parallel, a batch at a time so that progress is reported between batches; each
     // point's result depends on its layout and seed alone.
     const std::size_t batch = 8;
@@ -120,44 +188,20 @@ sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_pro
         r.points[i].mtf50_lp_per_mm = m.mtf50_lp_per_mm;
       });
     }
-  }
-  std::unique_ptr<render_session> session;
-  for (std::size_t i = 0; i < scenes.size() && !p.psf_route; ++i) {
-    const scene& s = scenes[i];
-    sweep_point& pt = r.points[i];
-    const std::string label = point_label(pt.floating_distance_mm, pt.tilt_deg);
-    const std::string detail = detail_of(pt);
-    if (progress) progress(double(i) / n, detail);
-    measure_psf(s, p, pt);
-    mtf_summary m;
-    {
-      std::uint64_t gen = 0;
-      if (!session) {
-        // No coarse preview: only the finished image is measured.
-        session = std::make_unique<render_session>(
-            s, session_params{.threads = p.threads, .target_spp = p.spp, .preview_stride = 1});
-      } else {
-        gen = session->edit(s);
-      }
-      render_snapshot snap;
-      while (true) {
-        snap = session->snapshot();
-        const bool current = snap.generation == gen;
-        if (current && (!snap.error.empty() || snap.spp >= p.spp)) break;
-        const std::uint64_t done = current ? snap.spp : 0;
-        if (progress)
-          progress((double(i) + double(done) / double(p.spp)) / n, detail + ", " + std::to_string(done) + " spp");
-        session->wait_for(gen, std::min<std::uint64_t>(p.spp, done + 1));
-      }
-      if (!snap.error.empty()) throw input_error(label + ": " + snap.error);
-      try {
-        m = edge_route_mtf(s, snap, p.roi_fraction);
-      } catch (const std::exception& e) {
-        throw std::runtime_error(label + ": " + e.what());
-      }
+  } else {
+    for (std::size_t i = 0; i < scenes.size(); ++i) {
+      sweep_point& pt = r.points[i];
+      const std::string detail = detail_of(pt);
+      if (progress) progress(double(i) / n, detail);
+      measure_psf(scenes[i], p, pt);
+      const mtf_summary m = edge_point_mtf(
+          session, scenes[i], p, point_label(pt.floating_distance_mm, pt.tilt_deg), [&](std::uint64_t spp) {
+            if (progress)
+              progress((double(i) + double(spp) / double(p.spp)) / n, detail + ", " + std::to_string(spp) + " spp");
+          });
+      pt.mean_mtf = m.mean_mtf;
+      pt.mtf50_lp_per_mm = m.mtf50_lp_per_mm;
     }
-    pt.mean_mtf = m.mean_mtf;
-    pt.mtf50_lp_per_mm = m.mtf50_lp_per_mm;
   }
   if (session) session->stop();
   if (progress) progress(1.0, std::to_string(scenes.size()) + " points");

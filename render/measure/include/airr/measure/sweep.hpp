@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "airr/core/item_share.hpp"
 #include "airr/core/number_range.hpp"
 #include "airr/layout/scene.hpp"
 
@@ -58,8 +59,11 @@ struct sweep_result {
 
 using sweep_progress = std::function<void(double fraction, const std::string& detail)>;
 
-// Checks every point's layout first (input_error naming the point), then measures.
-sweep_result run_sweep(const scene& s, const sweep_params& p, const sweep_progress& progress = {});
+// Checks every point's layout first (input_error naming the point), then measures: on this
+// machine's cores, or as the items of `share` (an MPI job's ranks; progress then counts this
+// process's points).
+sweep_result run_sweep(const scene& s, const sweep_params& p, const sweep_progress& progress = {},
+                       const item_share& share = {});
 
 // Header "floating_distance_mm,tilt_deg,mean_mtf_0_1,mtf50_lp_per_mm,r50_mm"; an MTF50 that was
 // not reached is an empty field.
