@@ -113,7 +113,9 @@ tolerance_result run_tolerance(const design_spec& spec, const scene& nominal,
     return e;
   };
   int passing = 0;
-  const std::size_t batch_size = 16;
+  // Shared among an MPI job's ranks, a batch is large enough to keep many ranks busy between
+  // exchanges.
+  const std::size_t batch_size = share ? 1024 : 16;
   for (std::size_t first = 0; first < draws.size(); first += batch_size) {
     if (cancel && cancel->load()) {
       out.cancelled = true;
