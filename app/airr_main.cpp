@@ -6,16 +6,10 @@
 
 #include "airr_version.hpp"
 #include "commands.hpp"
+#include "item_shards.hpp"
 #include "mpi_job.hpp"
 
-int main(int argc, char** argv) {
-  // Past a file-size limit (ulimit -f) a write then fails with an error naming the file, instead
-  // of the signal killing the program half-way.
-  std::signal(SIGXFSZ, SIG_IGN);
-  const mpi_job& job = this_job();
-  CLI::App app{"airr: simulate aerial imaging by retroreflection (AIRR)"};
-  app.set_version_flag("--version", std::string("airr ") + AIRR_VERSION);
-  app.require_subcommand(1);
+void add_commands(CLI::App& app) {
   add_render_command(app);
   add_bench_command(app);
   add_make_assets_command(app);
@@ -31,6 +25,18 @@ int main(int argc, char** argv) {
   add_viewzone_command(app);
   add_export_gltf_command(app);
   add_merge_command(app);
+}
+
+int main(int argc, char** argv) {
+  // Past a file-size limit (ulimit -f) a write then fails with an error naming the file, instead
+  // of the signal killing the program half-way.
+  std::signal(SIGXFSZ, SIG_IGN);
+  const mpi_job& job = this_job();
+  CLI::App app{"airr: simulate aerial imaging by retroreflection (AIRR)"};
+  app.set_version_flag("--version", std::string("airr ") + AIRR_VERSION);
+  app.require_subcommand(1);
+  add_commands(app);
+  set_command_line(argc, argv);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -1,9 +1,11 @@
-// airr merge SHARD... -o OUT.exr|OUT.png: the render its shards (airr render --shard i/N) make up.
+// airr merge SHARD... -o OUT.exr|OUT.png: the render its shards (airr render --shard i/N) make up;
+// airr merge PART...: the outputs of the command whose partials (--shard i/N --part F) they are.
 #include <cstdlib>
 
 #include "airr/core/error.hpp"
 #include "airr/render/render_shards.hpp"
 #include "commands.hpp"
+#include "item_shards.hpp"
 
 void add_merge_command(CLI::App& app) {
   struct options {
@@ -11,10 +13,21 @@ void add_merge_command(CLI::App& app) {
     std::string out;
   };
   auto opt = std::make_shared<options>();
-  auto* cmd = app.add_subcommand("merge", "Put the shards of a render (airr render --shard i/N) together");
-  cmd->add_option("shards", opt->shards, "The shards' EXR files, all N of them, in any order")->required();
-  cmd->add_option("-o,--output", opt->out, "The whole render (.exr or .png), as one process writes it")->required();
+  auto* cmd = app.add_subcommand("merge",
+                                 "Put the shards of a render (airr render --shard i/N) together, or finish the work "
+                                 "of a sweep, full viewing zone or tolerance study from its partials (--part)");
+  cmd->add_option("shards", opt->shards, "The shards' EXR files or partials, all N of them, in any order")->required();
+  cmd->add_option("-o,--output", opt->out,
+                  "Render shards: the whole render (.exr or .png), as one process writes it (partials write their "
+                  "command's own outputs)");
   cmd->callback([opt] {
+    if (are_partials(opt->shards)) {
+      if (!opt->out.empty())
+        throw airr::input_error("merge: -o is for render shards; partials write the outputs their command names");
+      merge_partials(opt->shards);
+      return;
+    }
+    if (opt->out.empty()) throw airr::input_error("merge: render shards need -o OUT.exr or OUT.png");
     const airr::render_image whole = airr::merge_render_shards(opt->shards);
     std::vector<airr::image_layer> layers;
     for (const auto& [name, img] : whole.layers) layers.push_back({name, &img});

@@ -17,6 +17,7 @@
 #include "airr/layout/layout.hpp"
 #include "airr/measure/sweep.hpp"
 #include "commands.hpp"
+#include "item_shards.hpp"
 #include "mpi_job.hpp"
 #include "progress_bar.hpp"
 
@@ -105,6 +106,7 @@ void add_sweep_command(CLI::App& app) {
     std::uint64_t spp = 64;
     std::uint64_t samples = 100000;
     int threads = 0;
+    shard_options shards;
   };
   auto opt = std::make_shared<options>();
   auto* cmd = app.add_subcommand("sweep", "Mean MTF, MTF50 and PSF radius over floating distance and/or tilt");
@@ -125,6 +127,7 @@ void add_sweep_command(CLI::App& app) {
       ->check(CLI::IsMember({"r50", "mean_mtf", "mtf50"}));
   cmd->add_option("--set", opt->sets, "Override a scene value, e.g. retroreflectors.0.model.preset=rf-ay");
   cmd->add_option("--threads", opt->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
+  add_shard_options(cmd, opt->shards);
   cmd->callback([opt] {
     airr::sweep_params p;
     for (const auto& v : opt->vary) p.axes.push_back(airr::parse_sweep_axis(v));
@@ -156,8 +159,8 @@ void add_sweep_command(CLI::App& app) {
             finished = true;
           }
         },
-        job.size > 1 ? airr::item_share(share_items) : airr::item_share());
-    if (!job.root()) return;
+        command_item_share(opt->shards));
+    if (!job.root() || write_shard_part(opt->shards)) return;
 
     std::printf("route: %s; pixel %.6g mm on the aerial-image plane (its aperture is included)\n",
                 p.psf_route ? "model PSF" : ("slanted-edge render, " + std::to_string(p.spp) + " spp").c_str(),

@@ -19,6 +19,7 @@
 #include "airr/formats/scene_json.hpp"
 #include "airr/measure/design_tolerance.hpp"
 #include "commands.hpp"
+#include "item_shards.hpp"
 #include "mpi_job.hpp"
 #include "progress_bar.hpp"
 
@@ -31,6 +32,7 @@ std::atomic<bool> interrupted{false};
 struct options {
   std::string spec, scene, csv, png;
   int threads = 0;
+  shard_options shards;
 };
 
 std::string samples_csv(const airr::tolerance_result& r) {
@@ -73,18 +75,19 @@ void run(const options& opt) {
   const airr::design_spec spec = airr::load_design_spec(opt.spec);
   const airr::scene nominal = opt.scene.empty() ? spec.base : airr::load_scene(opt.scene);
   const mpi_job& job = this_job();
-  if (job.size > 1) {
-    // The ranks share each batch of layouts and all take every result, in step: no rank may stop
-    // on its own (mpirun ends the whole job on Ctrl-C), and only rank 0 reports and writes.
+  if (const airr::item_share share = command_item_share(opt.shards)) {
+    // Shared (an MPI job's ranks, a shard, a merge's partials), the layouts are taken in step: no
+    // process stops on its own (mpirun ends the whole job on Ctrl-C); rank 0 reports and writes,
+    // a shard writes its partial alone.
     std::optional<progress_bar> bar;
-    if (job.root()) bar.emplace("tolerance (" + std::to_string(job.size) + " ranks)");
+    if (job.root()) bar.emplace(job.size > 1 ? "tolerance (" + std::to_string(job.size) + " ranks)" : "tolerance");
     const airr::tolerance_result r = airr::run_tolerance(
         spec, nominal,
         [&](int done, int total) {
           if (bar) bar->update(double(done) / total);
         },
-        nullptr, share_items);
-    if (!bar) return;
+        nullptr, share);
+    if (!bar || write_shard_part(opt.shards)) return;
     bar->finish("done");
     report(opt, spec, r, bar->seconds());
     return;
@@ -141,5 +144,6 @@ void add_tolerance_command(CLI::App& app) {
   cmd->add_option("-o,--output", opt->csv, "CSV of every layout's metrics (default: beside the spec)");
   cmd->add_option("--png", opt->png, "Folder for one histogram PNG per metric");
   cmd->add_option("--threads", opt->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
+  add_shard_options(cmd, opt->shards);
   cmd->callback([opt] { run(*opt); });
 }

@@ -17,6 +17,7 @@
 #include "airr/measure/viewing_zone_full.hpp"
 #include "airr/render/prop_hits.hpp"
 #include "commands.hpp"
+#include "item_shards.hpp"
 #include "mpi_job.hpp"
 #include "progress_bar.hpp"
 
@@ -71,6 +72,7 @@ void add_viewzone_command(CLI::App& app) {
     std::vector<std::string> sets;
     bool full = false;
     std::uint64_t spp = 16;
+    shard_options shards;
   };
   auto opt = std::make_shared<options>();
   auto* cmd = app.add_subcommand(
@@ -97,6 +99,7 @@ void add_viewzone_command(CLI::App& app) {
   cmd->add_option("--spp", opt->spp, "Samples per pixel of each eye's render with --full (default 16)")
       ->check(CLI::Range(1, 65536));
   cmd->add_option("--set", opt->sets, "Override a scene value, e.g. retroreflectors.0.pose.pitch_deg=10");
+  add_shard_options(cmd, opt->shards);
   cmd->callback([opt] {
     std::vector<airr::scene_override> overrides;
     for (const auto& s : opt->sets) overrides.push_back(airr::parse_override(s));
@@ -116,6 +119,7 @@ void add_viewzone_command(CLI::App& app) {
     // Under mpirun or srun the full pass's eyes are shared among the ranks (eye i on rank i mod N),
     // rank 0 showing its share's progress and writing; the geometric pass is rank 0's alone.
     const mpi_job& job = this_job();
+    if (!opt->shards.shard.empty() && !opt->full) throw airr::input_error("--shard: only with --full");
     if (!job.root() && !opt->full) return;
     std::optional<progress_bar> bar;
     if (job.root())
@@ -131,8 +135,8 @@ void add_viewzone_command(CLI::App& app) {
     airr::full_zone_map map;
     if (opt->full) {
       map = airr::full_viewing_zone(s, g, {.rows_per_eye = opt->rows, .render_spp = opt->spp}, report, nullptr,
-                                    job.size > 1 ? airr::item_share(share_items) : airr::item_share());
-      if (!job.root()) return;
+                                    command_item_share(opt->shards));
+      if (!job.root() || write_shard_part(opt->shards)) return;
     } else {
       const airr::viewing_zone_map geometric =
           airr::geometric_viewing_zone(s, g, airr::scene_prop_hits(s), opt->rows, report);

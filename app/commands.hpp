@@ -24,6 +24,8 @@ void add_tolerance_command(CLI::App& app);
 void add_viewzone_command(CLI::App& app);
 void add_export_gltf_command(CLI::App& app);
 void add_merge_command(CLI::App& app);
+// Every command above (the program's, and a merge's run of a shard's command line).
+void add_commands(CLI::App& app);
 
 // --linear-input / --srgb-input: how integer image files are decoded (default: the loader's rule).
 inline void add_image_encoding_flags(CLI::App* cmd, airr::image_encoding& encoding) {
