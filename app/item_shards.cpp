@@ -1,6 +1,7 @@
 #include "item_shards.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <limits>
@@ -131,8 +132,13 @@ airr::item_share command_item_share(const shard_options& o) {
 bool write_shard_part(const shard_options& o) {
   if (o.shard.empty() || state().replay) return false;
   const std::vector<std::string> command = without_shard_options(state().command_line);
-  nlohmann::json j = {{"format", part_format}, {"version", 1},       {"airr_version", AIRR_VERSION},
-                      {"shard", o.shard},      {"command", command}, {"inputs", input_fingerprints(command)}};
+  nlohmann::json j = {{"format", part_format},
+                      {"version", 1},
+                      {"airr_version", AIRR_VERSION},
+                      {"shard", o.shard},
+                      {"command", command},
+                      {"directory", std::filesystem::current_path().string()},
+                      {"inputs", input_fingerprints(command)}};
   nlohmann::json calls = nlohmann::json::array();
   for (const recorded_call& c : state().calls) {
     nlohmann::json items = nlohmann::json::array();
@@ -173,7 +179,7 @@ void merge_partials(const std::vector<std::string>& paths) {
     part.place = airr::parse_shard(part.j.value("shard", ""), p + ": shard");
     if (!parts.empty()) {
       const nlohmann::json& first = parts.front().j;
-      for (const char* key : {"airr_version", "command", "inputs"}) {
+      for (const char* key : {"airr_version", "command", "directory", "inputs"}) {
         if (part.j[key] != first[key])
           throw airr::input_error(p + ": not a shard of the work " + parts.front().path + " is a shard of (its " + key +
                                   " differs)");
@@ -197,6 +203,13 @@ void merge_partials(const std::vector<std::string>& paths) {
   }
   const nlohmann::json& first = parts.front().j;
   const std::vector<std::string> command = first.at("command").get<std::vector<std::string>>();
+  // The command line's paths are the shards' working directory's: the merge runs it there.
+  const std::string directory = first.value("directory", "");
+  std::error_code ec;
+  std::filesystem::current_path(directory, ec);
+  if (ec)
+    throw airr::input_error(parts.front().path + ": the shards ran in " + directory + ", which is not here (" +
+                            ec.message() + ")");
   if (input_fingerprints(command) != first.at("inputs"))
     throw airr::input_error(parts.front().path + ": an input file changed since the shards ran");
   // Every call's items from the shard that computed them.

@@ -2,8 +2,8 @@
 // --shard i/N --part FILE for the commands whose work is numbered items (sweep, viewzone --full,
 // tolerance): the shard computes items i, i + N, ... of each of the command's batches and writes
 // them, with the command line, to FILE (format airr-partial), and no other output. `airr merge` of
-// all N partials runs the command line again with every item's numbers read from them, so it
-// writes what one process writes.
+// all N partials runs the command line again, in the shards' working directory, with every item's
+// numbers read from them, so it writes what one process writes.
 #include <string>
 #include <vector>
 
