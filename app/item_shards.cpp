@@ -166,7 +166,7 @@ bool are_partials(const std::vector<std::string>& paths) {
 
 void merge_partials(const std::vector<std::string>& paths) {
   std::vector<partial> parts;
-  std::map<int, std::string> held;
+  airr::shard_roll roll;
   for (const std::string& p : paths) {
     partial part{p, {}, {}};
     try {
@@ -188,19 +188,11 @@ void merge_partials(const std::vector<std::string>& paths) {
         throw airr::input_error(p + ": split into " + std::to_string(part.place.count) + " shards, not " +
                                 std::to_string(parts.front().place.count));
     }
-    if (const auto it = held.find(part.place.index); it != held.end())
-      throw airr::input_error(p + ": shard " + part.j.value("shard", "") + " again (" + it->second + " holds it too)");
-    held[part.place.index] = p;
+    roll.add(p, part.place);
     parts.push_back(std::move(part));
   }
   const int count = parts.front().place.count;
-  for (int i = 0; i < count; ++i) {
-    if (held.count(i)) continue;
-    std::string given;
-    for (const auto& [k, p] : held) given += (given.empty() ? "" : ", ") + p + " (" + std::to_string(k) + ")";
-    throw airr::input_error("merge: shard " + std::to_string(i) + "/" + std::to_string(count) + " is missing; given " +
-                            given);
-  }
+  roll.check_complete(count);
   const nlohmann::json& first = parts.front().j;
   const std::vector<std::string> command = first.at("command").get<std::vector<std::string>>();
   // The command line's paths are the shards' working directory's: the merge runs it there.

@@ -130,30 +130,37 @@ void write_render_shard(const std::string& path, const render_image& whole, cons
   write_image(path, rows_of(whole.rgb, first, end), meta, 1.0f, layers);
 }
 
+void shard_roll::add(const std::string& path, const shard_index& s) {
+  if (const auto it = held_.find(s.index); it != held_.end())
+    throw input_error(path + ": shard " + std::to_string(s.index) + "/" + std::to_string(s.count) + " again (" +
+                      it->second + " holds it too)");
+  held_[s.index] = path;
+}
+
+void shard_roll::check_complete(int count) const {
+  for (int i = 0; i < count; ++i) {
+    if (held_.count(i)) continue;
+    std::string given;
+    for (const auto& [k, p] : held_) given += (given.empty() ? "" : ", ") + p + " (" + std::to_string(k) + ")";
+    throw input_error("merge: shard " + std::to_string(i) + "/" + std::to_string(count) + " is missing; given " +
+                      given);
+  }
+}
+
 render_image merge_render_shards(const std::vector<std::string>& paths) {
   if (paths.empty()) throw input_error("merge: no shards given");
   std::vector<read_shard> shards;
-  std::map<int, std::string> held;  // shard index -> file
+  shard_roll roll;
   for (const std::string& p : paths) {
     read_shard s = read_one(p);
     if (!shards.empty()) {
       if (const std::string why = differs(shards.front(), s); !why.empty())
         throw input_error(p + ": not a shard of the render " + shards.front().path + " is a shard of: " + why);
     }
-    if (const auto it = held.find(s.place.index); it != held.end())
-      throw input_error(p + ": shard " + std::to_string(s.place.index) + "/" + std::to_string(s.place.count) +
-                        " again (" + it->second + " holds it too)");
-    held[s.place.index] = p;
+    roll.add(p, s.place);
     shards.push_back(std::move(s));
   }
-  const int count = shards.front().place.count;
-  for (int i = 0; i < count; ++i) {
-    if (held.count(i)) continue;
-    std::string given;
-    for (const auto& [k, p] : held) given += (given.empty() ? "" : ", ") + p + " (" + std::to_string(k) + ")";
-    throw input_error("merge: shard " + std::to_string(i) + "/" + std::to_string(count) + " is missing; given " +
-                      given);
-  }
+  roll.check_complete(shards.front().place.count);
   const read_shard& first = shards.front();
   render_image out;
   out.meta = first.image.meta;

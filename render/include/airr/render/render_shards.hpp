@@ -3,6 +3,7 @@
 // [i h / N, (i + 1) h / N) and writes them, with the render's metadata and their place, to an EXR;
 // merge_render_shards puts the shards together into the image one process would have written,
 // and refuses shards that are missing, repeated, or of another render.
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,6 +22,19 @@ shard_index parse_shard(const std::string& text, const std::string& what);
 
 // The rows [first, end) shard s holds of an image `height` rows high.
 std::pair<int, int> shard_rows(const shard_index& s, int height);
+
+// Which file holds each shard, as a merge takes them in: a shard given twice is refused naming
+// both files, and a missing one naming the files given.
+class shard_roll {
+ public:
+  // Throws input_error "<path>: shard i/N again (<other> holds it too)".
+  void add(const std::string& path, const shard_index& s);
+  // Throws input_error "merge: shard i/N is missing; given <files>" unless all `count` were added.
+  void check_complete(int count) const;
+
+ private:
+  std::map<int, std::string> held_;
+};
 
 // A render's pixels, its layers (the image's components) and its metadata.
 struct render_image {
