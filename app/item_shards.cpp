@@ -1,5 +1,6 @@
 #include "item_shards.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -64,11 +65,14 @@ std::vector<std::string> without_shard_options(const std::vector<std::string>& a
   return out;
 }
 
-// The contents' hash of each argument that names a file (the scene, a spec): a partial of inputs
-// changed since is refused.
+// The contents' hash of each argument that names an existing file and is no output (the scene, a
+// spec): a partial of inputs changed since is refused.
 nlohmann::json input_fingerprints(const std::vector<std::string>& args) {
+  const std::vector<std::string> outputs = {"-o", "--output", "--png", "--plot", "--csv"};
   nlohmann::json out = nlohmann::json::object();
-  for (const std::string& a : args) {
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (i > 0 && std::find(outputs.begin(), outputs.end(), args[i - 1]) != outputs.end()) continue;
     std::error_code ec;
     if (!std::filesystem::is_regular_file(a, ec)) continue;
     out[a] = std::to_string(std::hash<std::string>{}(airr::read_text_file(a)));
