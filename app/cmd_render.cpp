@@ -79,13 +79,19 @@ void add_render_command(CLI::App& app) {
       std::tie(params.first_row, params.end_row) = airr::shard_rows(*rows, s.observer.height);
     }
     airr::render_session session(s, params);
-    // Rank 0's share stands for the job's progress: the ranks' shares are equal.
     std::optional<progress_bar> bar;
-    if (job.root()) bar.emplace(job.size > 1 ? "render (rank 0 of " + std::to_string(job.size) + ")" : "render");
+    if (job.root()) bar.emplace(job.size > 1 ? "render (" + std::to_string(job.size) + " ranks)" : "render");
     airr::render_snapshot snap;
-    while ((snap = session.snapshot()).spp < opt->spp) {
-      if (bar) bar->update(double(snap.spp) / double(opt->spp), std::to_string(snap.spp) + " spp");
-      session.wait_for(0, std::min<std::uint64_t>(opt->spp, snap.spp + 1));
+    while (true) {
+      snap = session.snapshot();
+      // The job's progress is its slowest rank's: every rank counts, each time, until all are done.
+      const std::uint64_t job_spp = job.size > 1 ? job_min(snap.spp) : snap.spp;
+      if (job_spp >= opt->spp) break;
+      if (bar) bar->update(double(job_spp) / double(opt->spp), std::to_string(job_spp) + " spp");
+      if (snap.spp < opt->spp)
+        session.wait_for(0, std::min<std::uint64_t>(opt->spp, snap.spp + 1));
+      else
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     session.stop();
     if (bar)

@@ -143,23 +143,28 @@ void add_sweep_command(CLI::App& app) {
     if (!opt->map_png.empty() && opt->vary.size() != 2)
       throw airr::input_error("sweep: --png draws a floating distance x tilt map: give --vary for both");
     // Under mpirun or srun the points are shared among the ranks (point i on rank i mod N); rank 0
-    // shows its share's progress (scaled to the job) and writes.
+    // shows the job's progress and writes.
     const mpi_job& job = this_job();
     std::optional<progress_bar> bar;
     bool finished = false;
     if (job.root()) bar.emplace(job.size > 1 ? "sweep (" + std::to_string(job.size) + " ranks)" : "sweep");
+    auto show = [&](double f, const std::string& detail) {
+      if (!bar || finished) return;
+      if (f < 1.0) {
+        bar->update(f, detail);
+      } else {
+        bar->finish(detail);
+        finished = true;
+      }
+    };
     const auto r = airr::run_sweep(
         s, p,
         [&](double f, const std::string& detail) {
-          if (!bar || finished) return;
-          if (f * job.size < 1.0) {
-            bar->update(f * job.size, detail);
-          } else {
-            bar->finish(detail);
-            finished = true;
-          }
+          if (job.size == 1) show(f, detail);
         },
-        command_item_share(opt->shards));
+        command_item_share(opt->shards, [&](std::size_t done, std::size_t n) {
+          show(double(done) / double(n), std::to_string(done) + " of " + std::to_string(n) + " points");
+        }));
     if (!job.root() || write_shard_part(opt->shards)) return;
 
     std::printf("route: %s; pixel %.6g mm on the aerial-image plane (its aperture is included)\n",

@@ -123,19 +123,22 @@ void add_viewzone_command(CLI::App& app) {
     if (!job.root() && !opt->full) return;
     std::optional<progress_bar> bar;
     if (job.root())
-      bar.emplace(opt->full ? job.size > 1 ? "viewzone (full, rank 0's share of " + std::to_string(job.size) + ")"
-                                           : "viewzone (full)"
-                            : "viewzone");
-    const int share = job.size;
+      bar.emplace(opt->full
+                      ? job.size > 1 ? "viewzone (full, " + std::to_string(job.size) + " ranks)" : "viewzone (full)"
+                      : "viewzone");
+    // This process's eyes (alone, or a shard's), or in an MPI job the whole job's, counted by rank 0.
     auto report = [&](int done, int total) {
-      if (bar && done * share < total)
-        bar->update(double(done * share) / total,
-                    std::to_string(done * share) + " of " + std::to_string(total) + " eyes");
+      if (bar && done < total)
+        bar->update(double(done) / total, std::to_string(done) + " of " + std::to_string(total) + " eyes");
+    };
+    auto local_report = [&](int done, int total) {
+      if (job.size == 1) report(done, total);
     };
     airr::full_zone_map map;
     if (opt->full) {
-      map = airr::full_viewing_zone(s, g, {.rows_per_eye = opt->rows, .render_spp = opt->spp}, report, nullptr,
-                                    command_item_share(opt->shards));
+      map = airr::full_viewing_zone(
+          s, g, {.rows_per_eye = opt->rows, .render_spp = opt->spp}, local_report, nullptr,
+          command_item_share(opt->shards, [&](std::size_t done, std::size_t n) { report(int(done), int(n)); }));
       if (!job.root() || write_shard_part(opt->shards)) return;
     } else {
       const airr::viewing_zone_map geometric =

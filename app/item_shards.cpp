@@ -96,7 +96,8 @@ void add_shard_options(CLI::App* cmd, shard_options& o) {
 
 void set_command_line(int argc, char** argv) { state().command_line.assign(argv + 1, argv + argc); }
 
-airr::item_share command_item_share(const shard_options& o) {
+airr::item_share command_item_share(const shard_options& o,
+                                    const std::function<void(std::size_t, std::size_t)>& job_progress) {
   shard_state& st = state();
   if (st.replay) {
     return [&st](std::size_t n, std::size_t width, const airr::item_compute&) {
@@ -129,7 +130,10 @@ airr::item_share command_item_share(const shard_options& o) {
       return all;
     };
   }
-  if (this_job().size > 1) return share_items;
+  if (this_job().size > 1)
+    return [job_progress](std::size_t n, std::size_t width, const airr::item_compute& compute) {
+      return share_items(n, width, compute, job_progress);
+    };
   return {};
 }
 

@@ -4,6 +4,7 @@
 // them, with the command line, to FILE (format airr-partial), and no other output. `airr merge` of
 // all N partials runs the command line again, in the shards' working directory, with every item's
 // numbers read from them, so it writes what one process writes.
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -22,8 +23,10 @@ void add_shard_options(CLI::App* cmd, shard_options& o);
 void set_command_line(int argc, char** argv);
 
 // How the command's items run: read back from partials in a merge; the shard's own items in a
-// shard (the others NaN); shared among the ranks in an MPI job; else on the cores (empty).
-airr::item_share command_item_share(const shard_options& o);
+// shard (the others zeros); shared among the ranks in an MPI job, rank 0 told the job's progress
+// (`job_progress(done, n)`); else on the cores (empty).
+airr::item_share command_item_share(const shard_options& o,
+                                    const std::function<void(std::size_t, std::size_t)>& job_progress = {});
 
 // In a shard, writes its partial (atomically) and returns true: the command writes nothing else.
 bool write_shard_part(const shard_options& o);

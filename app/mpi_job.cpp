@@ -62,13 +62,38 @@ std::vector<float> gather_floats(const std::vector<float>& mine) {
 #endif
 }
 
-std::vector<double> share_items(std::size_t n, std::size_t width, const airr::item_compute& compute) {
+std::uint64_t job_min(std::uint64_t mine) {
+  if (this_job().size == 1) return mine;
+#ifdef AIRR_WITH_MPI
+  unsigned long long v = mine, least = 0;
+  MPI_Allreduce(&v, &least, 1, MPI_UNSIGNED_LONG_LONG, MPI_MIN, MPI_COMM_WORLD);
+  return least;
+#else
+  throw std::logic_error("an MPI job in a build without MPI");
+#endif
+}
+
+std::vector<double> share_items(std::size_t n, std::size_t width, const airr::item_compute& compute,
+                                const std::function<void(std::size_t, std::size_t)>& progress) {
   const mpi_job& job = this_job();
   const std::size_t ranks = std::size_t(job.size), rank = std::size_t(job.rank);
   const auto items_of = [&](std::size_t r) { return r < n ? (n - r + ranks - 1) / ranks : 0; };
   std::vector<double> mine(items_of(rank) * width);
-  tbb::parallel_for(std::size_t(0), items_of(rank),
-                    [&](std::size_t k) { compute(rank + k * ranks, mine.data() + k * width); });
+  // The same rounds on every rank (rank 0 has the most items), each ended by counting the job's.
+  const std::size_t rounds = 20, slice = (items_of(0) + rounds - 1) / rounds;
+  for (std::size_t round = 0; round < rounds; ++round) {
+    const std::size_t first = std::min(items_of(rank), round * slice), end = std::min(items_of(rank), first + slice);
+    tbb::parallel_for(first, end, [&](std::size_t k) { compute(rank + k * ranks, mine.data() + k * width); });
+    if (ranks == 1) {
+      if (progress) progress(end, n);
+      continue;
+    }
+#ifdef AIRR_WITH_MPI
+    unsigned long long done = end, total = 0;
+    MPI_Allreduce(&done, &total, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, MPI_COMM_WORLD);
+    if (progress && job.root()) progress(std::size_t(total), n);
+#endif
+  }
   if (ranks == 1) return mine;
 #ifdef AIRR_WITH_MPI
   std::vector<int> counts(ranks), offsets(ranks);

@@ -2,6 +2,7 @@
 // The processes of an MPI job when `airr` runs under mpirun or srun (a build with AIRR_MPI), or
 // this process alone. MPI starts only under a launcher, so `airr` alone never needs one.
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -19,8 +20,13 @@ struct mpi_job {
 const mpi_job& this_job();
 
 // The job's item_share (airr/core/item_share.hpp): item i computed by rank i % size, on its
-// threads, and every rank given all n x width numbers, in item order.
-std::vector<double> share_items(std::size_t n, std::size_t width, const airr::item_compute& compute);
+// threads, and every rank given all n x width numbers, in item order. The ranks take their items in
+// 20 rounds and count the job's finished items after each, for rank 0's `progress(done, n)`.
+std::vector<double> share_items(std::size_t n, std::size_t width, const airr::item_compute& compute,
+                                const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+// The smallest of the ranks' values, on every rank (every rank must call it).
+std::uint64_t job_min(std::uint64_t mine);
 
 // Every rank's floats at rank 0, in rank order (the other ranks get nothing back).
 std::vector<float> gather_floats(const std::vector<float>& mine);
