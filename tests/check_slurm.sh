@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # A real Slurm on this machine: munge, slurmctld and slurmd on localhost, configured in a temporary
-# folder; the packaged batch script (packaging/slurm/airr-render-array.sbatch) submitted as an
-# array of 3 shards, waited for, merged with `airr merge`, and compared with one process's render
-# (PNG byte for byte). Skipped (exit 77) with the reason only where the daemons cannot start.
+# folder; the packaged batch script (packaging/slurm/airr-array.sbatch) submitted as an array of 3
+# shards of a render and of a sweep, waited for, merged with `airr merge`, and compared with one
+# process's files (byte for byte). Skipped (exit 77) with the reason only where the daemons cannot start.
 set -euo pipefail
 airr=$(realpath "$1")
 source_dir=$(realpath "$2")
@@ -69,8 +69,19 @@ sinfo -h -o %t | grep -q idle || skip "the node did not come up: $(tail -1 "$tmp
 args=(--spp 8 --set observer.width=80 --set observer.height=61)
 "$airr" render "$default_scene" -o "$tmp/one.png" "${args[@]}" 2>/dev/null
 AIRR="$airr" sbatch --parsable --wait --array=0-2 --cpus-per-task=1 --chdir="$tmp" -o "$tmp/task-%a.log" \
-  "$source_dir/packaging/slurm/airr-render-array.sbatch" "$default_scene" "$tmp/parts" "${args[@]}" >"$tmp/sbatch.out" ||
-  { cat "$tmp"/task-*.log; echo "the array job failed"; exit 1; }
+  "$source_dir/packaging/slurm/airr-array.sbatch" "$tmp/parts" render "$default_scene" "${args[@]}" >"$tmp/sbatch.out" ||
+  { cat "$tmp"/task-*.log; echo "the render's array job failed"; exit 1; }
 "$airr" merge "$tmp"/parts/shard-*-of-3.exr -o "$tmp/merged.png"
 cmp "$tmp/one.png" "$tmp/merged.png" || { echo "the merged render differs from one process's"; exit 1; }
 echo "array job $(cat "$tmp/sbatch.out") (3 tasks), merged: the same PNG as one process"
+
+sweep=("$default_scene" --psf --vary floating_distance=150:250:50 --vary tilt=0:20:10 -o "$tmp/sweep.csv")
+"$airr" sweep "${sweep[@]}" >/dev/null 2>&1
+mv "$tmp/sweep.csv" "$tmp/sweep_one.csv"
+AIRR="$airr" sbatch --parsable --wait --array=0-2 --cpus-per-task=1 --chdir="$tmp" -o "$tmp/sweep-%a.log" \
+  "$source_dir/packaging/slurm/airr-array.sbatch" "$tmp/sweep_parts" sweep "${sweep[@]}" >"$tmp/sbatch.out" ||
+  { cat "$tmp"/sweep-*.log; echo "the sweep's array job failed"; exit 1; }
+[ ! -e "$tmp/sweep.csv" ] || { echo "a shard wrote the sweep's CSV"; exit 1; }
+"$airr" merge "$tmp"/sweep_parts/part-*-of-3.json >/dev/null
+cmp "$tmp/sweep_one.csv" "$tmp/sweep.csv" || { echo "the merged sweep differs from one process's"; exit 1; }
+echo "array job $(cat "$tmp/sbatch.out") (3 tasks of a sweep), merged: the same CSV as one process"
