@@ -37,6 +37,14 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   add_commands(app);
   set_command_line(argc, argv);
+  // In an MPI job, commands that do not split their work run on rank 0 alone (written once).
+  if (job.size > 1 && argc > 1) {
+    const std::string command = argv[1];
+    if (command != "render" && command != "sweep" && command != "viewzone" && command != "tolerance") {
+      if (!job.root()) return 0;
+      std::fprintf(stderr, "note: %s does not split across ranks; rank 0 runs it alone\n", command.c_str());
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -3,7 +3,8 @@
 # more ranks than cores): 2 and 3 ranks (an odd split) write the files one process writes (PNG
 # byte for byte; EXR with the image's components equal in every channel; the tolerance CSV,
 # statistics and histograms; the zone's and sweeps' CSV and maps); a rank killed mid-run ends the
-# job within seconds with an error and leaves no output file; --shard under mpirun is refused.
+# job within seconds with an error and leaves no output file; --shard under mpirun is refused; a
+# command that does not split (optimise) runs on rank 0 alone.
 set -euo pipefail
 airr="$1"
 default_scene="$2/assets/scenes/default.json"
@@ -67,6 +68,20 @@ for route in "--psf" "--spp 4"; do
   done
   echo "2 and 3 ranks: the same sweep ($route) as one process"
 done
+
+# A command that does not split (optimise) runs on rank 0 alone: one report, the same files.
+cat >"$tmp/opt.json" <<SPEC
+{"format": "airr-design", "version": 1, "scene": "$default_scene",
+ "variables": [{"key": "tilt_deg", "min": 0, "max": 40}],
+ "objectives": [{"metric": "size_z_mm", "goal": "minimise"}], "search": {"global_evaluations": 20, "local_evaluations": 10}}
+SPEC
+"$airr" optimise "$tmp/opt.json" -o "$tmp/best1.json" >/dev/null 2>&1
+"${mpi[@]}" -np 2 "$airr" optimise "$tmp/opt.json" -o "$tmp/best2.json" >"$tmp/opt2.out" 2>"$tmp/opt2.err"
+cmp "$tmp/best1.json" "$tmp/best2.json" && cmp "$tmp/best1_evaluations.csv" "$tmp/best2_evaluations.csv" ||
+  { echo "optimise under 2 ranks wrote other files"; exit 1; }
+[ "$(grep -c "^wrote" "$tmp/opt2.out")" = 1 ] || { cat "$tmp/opt2.out"; echo "optimise reported more than once"; exit 1; }
+grep -q "rank 0 runs it alone" "$tmp/opt2.err" || { cat "$tmp/opt2.err"; exit 1; }
+echo "optimise under 2 ranks: rank 0 alone, the same files"
 
 # --shard is for separate processes, not for an MPI job's ranks.
 if "${mpi[@]}" -np 2 "$airr" render "$default_scene" -o "$tmp/x.exr" "${args[@]}" --shard 0/2 2>"$tmp/shard.log"; then
