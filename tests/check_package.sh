@@ -33,7 +33,7 @@ for f in ./usr/bin/airr ./usr/bin/airr-studio ./usr/share/airr-studio/scenes/def
   ./usr/share/airr-studio/presets/rf-an.json ./usr/share/airr-studio/presets/rf-ay.json \
   ./usr/share/airr-studio/shift_tables/corner_cube.json ./usr/share/applications/airr-studio.desktop \
   ./usr/share/mime/packages/airr-studio.xml ./usr/share/icons/hicolor/scalable/apps/airr-studio.svg \
-  ./usr/share/man/man1/airr.1.gz ./usr/share/man/man1/airr-studio.1.gz; do
+  ./usr/share/man/man1/airr.1.gz ./usr/share/man/man1/airr-studio.1.gz ./usr/share/airr-studio/slurm/airr-array.sbatch; do
   grep -qxF "$f" "$tmp/contents.txt" || fail "the package lacks $f"
 done
 for size in 16 22 24 32 48 64 128 256 512; do
