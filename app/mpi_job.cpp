@@ -115,11 +115,8 @@ std::vector<double> share_items(std::size_t n, std::size_t width, const airr::it
 }
 
 airr::image_rgb gather_rows(const airr::image_rgb& whole, int first_row, int end_row) {
-  const std::size_t row = std::size_t(3) * std::size_t(whole.width);
-  const std::vector<float> mine(whole.rgb.begin() + std::ptrdiff_t(row * std::size_t(first_row)),
-                                whole.rgb.begin() + std::ptrdiff_t(row * std::size_t(end_row)));
   airr::image_rgb out;
-  out.rgb = gather_floats(mine);
+  out.rgb = gather_floats(airr::image_rows(whole, first_row, end_row).rgb);
   if (!this_job().root()) return {};
   if (out.rgb.size() != whole.rgb.size()) throw std::logic_error("the ranks' rows do not make up the image");
   out.width = whole.width;

@@ -22,15 +22,6 @@ std::optional<int> whole_number(const std::string& text) {
   return v;
 }
 
-image_rgb rows_of(const image_rgb& img, int first, int end) {
-  image_rgb out;
-  out.width = img.width;
-  out.height = end - first;
-  out.rgb.assign(img.rgb.begin() + std::ptrdiff_t(3) * img.width * first,
-                 img.rgb.begin() + std::ptrdiff_t(3) * img.width * end);
-  return out;
-}
-
 struct read_shard {
   std::string path;
   shard_index place;
@@ -63,8 +54,7 @@ read_shard read_one(const std::string& path) {
   if (s.image.rgb.height != end - first)
     throw input_error(path + ": holds " + std::to_string(s.image.rgb.height) + " rows, not its shard's " +
                       std::to_string(end - first));
-  for (const std::string& name : read_image_layer_names(path))
-    s.image.layers.emplace_back(name, load_image_layer(path, name));
+  s.image.layers = load_image_layers(path);
   return s;
 }
 
@@ -124,10 +114,10 @@ void write_render_shard(const std::string& path, const render_image& whole, cons
   meta[height_key] = std::to_string(whole.rgb.height);
   meta[version_key] = version;
   std::vector<image_rgb> layer_rows;
-  for (const auto& l : whole.layers) layer_rows.push_back(rows_of(l.second, first, end));
+  for (const auto& l : whole.layers) layer_rows.push_back(image_rows(l.second, first, end));
   std::vector<image_layer> layers;
   for (std::size_t k = 0; k < layer_rows.size(); ++k) layers.push_back({whole.layers[k].first, &layer_rows[k]});
-  write_image(path, rows_of(whole.rgb, first, end), meta, 1.0f, layers);
+  write_image(path, image_rows(whole.rgb, first, end), meta, 1.0f, layers);
 }
 
 void shard_roll::add(const std::string& path, const shard_index& s) {

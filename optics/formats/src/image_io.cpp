@@ -264,33 +264,56 @@ std::vector<std::string> read_image_layer_names(const std::string& path) {
   return names;
 }
 
-image_rgb load_image_layer(const std::string& path, const std::string& name) {
-  const image_rgb size = load_image(path).pixels;  // the same checks of the file and its size
+std::vector<std::pair<std::string, image_rgb>> load_image_layers(const std::string& path) {
+  refuse_damaged_header(path, max_image_pixels);
+  const std::vector<std::string> names = read_image_layer_names(path);  // before `quiet`: it holds a lock
   const library_chatter_filter quiet;
   auto in = ImageInput::open(path);
   if (!in) throw input_error(path + ": cannot read image: " + one_line(geterror()));
   const ImageSpec spec = in->spec();
-  std::array<int, 3> at{-1, -1, -1};
-  for (int c = 0; c < spec.nchannels; ++c) {
-    for (int k = 0; k < 3; ++k)
-      if (spec.channelnames[std::size_t(c)] == name + "." + "RGB"[k]) at[std::size_t(k)] = c;
-  }
-  if (std::find(at.begin(), at.end(), -1) != at.end()) throw input_error(path + ": no layer '" + name + "'");
-  std::vector<float> px(std::size_t(spec.width) * spec.height * spec.nchannels);
+  if (spec.width <= 0 || spec.height <= 0 || std::int64_t(spec.width) * spec.height > max_image_pixels)
+    throw input_error(path + ": no pixels, or more than " + std::to_string(max_image_pixels));
+  const std::size_t pixels = std::size_t(spec.width) * std::size_t(spec.height), nc = std::size_t(spec.nchannels);
+  std::vector<float> px(pixels * nc);
   if (!in->read_image(0, 0, 0, spec.nchannels, TypeDesc::FLOAT, px.data()))
     throw input_error(path + ": cannot read pixels: " + one_line(in->geterror()));
-  image_rgb img;
-  img.width = size.width;
-  img.height = size.height;
-  img.rgb.resize(size.rgb.size());
-  for (std::size_t i = 0; i < std::size_t(img.width) * img.height; ++i) {
-    for (std::size_t k = 0; k < 3; ++k) {
-      const float v = px[i * std::size_t(spec.nchannels) + std::size_t(at[k])];
-      if (!std::isfinite(v)) throw input_error(path + ": layer '" + name + "' contains NaN or infinite values");
-      img.rgb[3 * i + k] = v;
+  std::vector<std::pair<std::string, image_rgb>> layers;
+  for (const std::string& name : names) {
+    std::array<int, 3> at{-1, -1, -1};
+    for (std::size_t c = 0; c < nc; ++c) {
+      for (std::size_t k = 0; k < 3; ++k)
+        if (spec.channelnames[c] == name + "." + "RGB"[k]) at[k] = int(c);
     }
+    if (std::find(at.begin(), at.end(), -1) != at.end()) continue;  // not an RGB layer
+    image_rgb img;
+    img.width = spec.width;
+    img.height = spec.height;
+    img.rgb.resize(3 * pixels);
+    for (std::size_t i = 0; i < pixels; ++i) {
+      for (std::size_t k = 0; k < 3; ++k) {
+        const float v = px[i * nc + std::size_t(at[k])];
+        if (!std::isfinite(v)) throw input_error(path + ": layer '" + name + "' contains NaN or infinite values");
+        img.rgb[3 * i + k] = v;
+      }
+    }
+    layers.emplace_back(name, std::move(img));
   }
-  return img;
+  return layers;
+}
+
+image_rgb load_image_layer(const std::string& path, const std::string& name) {
+  for (auto& [n, img] : load_image_layers(path))
+    if (n == name) return std::move(img);
+  throw input_error(path + ": no layer '" + name + "'");
+}
+
+image_rgb image_rows(const image_rgb& img, int first, int end) {
+  image_rgb out;
+  out.width = img.width;
+  out.height = end - first;
+  out.rgb.assign(img.rgb.begin() + std::ptrdiff_t(3) * img.width * first,
+                 img.rgb.begin() + std::ptrdiff_t(3) * img.width * end);
+  return out;
 }
 
 image_metadata read_image_metadata(const std::string& path) {

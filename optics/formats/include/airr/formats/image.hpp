@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace airr {
@@ -75,6 +76,11 @@ std::vector<std::string> read_image_layer_names(const std::string& path);
 // writes them), linear as written. Throws input_error "<path>: ..." when the file has no such
 // layer or load_image would refuse it.
 image_rgb load_image_layer(const std::string& path, const std::string& name);
+// Every such layer of the file, in order, read at once.
+std::vector<std::pair<std::string, image_rgb>> load_image_layers(const std::string& path);
+
+// Rows [first, end) of an image.
+image_rgb image_rows(const image_rgb& img, int first, int end);
 
 // Reads back the string metadata of an image file (only keys starting with "airr:").
 image_metadata read_image_metadata(const std::string& path);
