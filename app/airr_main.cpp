@@ -40,7 +40,9 @@ int main(int argc, char** argv) {
   // In an MPI job, commands that do not split their work run on rank 0 alone (written once).
   if (job.size > 1 && argc > 1) {
     const std::string command = argv[1];
-    if (command != "render" && command != "sweep" && command != "viewzone" && command != "tolerance") {
+    const bool splits = command == "render" || command == "sweep" || command == "viewzone" || command == "tolerance" ||
+                        command == "fit" || command == "predict-preset" || command == "optimise";
+    if (!splits) {
       if (!job.root()) return 0;
       std::fprintf(stderr, "note: %s does not split across ranks; rank 0 runs it alone\n", command.c_str());
     }

@@ -15,6 +15,7 @@
 #include "airr/models/preset.hpp"
 #include "airr/models/retro_model.hpp"
 #include "commands.hpp"
+#include "mpi_job.hpp"
 #include "progress_bar.hpp"
 
 namespace {
@@ -33,14 +34,21 @@ void run_fit(const options& opt) {
   p.psf_samples = opt.samples.value_or(p.psf_samples);
   p.seed = opt.seed.value_or(p.seed);
 
-  progress_bar bar("fit");
-  const auto r = airr::analysis::fit_sheet(data, p, [&](const airr::analysis::fit_progress& f) {
-    if (f.fraction < 1)
-      bar.update(f.fraction, f.stage);
-    else
-      bar.finish(f.stage);
-    return true;
-  });
+  const mpi_job& job = this_job();
+  std::optional<progress_bar> bar;
+  if (job.root()) bar.emplace(job.size > 1 ? "fit (" + std::to_string(job.size) + " ranks)" : "fit");
+  const auto r = airr::analysis::fit_sheet(
+      data, p,
+      [&](const airr::analysis::fit_progress& f) {
+        if (!bar) return true;
+        if (f.fraction < 1)
+          bar->update(f.fraction, f.stage);
+        else
+          bar->finish(f.stage);
+        return true;
+      },
+      job_share());
+  if (!job.root()) return;
   airr::save_preset(r.preset, opt.output);
 
   const airr::analysis::fit_report& rep = r.report;
@@ -89,17 +97,26 @@ void run_synthesise(const options& opt) {
   airr::retro_model_params model{.type = "sinc_shift", .values = {}};
   airr::set_model_value(model, "preset", fs::absolute(preset_path).string());
   const airr::analysis::synthesis_params p{.samples = opt.samples.value_or(1000000), .seed = opt.seed.value_or(7)};
-  progress_bar bar("synthesise");
-  airr::analysis::synthesise_fit_data(opt.synthesise, airr::analysis::synthesis_bench_file(opt.setup),
-                                      {.model = model,
-                                       .base_dir = "",
-                                       .name = "synthetic " + truth.name,
-                                       .note = "synthesised by `airr fit --synthesise` from preset " + opt.preset},
-                                      p, [&](const airr::analysis::fit_progress& f) {
-                                        bar.update(f.fraction, f.stage);
-                                        return true;
-                                      });
-  bar.finish("27 measurements");
+  const mpi_job& job = this_job();
+  std::optional<progress_bar> bar;
+  if (job.root()) bar.emplace("synthesise");
+  const rank_folder folder(opt.synthesise);
+  airr::analysis::synthesise_fit_data(
+      folder.path(), airr::analysis::synthesis_bench_file(opt.setup),
+      {.model = model,
+       .base_dir = "",
+       .name = "synthetic " + truth.name,
+       .note = "synthesised by `airr fit --synthesise` from preset " + opt.preset},
+      p,
+      [&](const airr::analysis::fit_progress& f) {
+        if (bar) bar->update(f.fraction, f.stage);
+        return true;
+      },
+      job_share([&](std::size_t done, std::size_t n) {
+        if (bar) bar->update(double(done) / double(n), "measurements");
+      }));
+  if (!bar) return;
+  bar->finish("17 measurements");
   std::printf("wrote %s (fit.json, setup.json, 17 MTF CSVs, 10 white-square EXRs) from preset %s\n",
               opt.synthesise.c_str(), preset_path.c_str());
 }

@@ -17,6 +17,7 @@
 #include "airr/formats/scene_json.hpp"
 #include "airr/measure/design_search.hpp"
 #include "commands.hpp"
+#include "mpi_job.hpp"
 #include "progress_bar.hpp"
 
 namespace {
@@ -67,7 +68,12 @@ void run(const options& opt) {
   if (spec.variables.empty()) throw airr::input_error(opt.spec + ": variables: the optimiser needs at least one");
   const std::string csv =
       opt.csv.empty() ? fs::path(opt.output).replace_extension("").string() + "_evaluations.csv" : opt.csv;
-  progress_bar bar("optimise");
+  // In an MPI job a Pareto front's searches split across the ranks; a single search's evaluations
+  // come one at a time from NLopt, so every rank runs it and rank 0 writes.
+  const mpi_job& job = this_job();
+  if (job.root() && job.size > 1 && spec.front.points == 0)
+    std::fprintf(stderr, "note: a single search does not split across ranks; every rank runs it\n");
+  progress_bar bar(job.size > 1 ? "optimise (" + std::to_string(job.size) + " ranks)" : "optimise", job.root());
   interrupted = false;
   const auto previous = std::signal(SIGINT, [](int) { interrupted = true; });
   const airr::design_result r = airr::optimise_design(
@@ -81,8 +87,9 @@ void run(const options& opt) {
                         p.best_feasible ? "" : " (infeasible)");
         bar.update(double(p.done) / p.total, detail);
       },
-      &interrupted);
+      &interrupted, job_share());
   std::signal(SIGINT, previous);
+  if (!job.root()) return;
   bar.finish(r.cancelled ? "cancelled" : "done");
   airr::write_file_atomic(csv, airr::design_trials_csv(spec, r));
   std::printf("%zu evaluations in %.1f s (%.2f per second); every one in %s\n", r.trials.size(), bar.seconds(),

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "airr/analysis/preset_prediction.hpp"
@@ -11,6 +12,7 @@
 #include "airr/formats/sheet_json.hpp"
 #include "airr/models/preset.hpp"
 #include "commands.hpp"
+#include "mpi_job.hpp"
 #include "progress_bar.hpp"
 
 namespace {
@@ -28,12 +30,22 @@ void run(const options& opt) {
   const airr::scene bench = airr::analysis::synthesis_bench_file(opt.setup);
   const std::string data = opt.data.empty() ? fs::path(opt.output).replace_extension("").string() + "_bench" : opt.data;
 
-  progress_bar bar("predict");
-  const auto r = airr::analysis::predict_preset(sheet, bench, data, opt.p, [&](const airr::analysis::fit_progress& f) {
-    bar.update(f.fraction, f.stage);
-    return true;
-  });
-  bar.finish("fitted");
+  const mpi_job& job = this_job();
+  std::optional<progress_bar> bar;
+  if (job.root()) bar.emplace(job.size > 1 ? "predict (" + std::to_string(job.size) + " ranks)" : "predict");
+  const rank_folder folder(data);
+  const airr::item_share share = job_share();
+  const auto r = airr::analysis::predict_preset(
+      sheet, bench, folder.path(), opt.p,
+      [&](const airr::analysis::fit_progress& f) {
+        if (bar) bar->update(f.fraction, f.stage);
+        return true;
+      },
+      share);
+  const auto agreement =
+      airr::analysis::compare_prediction(sheet, r.preset, bench, r.preset.theta_deg, opt.p.synthesis, share);
+  if (!bar) return;
+  bar->finish("fitted");
   airr::save_preset(r.preset, opt.output);
 
   std::printf("preset predicted for %s (%s) from the bench's measurements in %s\n", sheet.name.c_str(),
@@ -41,8 +53,6 @@ void run(const options& opt) {
   std::printf("c = %.5f mm, R = %g mm\n", r.preset.c_mm, r.preset.reference_distance_mm);
   std::printf("%8s %10s %9s %13s %13s %11s %11s\n", "tilt_deg", "a_per_mm", "mu", "mean_mtf_expl", "mean_mtf_pred",
               "bright_expl", "bright_pred");
-  const auto agreement =
-      airr::analysis::compare_prediction(sheet, r.preset, bench, r.preset.theta_deg, opt.p.synthesis);
   for (std::size_t i = 0; i < agreement.size(); ++i) {
     const auto& g = agreement[i];
     const double mu = r.preset.mu.size() == 1 ? r.preset.mu[0] : r.preset.mu[i];

@@ -130,11 +130,7 @@ airr::item_share command_item_share(const shard_options& o,
       return all;
     };
   }
-  if (this_job().size > 1)
-    return [job_progress](std::size_t n, std::size_t width, const airr::item_compute& compute) {
-      return share_items(n, width, compute, job_progress);
-    };
-  return {};
+  return job_share(job_progress);
 }
 
 bool write_shard_part(const shard_options& o) {

@@ -2,7 +2,12 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include <unistd.h>
 
 #include <tbb/parallel_for.h>
 
@@ -112,6 +117,28 @@ std::vector<double> share_items(std::size_t n, std::size_t width, const airr::it
 #else
   throw std::logic_error("an MPI job in a build without MPI");
 #endif
+}
+
+airr::item_share job_share(const std::function<void(std::size_t, std::size_t)>& progress) {
+  if (this_job().size == 1) return {};
+  return [progress](std::size_t n, std::size_t width, const airr::item_compute& compute) {
+    return share_items(n, width, compute, progress);
+  };
+}
+
+rank_folder::rank_folder(const std::string& folder) : path_(folder) {
+  const mpi_job& job = this_job();
+  if (job.root()) return;
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("airr-rank-" + std::to_string(job.rank) + "-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  path_ = dir.string();
+  temporary_ = true;
+}
+
+rank_folder::~rank_folder() {
+  std::error_code ignored;
+  if (temporary_) std::filesystem::remove_all(path_, ignored);
 }
 
 airr::image_rgb gather_rows(const airr::image_rgb& whole, int first_row, int end_row) {

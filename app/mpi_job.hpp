@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "airr/core/item_share.hpp"
@@ -24,6 +25,26 @@ const mpi_job& this_job();
 // 20 rounds and count the job's finished items after each, for rank 0's `progress(done, n)`.
 std::vector<double> share_items(std::size_t n, std::size_t width, const airr::item_compute& compute,
                                 const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+// share_items as an item_share when this process is one rank of several; else empty (the items
+// then run on this machine's cores).
+airr::item_share job_share(const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+// Where this rank keeps files that rank 0 writes to `folder` and the command reads back (a fit's
+// data): `folder` itself on rank 0 (and alone), else a temporary folder of its own, removed when
+// this ends, so the job writes the user's files once.
+class rank_folder {
+ public:
+  explicit rank_folder(const std::string& folder);
+  ~rank_folder();
+  rank_folder(const rank_folder&) = delete;
+  rank_folder& operator=(const rank_folder&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  bool temporary_ = false;
+};
 
 // The smallest of the ranks' values, on every rank (every rank must call it).
 std::uint64_t job_min(std::uint64_t mine);

@@ -8,9 +8,12 @@
 
 class progress_bar {
  public:
-  explicit progress_bar(std::string label) : label_(std::move(label)), tty_(::isatty(2)) {}
+  // A bar that is not `shown` draws nothing (the other ranks of an MPI job).
+  explicit progress_bar(std::string label, bool shown = true)
+      : label_(std::move(label)), tty_(::isatty(2)), shown_(shown) {}
 
   void update(double fraction, const std::string& detail = "") {
+    if (!shown_) return;
     const double elapsed = seconds();
     if (!tty_ && fraction < 1.0 && elapsed - last_print_ < 2.0) return;  // logs: one line each 2 s
     last_print_ = elapsed;
@@ -24,13 +27,14 @@ class progress_bar {
   void finish(const std::string& detail = "") {
     last_print_ = -1e9;
     update(1.0, detail);
-    if (tty_) std::fputc('\n', stderr);
+    if (tty_ && shown_) std::fputc('\n', stderr);
   }
   double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
 
  private:
   std::string label_;
   bool tty_;
+  bool shown_;
   double last_print_ = -1e9;
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };

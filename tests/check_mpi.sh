@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
-# `airr render`, `sweep`, `tolerance` and `viewzone --full` under mpirun (Open MPI, one machine,
+# `airr render`, `sweep`, `tolerance`, `viewzone --full` and `predict-preset` under mpirun (Open MPI, one machine,
 # more ranks than cores): 2 and 3 ranks (an odd split) write the files one process writes (PNG
 # byte for byte; EXR with the image's components equal in every channel; the tolerance CSV,
 # statistics and histograms; the zone's and sweeps' CSV and maps); a rank killed mid-run ends the
 # job within seconds with an error and leaves no output file; --shard under mpirun is refused; a
-# command that does not split (optimise) runs on rank 0 alone.
+# Pareto front's searches split; a command that does not split (export-gltf) runs on rank 0 alone.
 set -euo pipefail
 airr="$1"
 default_scene="$2/assets/scenes/default.json"
@@ -69,19 +69,55 @@ for route in "--psf" "--spp 4"; do
   echo "2 and 3 ranks: the same sweep ($route) as one process"
 done
 
-# A command that does not split (optimise) runs on rank 0 alone: one report, the same files.
+# A predicted preset (the bench's measurements, the fit, the comparison): the same measurements,
+# preset and table as one process; the other ranks' working copies of the data are gone.
+predict=(predict-preset --sheet "$2/assets/sheets/prism-rf-ay-like.json" --samples 5000 --fit-samples 5000)
+# The preset without what differs by nature (run time, the data folder's name).
+preset_numbers() {
+  python3 -c 'import json,re,sys; p=json.load(open(sys.argv[1])); p["provenance"]["fit"].pop("seconds"); print(re.sub(r"p[0-9]_bench", "DATA", json.dumps(p, sort_keys=True)))' "$1"
+}
+(cd "$tmp" && "$airr" "${predict[@]}" -o p1.json 2>/dev/null | grep -v "run time\|wrote" | sed "s/p1_bench/DATA/" >p1.out)
+for n in 2 3; do
+  mkdir "$tmp/scratch$n"
+  (cd "$tmp" && TMPDIR="$tmp/scratch$n" "${mpi[@]}" -x TMPDIR -np $n "$airr" "${predict[@]}" -o p$n.json 2>"$tmp/plog$n" |
+    grep -v "run time\|wrote" | sed "s/p${n}_bench/DATA/" >p$n.out)
+  cmp "$tmp/p1.out" "$tmp/p$n.out" || { diff "$tmp/p1.out" "$tmp/p$n.out"; echo "$n ranks: the prediction differs"; exit 1; }
+  [ "$(preset_numbers "$tmp/p1.json")" = "$(preset_numbers "$tmp/p$n.json")" ] ||
+    { echo "$n ranks: the predicted preset differs"; exit 1; }
+  for f in "$tmp"/p1_bench/*.csv "$tmp"/p1_bench/fit.json; do
+    cmp "$f" "$tmp/p${n}_bench/$(basename "$f")" || { echo "$n ranks: $(basename "$f") differs"; exit 1; }
+  done
+  for f in "$tmp"/p1_bench/*.exr; do idiff -fail 0 -failpercent 0 -warn 0 "$f" "$tmp/p${n}_bench/$(basename "$f")" >/dev/null || exit 1; done
+  [ -z "$(ls -A "$tmp/scratch$n")" ] || { ls "$tmp/scratch$n"; echo "$n ranks: working copies left behind"; exit 1; }
+  grep -q "predict ($n ranks)" "$tmp/plog$n" || { cat "$tmp/plog$n"; echo "$n ranks: no progress for the job"; exit 1; }
+  echo "$n ranks: the same predicted preset, measurements and comparison as one process"
+done
+
+# A Pareto front's searches split across the ranks: the same evaluations, front and scene as one
+# process's, reported once.
 cat >"$tmp/opt.json" <<SPEC
 {"format": "airr-design", "version": 1, "scene": "$default_scene",
- "variables": [{"key": "tilt_deg", "min": 0, "max": 40}],
- "objectives": [{"metric": "size_z_mm", "goal": "minimise"}], "search": {"global_evaluations": 20, "local_evaluations": 10}}
+ "variables": [{"key": "tilt_deg", "min": 0, "max": 60}],
+ "objectives": [{"metric": "size_y_mm", "goal": "minimise"}, {"metric": "size_z_mm", "goal": "minimise"}],
+ "pareto": {"points": 5}, "search": {"global_evaluations": 20, "local_evaluations": 10}}
 SPEC
 "$airr" optimise "$tmp/opt.json" -o "$tmp/best1.json" >/dev/null 2>&1
-"${mpi[@]}" -np 2 "$airr" optimise "$tmp/opt.json" -o "$tmp/best2.json" >"$tmp/opt2.out" 2>"$tmp/opt2.err"
-cmp "$tmp/best1.json" "$tmp/best2.json" && cmp "$tmp/best1_evaluations.csv" "$tmp/best2_evaluations.csv" ||
-  { echo "optimise under 2 ranks wrote other files"; exit 1; }
-[ "$(grep -c "^wrote" "$tmp/opt2.out")" = 1 ] || { cat "$tmp/opt2.out"; echo "optimise reported more than once"; exit 1; }
-grep -q "rank 0 runs it alone" "$tmp/opt2.err" || { cat "$tmp/opt2.err"; exit 1; }
-echo "optimise under 2 ranks: rank 0 alone, the same files"
+for n in 2 3; do
+  "${mpi[@]}" -np $n "$airr" optimise "$tmp/opt.json" -o "$tmp/best$n.json" >"$tmp/opt$n.out" 2>/dev/null
+  for f in .json _evaluations.csv _pareto.csv _pareto.png; do
+    cmp "$tmp/best1$f" "$tmp/best$n$f" || { echo "optimise under $n ranks: best$n$f differs"; exit 1; }
+  done
+  [ "$(grep -c "^wrote" "$tmp/opt$n.out")" = 1 ] || { cat "$tmp/opt$n.out"; echo "optimise reported more than once"; exit 1; }
+  echo "optimise under $n ranks: the same front ($(($(wc -l <"$tmp/best1_evaluations.csv") - 1)) evaluations) and scene"
+done
+
+# A command that does not split (export-gltf) runs on rank 0 alone: one report, the same file.
+"$airr" export-gltf "$default_scene" -o "$tmp/one.glb" >/dev/null 2>&1
+"${mpi[@]}" -np 2 "$airr" export-gltf "$default_scene" -o "$tmp/two.glb" >"$tmp/gltf2.out" 2>"$tmp/gltf2.err"
+cmp "$tmp/one.glb" "$tmp/two.glb" || { echo "export-gltf under 2 ranks wrote another file"; exit 1; }
+[ "$(grep -c "^wrote" "$tmp/gltf2.out")" = 1 ] || { cat "$tmp/gltf2.out"; echo "export-gltf reported more than once"; exit 1; }
+grep -q "rank 0 runs it alone" "$tmp/gltf2.err" || { cat "$tmp/gltf2.err"; exit 1; }
+echo "export-gltf under 2 ranks: rank 0 alone, the same file"
 
 # --shard is for separate processes, not for an MPI job's ranks.
 if "${mpi[@]}" -np 2 "$airr" render "$default_scene" -o "$tmp/x.exr" "${args[@]}" --shard 0/2 2>"$tmp/shard.log"; then

@@ -318,6 +318,43 @@ TEST(DesignOptimise, OneAndTwoThreadsGiveTheSameResult) {
   EXPECT_EQ(one.best, two.best);
 }
 
+// A front's searches run as shared items (as an MPI job's ranks run them: out of order, their
+// trials travelling as numbers) give the same trials, front and best as run in turn; layouts that
+// are none keep their reasons.
+TEST(DesignOptimise, AFrontsSearchesSharedGiveTheSameFront) {
+  test::temp_dir dir;
+  const design_spec spec = spec_from(
+      dir,
+      R"("variables": [{"key": "tilt_deg", "min": 0, "max": 60}, )"
+      R"({"key": "retroreflectors.0.pose.center_mm.2", "min": -300, "max": 0}], )"
+      R"("objectives": [{"metric": "size_y_mm", "goal": "minimise"}, {"metric": "size_z_mm", "goal": "minimise"}], )"
+      R"("constraints": [{"metric": "size_x_mm", "max": 1000}], )"
+      R"("pareto": {"points": 4}, "search": {"global_evaluations": 25, "local_evaluations": 10})");
+  std::size_t items = 0;
+  const item_share last_first = [&](std::size_t n, std::size_t width, const item_compute& compute) {
+    std::vector<double> all(n * width, -1.0);
+    for (std::size_t i = n; i-- > 0;) compute(i, all.data() + i * width);
+    items += n;
+    return all;
+  };
+  const design_result in_turn = optimise_design(spec), shared = optimise_design(spec, {}, nullptr, last_first);
+  EXPECT_EQ(items, 6u);  // 2 + 2 + 2 searches in three waves
+  EXPECT_EQ(design_trials_csv(spec, shared), design_trials_csv(spec, in_turn));
+  EXPECT_EQ(design_front_csv(spec, shared), design_front_csv(spec, in_turn));
+  EXPECT_EQ(shared.best, in_turn.best);
+  ASSERT_EQ(shared.trials.size(), in_turn.trials.size());
+  int invalid = 0;
+  for (std::size_t i = 0; i < shared.trials.size(); ++i) {
+    EXPECT_EQ(shared.trials[i].phase, in_turn.trials[i].phase);
+    EXPECT_EQ(shared.trials[i].problem, in_turn.trials[i].problem);
+    EXPECT_EQ(shared.trials[i].evaluation.broken, in_turn.trials[i].evaluation.broken);
+    invalid += !in_turn.trials[i].valid;
+  }
+  EXPECT_GT(invalid, 0);  // the sheet moved into the half mirror: reasons rebuilt from the layout
+  std::printf("%zu trials, %d of them no valid layout, %zu on the front\n", in_turn.trials.size(), invalid,
+              in_turn.front.size());
+}
+
 // A Pareto front of the device's height and depth over the sheet's tilt: a front that is not
 // convex (weighted sums would find its ends alone). Against the front of a 0.01 deg sweep: the
 // same ends, no layout of the sweep better in both by more than 0.05 mm, and no gap wider than

@@ -7,14 +7,26 @@
 namespace airr::analysis {
 
 min_bracket grid_scan(const scalar_function& f, double lo, double hi, int points) {
+  return grid_scan_batch(
+      [&](const std::vector<double>& xs) {
+        std::vector<double> fx;
+        for (double x : xs) fx.push_back(f(x));
+        return fx;
+      },
+      lo, hi, points);
+}
+
+min_bracket grid_scan_batch(const batch_function& f_all, double lo, double hi, int points) {
   const int n = std::max(3, points);
   const double step = (hi - lo) / (n - 1);
+  std::vector<double> xs;
+  for (int k = 0; k < n; ++k) xs.push_back(lo + k * step);
+  const std::vector<double> fxs = f_all(xs);
   min_bracket b;
   b.x = lo, b.fx = std::numeric_limits<double>::infinity();
   for (int k = 0; k < n; ++k) {
-    const double x = lo + k * step, fx = f(x);
     ++b.evaluations;
-    if (fx < b.fx) b.x = x, b.fx = fx;
+    if (fxs.at(std::size_t(k)) < b.fx) b.x = xs[std::size_t(k)], b.fx = fxs[std::size_t(k)];
   }
   b.lo = std::max(lo, b.x - step), b.hi = std::min(hi, b.x + step);
   return b;

@@ -44,16 +44,16 @@ double shift_index_of(const sheet_description& sheet) {
 }  // namespace
 
 fit_result predict_preset(const sheet_description& sheet, const scene& bench, const std::string& data_dir,
-                          const prediction_params& p, const fit_progress_callback& progress) {
+                          const prediction_params& p, const fit_progress_callback& progress, const item_share& share) {
   synthesise_fit_data(data_dir, bench,
                       {.model = sheet.model,
                        .base_dir = sheet.base_dir,
                        .name = sheet.name,
                        .note = "the sheet " + sheet.name + " (" + sheet.model.type + ") on the simulated bench"},
-                      p.synthesis, scaled(progress, 0, synthesis_share));
+                      p.synthesis, scaled(progress, 0, synthesis_share), share);
   fit_params fit = p.fit;
   fit.shift_index = shift_index_of(sheet);
-  fit_result r = fit_sheet(load_fit_data(data_dir), fit, scaled(progress, synthesis_share, 1));
+  fit_result r = fit_sheet(load_fit_data(data_dir), fit, scaled(progress, synthesis_share, 1), share);
   r.preset.name = sheet.name;
   r.preset.provenance["source"] = "airr predict-preset";
   r.preset.provenance["sheet"] = {
@@ -66,27 +66,34 @@ fit_result predict_preset(const sheet_description& sheet, const scene& bench, co
 
 std::vector<prediction_agreement> compare_prediction(const sheet_description& sheet, const sheet_preset& preset,
                                                      const scene& bench, const std::vector<double>& tilts_deg,
-                                                     const synthesis_params& p) {
+                                                     const synthesis_params& p, const item_share& share) {
   scene setup = bench;
   for (auto& s : setup.retroreflectors) {
     s.model = sheet.model;
     rebase_model_paths(s.model, sheet.base_dir, setup.base_dir);
   }
-  std::vector<prediction_agreement> out;
   const psf_params pp{.samples = p.samples, .seed = p.seed};
-  for (double t : tilts_deg) {
+  // Per tilt, the explicit sheet's and the preset's mean MTF and brightness.
+  const std::vector<double> v = run_items(share, tilts_deg.size(), 4, [&](std::size_t i, double* o) {
+    const double t = tilts_deg[i];
     const scene truth = measurement_layout(setup, t, 150);
     const psf_samples a = sample_psf(truth, make_sheet_models(truth), pp);
     const scene model =
         fit_scene(setup, t, 150, interpolate_by_angle(preset.theta_deg, preset.a_per_mm, t), preset.c_mm,
                   interpolate_by_angle(preset.theta_deg, preset.mu, t), preset.shift_index);
     const psf_samples b = sample_psf(model, make_sheet_models(model), pp);
-    out.push_back({.tilt_deg = t,
-                   .explicit_mean_mtf = bench_mean_mtf(a, p.lsf_window_mm),
-                   .predicted_mean_mtf = bench_mean_mtf(b, p.lsf_window_mm),
-                   .explicit_brightness = a.brightness(),
-                   .predicted_brightness = b.brightness()});
-  }
+    o[0] = bench_mean_mtf(a, p.lsf_window_mm);
+    o[1] = bench_mean_mtf(b, p.lsf_window_mm);
+    o[2] = a.brightness();
+    o[3] = b.brightness();
+  });
+  std::vector<prediction_agreement> out;
+  for (std::size_t i = 0; i < tilts_deg.size(); ++i)
+    out.push_back({.tilt_deg = tilts_deg[i],
+                   .explicit_mean_mtf = v[4 * i],
+                   .predicted_mean_mtf = v[4 * i + 1],
+                   .explicit_brightness = v[4 * i + 2],
+                   .predicted_brightness = v[4 * i + 3]});
   return out;
 }
 

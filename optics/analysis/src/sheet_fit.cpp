@@ -116,18 +116,21 @@ std::string deg_text(double t) {
 
 class sheet_fitter {
  public:
-  sheet_fitter(const fit_data& d, const fit_params& p, progress_meter& meter) : d_(d), p_(p), meter_(meter) {}
+  sheet_fitter(const fit_data& d, const fit_params& p, progress_meter& meter, const item_share& share)
+      : d_(d), p_(p), meter_(meter), share_(share) {}
 
-  psf_samples psf(double tilt, double distance, double a, double c) {
-    const scene s = fit_scene(d_.setup, tilt, distance, a, c, 1.0, p_.shift_index);
-    psf_samples out = sample_psf(s, make_sheet_models(s), {.samples = p_.psf_samples, .seed = p_.seed});
-    ++simulations_;
-    meter_.add(1);
+  // Independent simulations, one per item: side by side through the share (an MPI job's ranks),
+  // else here one after another. Each counts as one simulation wherever it ran.
+  std::vector<double> items(std::size_t n, std::size_t width, const item_compute& compute) {
+    const std::vector<double> out = run_items(share_, n, width, compute, [&](std::size_t) { count(); });
+    if (share_)
+      for (std::size_t i = 0; i < n; ++i) count();
     return out;
   }
 
-  std::vector<double> simulate(const mtf_target& t, double a, double c) {
-    const psf_samples ps = psf(t.m->tilt_deg, t.m->floating_distance_mm, a, c);
+  // The simulated curve, uncounted (safe to call from several items at once).
+  std::vector<double> simulate(const mtf_target& t, double a, double c) const {
+    const psf_samples ps = sample(t.m->tilt_deg, t.m->floating_distance_mm, a, c);
     const int n = int(t.measured.size());
     auto curve = measured_like_mtf(ps, {.max_lp_per_mm = t.f_max, .points = n + 1, .pixel_mm = t.m->pixel_mm},
                                    t.m->window_half_width_mm, t.m->along_y);
@@ -135,12 +138,18 @@ class sheet_fitter {
     return curve.mtf;
   }
 
-  double a_loss(const mtf_target& t, double a, double c) { return mse(simulate(t, a, c), t.measured); }
+  double a_loss(const mtf_target& t, double a, double c) const { return mse(simulate(t, a, c), t.measured); }
+
+  // The loss at each a, as items.
+  std::vector<double> a_losses(const mtf_target& t, const std::vector<double>& as, double c) {
+    return items(as.size(), 1, [&](std::size_t i, double* out) { *out = a_loss(t, as[i], c); });
+  }
 
   // The minimum holds when the loss at a (1 -+ 2%) is not lower.
   void check_minimum(const mtf_target& t, double c, fit_a_entry& r) {
-    r.loss_at_a_minus_2_percent = a_loss(t, r.a_per_mm * 0.98, c);
-    r.loss_at_a_plus_2_percent = a_loss(t, r.a_per_mm * 1.02, c);
+    const std::vector<double> l = a_losses(t, {r.a_per_mm * 0.98, r.a_per_mm * 1.02}, c);
+    r.loss_at_a_minus_2_percent = l[0];
+    r.loss_at_a_plus_2_percent = l[1];
     r.evaluations += 2;
     r.minimum_checked = r.loss_at_a_minus_2_percent >= r.loss && r.loss_at_a_plus_2_percent >= r.loss;
   }
@@ -149,10 +158,18 @@ class sheet_fitter {
   // neighbourhood. With one (a nearby solution): steps downhill from it until the loss rises on
   // both sides.
   fit_a_entry fit_a(const mtf_target& t, double c, std::optional<double> guess = std::nullopt, bool check = true) {
-    const auto loss = [&](double log_a) { return a_loss(t, std::exp(log_a), c); };
+    const auto loss = [&](double log_a) {
+      count();
+      return a_loss(t, std::exp(log_a), c);
+    };
+    const auto scan = [&](const std::vector<double>& log_as) {
+      std::vector<double> as;
+      for (double x : log_as) as.push_back(std::exp(x));
+      return a_losses(t, as, c);
+    };
     const double lo = std::log(p_.a_min_per_mm), hi = std::log(p_.a_max_per_mm);
-    const min_bracket b =
-        guess ? downhill_bracket(loss, lo, hi, std::log(*guess), 0.05) : grid_scan(loss, lo, hi, p_.a_scan_points);
+    const min_bracket b = guess ? downhill_bracket(loss, lo, hi, std::log(*guess), 0.05)
+                                : grid_scan_batch(scan, lo, hi, p_.a_scan_points);
     const minimum m = brent_minimum(loss, b, p_.a_tolerance);
     fit_a_entry r;
     r.tilt_deg = t.m->tilt_deg;
@@ -167,11 +184,10 @@ class sheet_fitter {
 
   // Mean MTF of each distance entry with a(0) and c, and their slope against D.
   std::pair<std::vector<double>, double> distance_means(const std::vector<mtf_target>& ts, double a0, double c) {
-    std::vector<double> d, m;
-    for (const auto& t : ts) {
-      d.push_back(t.m->floating_distance_mm);
-      m.push_back(mean_of(simulate(t, a0, c)));
-    }
+    std::vector<double> d;
+    for (const auto& t : ts) d.push_back(t.m->floating_distance_mm);
+    const std::vector<double> m =
+        items(ts.size(), 1, [&](std::size_t i, double* out) { *out = mean_of(simulate(ts[i], a0, c)); });
     return {m, least_squares_slope(d, m)};
   }
 
@@ -199,10 +215,22 @@ class sheet_fitter {
 
   std::uint64_t simulations() const { return simulations_; }
 
+  // One simulation, uncounted (safe to call from several items at once).
+  psf_samples sample(double tilt, double distance, double a, double c) const {
+    const scene s = fit_scene(d_.setup, tilt, distance, a, c, 1.0, p_.shift_index);
+    return sample_psf(s, make_sheet_models(s), {.samples = p_.psf_samples, .seed = p_.seed});
+  }
+
  private:
+  void count() {
+    ++simulations_;
+    meter_.add(1);
+  }
+
   const fit_data& d_;
   const fit_params& p_;
   progress_meter& meter_;
+  const item_share& share_;
   std::uint64_t simulations_ = 0;
 };
 
@@ -228,7 +256,8 @@ scene fit_scene(const scene& setup, double tilt_deg, double floating_distance_mm
   return s;
 }
 
-fit_result fit_sheet(const fit_data& d, const fit_params& p, const fit_progress_callback& progress) {
+fit_result fit_sheet(const fit_data& d, const fit_params& p, const fit_progress_callback& progress,
+                     const item_share& share) {
   if (p.psf_samples < 100) throw input_error("fit: psf_samples must be at least 100");
   if (!(p.a_min_per_mm > 0) || !(p.a_max_per_mm > p.a_min_per_mm))
     throw input_error("fit: the a bracket must satisfy 0 < a_min < a_max");
@@ -243,7 +272,7 @@ fit_result fit_sheet(const fit_data& d, const fit_params& p, const fit_progress_
   const double a_units = 20.0;
   const double after_alternation = double(tilts.size() - 1) * a_units + double(d.white_squares.size());
   progress_meter meter(progress, p.a_scan_points + 15 * (a_units + double(distances.size())) + after_alternation);
-  sheet_fitter fitter(d, p, meter);
+  sheet_fitter fitter(d, p, meter, share);
 
   std::vector<double> d_values, d_means;
   for (const auto& t : distances) d_values.push_back(t.m->floating_distance_mm), d_means.push_back(t.mean);
@@ -282,18 +311,27 @@ fit_result fit_sheet(const fit_data& d, const fit_params& p, const fit_progress_
     throw input_error(d.fit_json + ": no a fitted at tilt " + deg_text(tilt));
   };
 
-  std::vector<double> mu_theta, mu_values;
-  for (const auto& w : d.white_squares) {
-    meter.set_stage("mu at tilt " + deg_text(w.tilt_deg) + " deg");
-    const scene s = fit_scene(d.setup, w.tilt_deg, w.floating_distance_mm, a_at(w.tilt_deg), c, 1.0, p.shift_index);
-    const psf_samples ps = fitter.psf(w.tilt_deg, w.floating_distance_mm, a_at(w.tilt_deg), c);
+  // mu at each white square: the unclamped mu, the loss at the clamped mu and the brightness at mu 1.
+  meter.set_stage("mu at the white squares' tilts");
+  const std::vector<double> mu_fits = fitter.items(d.white_squares.size(), 3, [&](std::size_t i, double* out) {
+    const auto& w = d.white_squares[i];
+    const double a = a_at(w.tilt_deg);
+    const scene s = fit_scene(d.setup, w.tilt_deg, w.floating_distance_mm, a, c, 1.0, p.shift_index);
+    const psf_samples ps = fitter.sample(w.tilt_deg, w.floating_distance_mm, a, c);
     const cv::Mat unit = white_square_image(s, ps, w.width_mm, w.height_mm);
     const double sim_sim = unit.dot(unit), real_sim = w.luminance.dot(unit);
     if (!(sim_sim > 0))
       throw input_error(w.origin + ": the model shows no light of the white square in the camera's frame");
-    const double raw = real_sim / sim_sim, mu = std::clamp(raw, 0.0, 1.0);
-    const cv::Mat residual = w.luminance - mu * unit;
-    const double loss = residual.dot(residual) / double(residual.total());
+    const double raw = real_sim / sim_sim;
+    const cv::Mat residual = w.luminance - std::clamp(raw, 0.0, 1.0) * unit;
+    out[0] = raw;
+    out[1] = residual.dot(residual) / double(residual.total());
+    out[2] = ps.brightness();
+  });
+  std::vector<double> mu_theta, mu_values;
+  for (std::size_t i = 0; i < d.white_squares.size(); ++i) {
+    const auto& w = d.white_squares[i];
+    const double raw = mu_fits[3 * i], loss = mu_fits[3 * i + 1], mu = std::clamp(raw, 0.0, 1.0);
     mu_theta.push_back(w.tilt_deg);
     mu_values.push_back(mu);
     report.mu.push_back({.tilt_deg = w.tilt_deg,
@@ -303,7 +341,7 @@ fit_result fit_sheet(const fit_data& d, const fit_params& p, const fit_progress_
                          .unclamped_mu = raw,
                          .clamped = raw != mu,
                          .evaluations = 1,
-                         .brightness_at_mu_1 = ps.brightness(),
+                         .brightness_at_mu_1 = mu_fits[3 * i + 2],
                          .image = w.file,
                          .floating_distance_mm = w.floating_distance_mm,
                          .square_mm = {w.width_mm, w.height_mm}});

@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <sstream>
+#include <stdexcept>
 
 #include <nlopt.hpp>
 
@@ -212,51 +213,148 @@ design_spec front_search_spec(const design_spec& spec, int main, std::optional<d
   return sub;
 }
 
+// A search as numbers, for sharing: its count of trials, its best and whether it was cancelled,
+// then per trial valid, phase (0 global, 1 local), x, the objectives' and the constraints' values.
+std::size_t trial_width(const design_spec& spec) {
+  return 2 + spec.variables.size() + spec.objectives.size() + spec.constraints.size();
+}
+
+void encode_search(const design_spec& spec, const design_result& r, double* out) {
+  out[0] = double(r.trials.size());
+  out[1] = double(r.best);
+  out[2] = r.cancelled ? 1 : 0;
+  double* o = out + 3;
+  for (const design_trial& t : r.trials) {
+    *o++ = t.valid ? 1 : 0;
+    *o++ = t.phase == "local" ? 1 : 0;
+    for (double v : t.x) *o++ = v;
+    const auto& e = t.evaluation;
+    for (std::size_t i = 0; i < spec.objectives.size(); ++i)
+      *o++ = i < e.objective_values.size() ? e.objective_values[i] : 0;
+    for (std::size_t i = 0; i < spec.constraints.size(); ++i)
+      *o++ = i < e.constraint_values.size() ? e.constraint_values[i] : 0;
+  }
+}
+
+// The search again from its numbers (`sub` the spec it ran); a layout that was none is built again
+// for its reason.
+design_result decode_search(const design_spec& sub, const double* in) {
+  design_result r;
+  r.best = int(in[1]);
+  r.cancelled = in[2] != 0;
+  const double* o = in + 3;
+  for (std::size_t k = 0; k < std::size_t(in[0]); ++k) {
+    design_trial t;
+    t.index = int(k);
+    t.valid = *o++ != 0;
+    t.phase = *o++ != 0 ? "local" : "global";
+    t.x.assign(o, o + sub.variables.size());
+    o += sub.variables.size();
+    t.evaluation.objective_values.assign(o, o + sub.objectives.size());
+    o += sub.objectives.size();
+    t.evaluation.constraint_values.assign(o, o + sub.constraints.size());
+    o += sub.constraints.size();
+    if (t.valid) {
+      t.evaluation.score = design_score(sub, t.evaluation.objective_values);
+      t.evaluation.broken = broken_constraints(sub, t.evaluation.constraint_values);
+    } else {
+      t = design_trial{.index = t.index, .phase = t.phase, .x = t.x};
+      try {
+        evaluate_design(sub, design_scene(sub, t.x));
+        throw std::logic_error("a shared search's invalid layout builds here");
+      } catch (const input_error& e) {
+        t.valid = false;
+        t.problem = one_line(e.what());
+        t.evaluation.score = -std::numeric_limits<double>::infinity();
+        t.evaluation.broken.push_back("no valid layout: " + t.problem);
+      }
+    }
+    r.trials.push_back(std::move(t));
+  }
+  return r;
+}
+
+// One of a front's searches: its number, the spec it optimises and where it starts.
+struct front_search {
+  int k = 0;
+  design_spec sub;
+  std::vector<double> start;
+};
+
 // A Pareto front's searches (the epsilon-constraint method, which also finds a front that is not
 // convex): each objective alone, then each end made exact (the other objective's best with this
 // one held at its best), then the first objective's best with the second held at `points` - 2
-// levels evenly between the ends. Every trial is kept, scored by the spec's own weights.
+// levels evenly between the ends. Every trial is kept, scored by the spec's own weights. The
+// searches of each of those three waves do not wait on each other: they run as items of `share`.
 design_result search_front(const design_spec& spec, const std::function<void(const design_progress&)>& progress,
-                           const std::atomic<bool>* cancel) {
+                           const std::atomic<bool>* cancel, const item_share& share) {
   const int points = spec.front.points, searches = points + 2;
   const int budget = spec.search.global_evaluations + spec.search.local_evaluations;
   design_result merged;
   std::vector<int> ends(4, -1);  // trials: each objective alone, then each end exact
   auto end = [&](int i) -> const design_trial& { return merged.trials[std::size_t(ends[std::size_t(i)])]; };
-  for (int k = 0; k < searches && !merged.cancelled; ++k) {
-    int main = k % 2;
-    std::optional<double> level;
-    std::vector<double> start;
-    if (k == 2 || k == 3) {
-      if (ends[std::size_t(k - 2)] < 0) continue;
-      main = 3 - k;  // the other objective, this one held at its best
-      level = end(k - 2).evaluation.objective_values[std::size_t(k - 2)];
-      start = end(k - 2).x;
-    } else if (k >= 4) {
-      if (ends[2] < 0 || ends[3] < 0) break;
-      main = 0;
-      const double a = end(2).evaluation.objective_values[1], b = end(3).evaluation.objective_values[1];
-      level = a + (b - a) * double(k - 3) / double(points - 1);
-    }
-    const design_spec sub = front_search_spec(spec, main, level);
-    const std::string stage = "front " + std::to_string(k + 1) + "/" + std::to_string(searches);
-    const design_result part = search_once(sub, progress, cancel, k * budget, searches * budget, stage, start);
-    merged.cancelled = part.cancelled;
-    const int offset = int(merged.trials.size());
-    for (design_trial t : part.trials) {
-      t.index = int(merged.trials.size());
-      t.phase = stage + " " + t.phase;
-      if (t.valid) {
-        t.evaluation.constraint_values.resize(spec.constraints.size());
-        t.evaluation.broken = broken_constraints(spec, t.evaluation.constraint_values);
-        t.evaluation.score = design_score(spec, t.evaluation.objective_values);
+  auto stage_of = [&](int k) { return "front " + std::to_string(k + 1) + "/" + std::to_string(searches); };
+  // A search's trials: NLopt's budget, the start and the local polish's last step; each with the
+  // held level's constraint too.
+  const std::size_t width = 3 + std::size_t(budget + 2) * (trial_width(spec) + 1);
+  for (int wave = 0; wave < 3 && !merged.cancelled; ++wave) {
+    std::vector<front_search> wave_searches;
+    for (int k = wave == 0 ? 0 : wave == 1 ? 2 : 4; k < (wave == 0 ? 2 : wave == 1 ? 4 : searches); ++k) {
+      int main = k % 2;
+      std::optional<double> level;
+      std::vector<double> start;
+      if (k == 2 || k == 3) {
+        if (ends[std::size_t(k - 2)] < 0) continue;
+        main = 3 - k;  // the other objective, this one held at its best
+        level = end(k - 2).evaluation.objective_values[std::size_t(k - 2)];
+        start = end(k - 2).x;
+      } else if (k >= 4) {
+        if (ends[2] < 0 || ends[3] < 0) break;
+        main = 0;
+        const double a = end(2).evaluation.objective_values[1], b = end(3).evaluation.objective_values[1];
+        level = a + (b - a) * double(k - 3) / double(points - 1);
       }
-      merged.trials.push_back(t);
-      if (merged.best < 0 || better_trial(spec, t, merged.best_trial())) merged.best = t.index;
+      wave_searches.push_back({k, front_search_spec(spec, main, level), start});
     }
-    // An end is the search's best when it met the spec's constraints (and the held level).
-    if (k < 4 && part.best >= 0 && part.best_trial().valid && part.best_trial().evaluation.feasible())
-      ends[std::size_t(k)] = offset + part.best;
+    const auto run_search = [&](const front_search& f) {
+      return search_once(f.sub, progress, cancel, f.k * budget, searches * budget, stage_of(f.k), f.start);
+    };
+    std::vector<design_result> parts;
+    if (share) {
+      const std::vector<double> values = share(wave_searches.size(), width, [&](std::size_t i, double* out) {
+        const design_result r = run_search(wave_searches[i]);
+        if (3 + r.trials.size() * trial_width(wave_searches[i].sub) > width)
+          throw std::logic_error("a front's search ran over its budget");
+        encode_search(wave_searches[i].sub, r, out);
+      });
+      for (std::size_t i = 0; i < wave_searches.size(); ++i)
+        parts.push_back(decode_search(wave_searches[i].sub, values.data() + i * width));
+    } else {
+      for (const front_search& f : wave_searches) {
+        parts.push_back(run_search(f));
+        if (parts.back().cancelled) break;
+      }
+    }
+    for (std::size_t i = 0; i < parts.size(); ++i) {
+      const design_result& part = parts[i];
+      const int k = wave_searches[i].k;
+      merged.cancelled = merged.cancelled || part.cancelled;
+      const int offset = int(merged.trials.size());
+      for (design_trial t : part.trials) {
+        t.index = int(merged.trials.size());
+        t.phase = stage_of(k) + " " + t.phase;
+        if (t.valid) {
+          t.evaluation.constraint_values.resize(spec.constraints.size());
+          t.evaluation.broken = broken_constraints(spec, t.evaluation.constraint_values);
+          t.evaluation.score = design_score(spec, t.evaluation.objective_values);
+        }
+        merged.trials.push_back(t);
+        if (merged.best < 0 || better_trial(spec, t, merged.best_trial())) merged.best = t.index;
+      }
+      // An end is the search's best when it met the spec's constraints (and the held level).
+      if (k < 4 && part.best >= 0 && part.best_trial().valid && part.best_trial().evaluation.feasible())
+        ends[std::size_t(k)] = offset + part.best;
+    }
   }
   return merged;
 }
@@ -264,10 +362,10 @@ design_result search_front(const design_spec& spec, const std::function<void(con
 }  // namespace
 
 design_result optimise_design(const design_spec& spec, const std::function<void(const design_progress&)>& progress,
-                              const std::atomic<bool>* cancel) {
+                              const std::atomic<bool>* cancel, const item_share& share) {
   const int budget = spec.search.global_evaluations + spec.search.local_evaluations;
-  design_result r =
-      spec.front.points > 0 ? search_front(spec, progress, cancel) : search_once(spec, progress, cancel, 0, budget, "");
+  design_result r = spec.front.points > 0 ? search_front(spec, progress, cancel, share)
+                                          : search_once(spec, progress, cancel, 0, budget, "");
   if (spec.objectives.size() == 2) r.front = pareto_front(spec, r.trials);
   return r;
 }

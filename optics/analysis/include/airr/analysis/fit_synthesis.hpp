@@ -7,6 +7,7 @@
 #include <string>
 
 #include "airr/analysis/sheet_fit.hpp"
+#include "airr/core/item_share.hpp"
 #include "airr/layout/scene.hpp"
 #include "airr/models/model_params.hpp"
 
@@ -39,7 +40,9 @@ scene synthesis_bench_file(const std::string& setup_path);
 // Writes fit.json, setup.json (the bench), 17 MTF CSVs and 10 white-square EXRs into dir (made if
 // missing), each file atomically. Every sheet of the bench takes truth's model. `progress` may
 // be empty; returning false cancels (fit_cancelled). Throws input_error for a model that fails.
+// The 17 measurements run as items through `share` (an MPI job's ranks) when given.
 void synthesise_fit_data(const std::string& dir, const scene& bench, const synthesis_truth& truth,
-                         const synthesis_params& p, const fit_progress_callback& progress);
+                         const synthesis_params& p, const fit_progress_callback& progress,
+                         const item_share& share = {});
 
 }  // namespace airr::analysis

@@ -4,6 +4,7 @@
 // root finder (Illinois) solves g(x) = 0 for a rising g. Every function evaluates f as few times as
 // it can (each evaluation may be a simulation) and reports how many times it did.
 #include <functional>
+#include <vector>
 
 namespace airr::analysis {
 
@@ -20,6 +21,10 @@ struct min_bracket {
 // The best of max(3, points) evenly spaced x on [lo, hi] (both ends included; the first of equal
 // values wins, NaN never does), bracketed by its neighbours on the grid (clamped to [lo, hi]).
 min_bracket grid_scan(const scalar_function& f, double lo, double hi, int points);
+// The same with every grid point's value from one call (f_all(xs) returns f at each x, in order),
+// for evaluations that run side by side.
+using batch_function = std::function<std::vector<double>(const std::vector<double>& xs)>;
+min_bracket grid_scan_batch(const batch_function& f_all, double lo, double hi, int points);
 
 // From x0 (clamped to [lo, hi]): f at x0 -+ step, then steps downhill, doubling the step each
 // time, until f is no lower on either side of x or x reaches an end of [lo, hi].

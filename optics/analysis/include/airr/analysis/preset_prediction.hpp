@@ -25,9 +25,11 @@ struct prediction_params {
 // Synthesises the bench's measurements of `sheet` into data_dir (kept: fit.json, the curves and
 // images), fits them and returns the preset, named after the sheet, its provenance naming the sheet.
 // A prism sheet's preset reads the shift table at the angle inside its plate (shift_index: its index).
-// Progress runs over both stages; returning false cancels (fit_cancelled).
+// Progress runs over both stages; returning false cancels (fit_cancelled). Their independent
+// simulations run as items through `share` (an MPI job's ranks) when given.
 fit_result predict_preset(const sheet_description& sheet, const scene& bench, const std::string& data_dir,
-                          const prediction_params& p, const fit_progress_callback& progress);
+                          const prediction_params& p, const fit_progress_callback& progress,
+                          const item_share& share = {});
 
 struct prediction_agreement {
   double tilt_deg = 0;
@@ -40,6 +42,6 @@ struct prediction_agreement {
 // The explicit sheet and the preset side by side on the bench at D 150 mm, at each tilt.
 std::vector<prediction_agreement> compare_prediction(const sheet_description& sheet, const sheet_preset& preset,
                                                      const scene& bench, const std::vector<double>& tilts_deg,
-                                                     const synthesis_params& p);
+                                                     const synthesis_params& p, const item_share& share = {});
 
 }  // namespace airr::analysis

@@ -23,6 +23,7 @@
 #include "airr/analysis/fit_data.hpp"
 #include "airr/analysis/fit_report.hpp"
 #include "airr/analysis/fit_simulation.hpp"  // what the fit simulates, for callers synthesising data
+#include "airr/core/item_share.hpp"
 #include "airr/layout/scene.hpp"
 #include "airr/models/preset.hpp"
 
@@ -47,7 +48,11 @@ struct fit_cancelled : std::runtime_error {
 using fit_progress_callback = std::function<bool(const fit_progress&)>;
 
 // `progress` may be empty. Throws input_error for data the model cannot simulate, fit_cancelled.
-fit_result fit_sheet(const fit_data& data, const fit_params& p, const fit_progress_callback& progress);
+// Simulations that do not wait on each other (the a scan, the distance series at each trial c, the
+// checks around a minimum, the white squares) run as items through `share` (an MPI job's ranks);
+// the minimisers' steps run in turn. The result is the same with or without it.
+fit_result fit_sheet(const fit_data& data, const fit_params& p, const fit_progress_callback& progress,
+                     const item_share& share = {});
 
 // The scene a measurement is simulated in: the setup at `tilt_deg` (the first sheet's) and
 // `floating_distance_mm` with every sheet's model set to the sinc-shift model of scalar a, c, mu:

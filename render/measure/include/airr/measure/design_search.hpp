@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "airr/core/item_share.hpp"
 #include "airr/formats/design_spec.hpp"
 #include "airr/measure/design_metrics.hpp"
 
@@ -43,9 +44,11 @@ struct design_result {
 };
 
 // Runs the search; `progress` after every evaluation, `cancel` checked before each. Deterministic
-// for the spec (its seed included).
+// for the spec (its seed included). A Pareto front's searches that do not wait on each other run as
+// items of `share` (an MPI job's ranks; each rank's progress tells of its own searches); the result
+// is the same with or without it.
 design_result optimise_design(const design_spec& spec, const std::function<void(const design_progress&)>& progress = {},
-                              const std::atomic<bool>* cancel = nullptr);
+                              const std::atomic<bool>* cancel = nullptr, const item_share& share = {});
 
 // The feasible trials no other feasible trial is at least as good as in both objectives and
 // better in one (of equal ones the first), ordered by the first objective's value.
