@@ -2,8 +2,8 @@
 //             [--set key=value ...] [--shard i/N]
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <optional>
-#include <thread>
 #include <tuple>
 
 #include "airr/core/error.hpp"
@@ -81,19 +81,16 @@ void add_render_command(CLI::App& app) {
     airr::render_session session(s, params);
     std::optional<progress_bar> bar;
     if (job.root()) bar.emplace(job.size > 1 ? "render (" + std::to_string(job.size) + " ranks)" : "render");
-    airr::render_snapshot snap;
-    while (true) {
-      snap = session.snapshot();
-      // The job's progress is its slowest rank's: every rank counts, each time, until all are done.
-      const std::uint64_t job_spp = job.size > 1 ? job_min(snap.spp) : snap.spp;
-      if (job_spp >= opt->spp) break;
-      if (bar) bar->update(double(job_spp) / double(opt->spp), std::to_string(job_spp) + " spp");
-      if (snap.spp < opt->spp)
-        session.wait_for(0, std::min<std::uint64_t>(opt->spp, snap.spp + 1));
-      else
-        std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    session.stop();
+    // The job's progress is its slowest rank's: every rank counts, each time, until all are done.
+    std::function<std::uint64_t(std::uint64_t)> job_spp;
+    if (job.size > 1) job_spp = job_min;
+    const airr::render_snapshot snap = airr::render_to_spp(
+        session, opt->spp,
+        [&](std::uint64_t job_spp) {
+          if (bar) bar->update(double(job_spp) / double(opt->spp), std::to_string(job_spp) + " spp");
+          return true;
+        },
+        std::chrono::milliseconds(0), job_spp);
     if (bar)
       bar->finish(std::to_string(snap.spp) + " spp, " +
                   std::to_string(std::uint64_t(snap.rays / std::max(snap.seconds, 1e-9))) + " rays/s");

@@ -78,6 +78,20 @@ v2=$("$prefix/bin/airr-studio" --version)
 [ "${v1#airr }" = "${v2#airr-studio }" ] || fail "versions differ: '$v1' and '$v2'"
 [[ "$v1" =~ ^airr\ [0-9]+\.[0-9]+\.[0-9]+ ]] || fail "airr --version printed '$v1'"
 
+# The Python module from the moved prefix alone (PYTHONPATH into it): it renders the scene saved
+# here with the prefix's assets, as the installed `airr` renders it.
+"$prefix/bin/airr" render bench.airr.json -o render.exr --spp 2 --seed 5 >/dev/null 2>&1
+PYTHONPATH="$prefix/lib/python3/dist-packages" PYTHONDONTWRITEBYTECODE=1 /usr/bin/python3 - "$prefix" <<'PY' ||
+import sys, numpy, airr
+prefix = sys.argv[1]
+assert airr.__file__.startswith(prefix), airr.__file__
+assert airr.asset_dir().startswith(prefix + "/share/airr-studio"), airr.asset_dir()
+image = airr.render(airr.Scene.load("bench.airr.json"), spp=2, seed=5)
+assert numpy.array_equal(image, airr.read_image("render.exr")["pixels"]), "the module's render differs from airr's"
+print("import airr from the prefix:", airr.__version__)
+PY
+  fail "python3 cannot import and run airr from the prefix"
+rm render.exr
 listing >"$tmp/prefix-after.txt"
 diff "$tmp/prefix-before.txt" "$tmp/prefix-after.txt" >&2 || fail "something was written into the prefix"
 

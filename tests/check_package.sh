@@ -24,7 +24,7 @@ field() { dpkg-deb --field "$deb" "$1"; }
 version=$("$build_dir/app/airr" --version)
 [ "$(field Version)" = "${version#airr }" ] || fail "package version '$(field Version)', programs print '$version'"
 depends=$(field Depends)
-for lib in libc6 libstdc++6 libembree3 libglfw3 libopenimageio libtbb libopencv-core libgl1; do
+for lib in libc6 libstdc++6 libembree3 libglfw3 libopenimageio libtbb libopencv-core libgl1 python3-numpy; do
   grep -q "$lib" <<<"$depends" || fail "Depends lacks $lib (shlibdeps?): $depends"
 done
 
@@ -33,7 +33,8 @@ for f in ./usr/bin/airr ./usr/bin/airr-studio ./usr/share/airr-studio/scenes/def
   ./usr/share/airr-studio/presets/rf-an.json ./usr/share/airr-studio/presets/rf-ay.json \
   ./usr/share/airr-studio/shift_tables/corner_cube.json ./usr/share/applications/airr-studio.desktop \
   ./usr/share/mime/packages/airr-studio.xml ./usr/share/icons/hicolor/scalable/apps/airr-studio.svg \
-  ./usr/share/man/man1/airr.1.gz ./usr/share/man/man1/airr-studio.1.gz ./usr/share/airr-studio/slurm/airr-array.sbatch; do
+  ./usr/share/man/man1/airr.1.gz ./usr/share/man/man1/airr-studio.1.gz ./usr/share/airr-studio/slurm/airr-array.sbatch \
+  ./usr/share/airr-studio/blender/airr_studio_addon.py; do
   grep -qxF "$f" "$tmp/contents.txt" || fail "the package lacks $f"
 done
 for size in 16 22 24 32 48 64 128 256 512; do
@@ -42,6 +43,12 @@ for size in 16 22 24 32 48 64 128 256 512; do
 done
 
 dpkg-deb -x "$deb" "$tmp/root"
+# The Python module: Debian's python3 imports it from the package's files and nothing else.
+grep -qxF ./usr/lib/python3/dist-packages/airr/__init__.py "$tmp/contents.txt" || fail "the package lacks the Python module"
+grep -q '^./usr/lib/python3/dist-packages/airr/_airr\..*\.so$' "$tmp/contents.txt" || fail "the package lacks airr/_airr*.so"
+(cd "$tmp" && env -u AIRR_ASSETS PYTHONPATH="$tmp/root/usr/lib/python3/dist-packages" /usr/bin/python3 -c \
+  'import airr, sys; s = airr.Scene.load(airr.default_scene_path()); assert airr.asset_dir().startswith(sys.argv[1]), airr.asset_dir(); print("import airr from the package:", airr.__version__, s.get("tilt_deg"))' \
+  "$tmp/root/usr/share/airr-studio") || fail "python3 cannot import airr from the package"
 desktop-file-validate "$tmp/root/usr/share/applications/airr-studio.desktop" || fail "desktop-file-validate"
 # The menu entry opens the scene files' MIME type, which the MIME package defines.
 python3 - "$tmp/root/usr/share/applications/airr-studio.desktop" "$tmp/root/usr/share/mime/packages/airr-studio.xml" <<'PY'

@@ -133,6 +133,16 @@ render_snapshot render_session::wait_for(std::uint64_t gen, std::uint64_t spp) c
   return snapshot_;
 }
 
+render_snapshot render_session::wait_for(std::uint64_t gen, std::uint64_t spp,
+                                         std::chrono::milliseconds timeout) const {
+  std::unique_lock lock(mutex_);
+  changed_.wait_for(lock, timeout, [&] {
+    return stopping_ || (snapshot_.generation == gen &&
+                         (snapshot_.spp >= spp || snapshot_.spp >= target_spp_ || !snapshot_.error.empty()));
+  });
+  return snapshot_;
+}
+
 double model_image_weight(const std::vector<float>& model, const std::vector<float>& rgb, const std::vector<float>* odd,
                           std::uint64_t spp) {
   if (spp < 2 || !odd || model.size() != rgb.size() || odd->size() != rgb.size()) return 1;

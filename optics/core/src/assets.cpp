@@ -29,8 +29,17 @@ static std::string installed_or_build_tree_assets() {
   return installed.string();  // missing: errors then name where the assets were looked for
 }
 
+// Set once, when a host program loads the library, before any asset is looked for.
+static std::string& set_dir() {
+  static std::string dir;
+  return dir;
+}
+
+void set_asset_dir(const std::string& dir) { set_dir() = dir; }
+
 std::string asset_dir() {
   if (const char* env = std::getenv("AIRR_ASSETS"); env && *env) return env;
+  if (!set_dir().empty()) return set_dir();
   static const std::string dir = installed_or_build_tree_assets();
   return dir;
 }

@@ -119,6 +119,8 @@ class render_session {
   render_snapshot snapshot() const;
   // Blocks until generation `gen` has at least `spp` samples (or the target is reached).
   render_snapshot wait_for(std::uint64_t gen, std::uint64_t spp) const;
+  // The same, waiting at most `timeout`.
+  render_snapshot wait_for(std::uint64_t gen, std::uint64_t spp, std::chrono::milliseconds timeout) const;
   // Blocks until `ready` holds for the snapshot (or the session stops).
   render_snapshot wait_until(const std::function<bool(const render_snapshot&)>& ready) const;
   // Stops the worker; further snapshots stay as they are.
@@ -187,5 +189,15 @@ class render_session {
   std::thread worker_;
   std::thread first_look_worker_;
 };
+
+// Runs `session` (made with target_spp >= spp) until every pixel has `spp` samples, and returns that
+// snapshot (`airr render`, the Python module). Between waves, and at least every `poll` when
+// given, `keep_going(spp so far)` is asked; false stops the session and returns the snapshot so
+// far (fewer samples). `job_spp` turns this process's samples per pixel into the job's (an MPI job:
+// its slowest rank's; every rank calls it equally often). Throws input_error when the render fails.
+render_snapshot render_to_spp(render_session& session, std::uint64_t spp,
+                              const std::function<bool(std::uint64_t)>& keep_going = {},
+                              std::chrono::milliseconds poll = std::chrono::milliseconds(0),
+                              const std::function<std::uint64_t(std::uint64_t)>& job_spp = {});
 
 }  // namespace airr

@@ -8,6 +8,9 @@ namespace airr {
 // (<prefix>/bin/../share/airr-studio, wherever the prefix was moved); else, for a program still in
 // the build tree, the source tree's assets/. An installed program never looks in the source tree.
 std::string asset_dir();
+// For a library loaded by another program (the Python module, run by python3): where its assets
+// are, found from the library's own place; $AIRR_ASSETS still comes first.
+void set_asset_dir(const std::string& dir);
 // The scene the designer opens by default: the reference layout with an RF-Ay sheet.
 std::string default_scene_path();
 // The same layout with the ideal retroreflector (mu = 1): a sharp image, for exact comparisons.

@@ -1,0 +1,68 @@
+// airr.render: the scene traced as `airr render` traces it, into numpy arrays.
+#include <chrono>
+#include <cstdint>
+#include <optional>
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include "airr/core/error.hpp"
+#include "airr/render/render_session.hpp"
+#include "airr/render/tracer.hpp"
+#include "py_arrays.hpp"
+#include "py_calls.hpp"
+#include "py_job.hpp"
+#include "py_scene.hpp"
+
+namespace py = pybind11;
+
+namespace airr::python {
+
+namespace {
+
+py::object render(const py_scene& ps, std::uint64_t spp, std::optional<std::uint64_t> seed, bool components,
+                  int threads, py::object progress) {
+  if (spp < 1 || spp > (1u << 24))
+    throw input_error("render: spp must be in [1, 16777216] (is " + std::to_string(spp) + ")");
+  if (threads < 0 || threads > 1024) throw input_error("render: threads must be in [0, 1024]");
+  scene s = ps.current();
+  if (seed) s.seed = *seed;
+  python_job job(std::move(progress));
+  render_snapshot snap;
+  {
+    py::gil_scoped_release released;
+    // As `airr render` sets it up, so that the same scene and seed give the same image.
+    render_session session(s, {.threads = threads, .target_spp = spp, .components = components});
+    snap = render_to_spp(
+        session, spp, [&](std::uint64_t done) { return job.keep_going(double(done) / double(spp)); },
+        std::chrono::milliseconds(50));
+  }
+  job.finish();
+  py::array_t<float> image = to_array(snap.image());
+  if (!components) return image;
+  py::dict parts;
+  const std::vector<image_rgb> layers = snap.component_images();
+  for (int k = 0; k < component_count && k < int(layers.size()); ++k)
+    parts[component_names[k]] = to_array(layers[std::size_t(k)]);
+  return py::make_tuple(image, parts);
+}
+
+}  // namespace
+
+void add_render_functions(py::module_& m) {
+  m.def("render", &render, py::arg("scene"), py::kw_only(), py::arg("spp") = 64, py::arg("seed") = py::none(),
+        py::arg("components") = false, py::arg("threads") = 0, py::arg("progress") = py::none(),
+        R"(Render the scene with the tracer, as `airr render` does.
+
+Returns the linear image as a float32 array of shape (height, width, 3): the same pixels `airr
+render SCENE -o out.exr --spp N [--seed S]` writes for the same scene. With components=True
+returns (image, components), components a dict of the image's parts ("aerial", "direct",
+"reflection", "rest"), arrays of the same shape that add up to the image.
+
+spp: samples per pixel. seed: overrides the scene's seed. threads: worker threads (0: all
+cores). progress: called with the fraction done (0 to 1, increasing); an exception it raises
+stops the render and reaches the caller. The render runs without the GIL; Ctrl+C stops it
+within a fraction of a second (KeyboardInterrupt).)");
+}
+
+}  // namespace airr::python

@@ -1,0 +1,147 @@
+"""airr.Scene and airr.render against `airr render` and `airr --set`."""
+import math
+import os
+import signal
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import airr
+
+SMALL = ["--set", "observer.width=64", "--set", "observer.height=48"]
+
+
+def test_a_render_equals_airr_render_pixel_for_pixel(tmp_path, cli, small_scene):
+    code, _, err = cli("render", small_scene.path, "-o", tmp_path / "cli.exr", "--spp", 4, "--seed", 3, *SMALL)
+    assert code == 0, err
+    expected = airr.read_image(str(tmp_path / "cli.exr"))["pixels"]
+    image = airr.render(small_scene, spp=4, seed=3)
+    assert image.dtype == np.float32 and image.shape == (48, 64, 3)
+    assert np.array_equal(image, expected)
+    assert image.max() > 0  # the aerial image is there
+    # Another seed is another image: the comparison can fail.
+    assert not np.array_equal(airr.render(small_scene, spp=4, seed=4), expected)
+
+
+def test_components_add_up_to_the_image(small_scene):
+    image, parts = airr.render(small_scene, spp=2, seed=1, components=True)
+    assert sorted(parts) == ["aerial", "direct", "reflection", "rest"]
+    total = sum(parts.values())
+    assert np.allclose(total, image, rtol=1e-5, atol=1e-6)
+    assert parts["aerial"].max() > 0
+
+
+BAD_SETS = [
+    ("bogus.key", "1"),
+    ("retroreflectors.0.pose.pitch_deg", "abc"),
+    ("retroreflectors.0.pose.pitch_deg", float("nan")),
+    ("retroreflectors.5.pose.pitch_deg", 1),
+    ("floating_distance_mm", -5),
+    ("observer.width", 0),
+    ("tilt_deg", 100),
+]
+
+
+@pytest.mark.parametrize("key,value", BAD_SETS)
+def test_a_bad_set_raises_the_clis_message(tmp_path, cli, key, value):
+    scene = airr.Scene.load(airr.default_scene_path())
+    text = "nan" if isinstance(value, float) and math.isnan(value) else str(value)
+    code, _, err = cli("render", scene.path, "-o", tmp_path / "x.png", "--spp", 1, "--set", f"{key}={text}")
+    assert code != 0
+    message = [line for line in err.splitlines() if line.startswith("error: ")][0][len("error: "):]
+    tilt = scene.get("tilt_deg")
+    with pytest.raises(ValueError) as raised:
+        scene.set(key, value)
+    assert str(raised.value) == message
+    assert scene.get("tilt_deg") == tilt and scene.overrides == []  # unchanged
+
+
+def test_set_get_and_save_round_trip(tmp_path):
+    scene = airr.Scene.load(airr.default_scene_path())
+    scene.set("tilt_deg", 20)
+    scene.set("floating_distance_mm", 200.5)
+    assert scene.get("retroreflectors.0.pose.pitch_deg") == 20
+    assert scene.get("floating_distance_mm") == pytest.approx(200.5, abs=1e-9)
+    scene.save(tmp_path / "mine.json")
+    again = airr.Scene.load(tmp_path / "mine.json")
+    assert again.to_json() == scene.to_json()
+    assert again.get("floating_distance_mm") == pytest.approx(200.5, abs=1e-9)
+    with pytest.raises(ValueError, match="nope.json"):
+        airr.Scene.load(tmp_path / "nope.json")
+
+
+def test_progress_rises_to_one_and_an_exception_in_it_stops_the_render(small_scene):
+    fractions = []
+    airr.render(small_scene, spp=16, seed=1, progress=fractions.append)
+    assert fractions[-1] == 1.0 and len(fractions) >= 3
+    assert all(a < b for a, b in zip(fractions, fractions[1:]))
+
+    class Enough(Exception):
+        pass
+
+    calls = []
+
+    def stop_at_the_third_call(f):
+        calls.append(f)
+        if len(calls) == 3:
+            raise Enough(f)
+
+    busy = airr.Scene.load(airr.default_scene_path())
+    busy.set("observer.width", 256)
+    busy.set("observer.height", 256)
+    with pytest.raises(Enough):
+        airr.render(busy, spp=100000, progress=stop_at_the_third_call)
+    assert len(calls) == 3
+    # Nothing of it runs on: the process's CPU time stays put.
+    before = time.process_time()
+    time.sleep(0.5)
+    assert time.process_time() - before < 0.1
+
+
+def test_ctrl_c_stops_a_render_within_a_second():
+    busy = airr.Scene.load(airr.default_scene_path())
+    busy.set("observer.width", 256)
+    busy.set("observer.height", 256)
+    sent = []
+
+    def interrupt():
+        sent.append(time.monotonic())
+        os.kill(os.getpid(), signal.SIGINT)
+
+    timer = threading.Timer(1.0, interrupt)
+    timer.start()
+    with pytest.raises(KeyboardInterrupt):
+        airr.render(busy, spp=100000)
+    latency = time.monotonic() - sent[0]
+    print(f"Ctrl+C to KeyboardInterrupt: {latency * 1000:.0f} ms")
+    assert latency < 1.0
+    before = time.process_time()
+    time.sleep(0.5)
+    assert time.process_time() - before < 0.1
+
+
+def test_two_threads_render_what_one_after_the_other_renders(small_scene):
+    other = airr.Scene.load(airr.default_scene_path())
+    other.set("observer.width", 64)
+    other.set("observer.height", 48)
+    other.set("tilt_deg", 25)
+    alone = [airr.render(small_scene, spp=8, seed=2), airr.render(other, spp=8, seed=2)]
+    assert not np.array_equal(alone[0], alone[1])
+    together = [None, None]
+
+    def run(i, scene):
+        together[i] = airr.render(scene, spp=8, seed=2)
+
+    threads = [threading.Thread(target=run, args=(0, small_scene)), threading.Thread(target=run, args=(1, other))]
+    for t in threads:
+        t.start()
+    # The renders leave the GIL free: this thread counts on meanwhile.
+    counted = 0
+    while any(t.is_alive() for t in threads):
+        counted += 1
+    for t in threads:
+        t.join()
+    assert np.array_equal(together[0], alone[0]) and np.array_equal(together[1], alone[1])
+    assert counted > 1000
