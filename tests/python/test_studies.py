@@ -90,3 +90,26 @@ def test_a_study_stops_at_an_exception_in_its_progress(small_scene):
         airr.viewzone(small_scene, grid=15, progress=stop)
     with pytest.raises(Enough):
         airr.sweep(small_scene, vary=["floating_distance=100:300:10"], psf_samples=20000, progress=stop)
+
+
+def test_ctrl_c_stops_a_fit_and_nothing_runs_on():
+    import os
+    import signal
+    import threading
+    import time
+
+    sent = []
+
+    def interrupt():
+        sent.append(time.monotonic())
+        os.kill(os.getpid(), signal.SIGINT)
+
+    threading.Timer(0.5, interrupt).start()
+    with pytest.raises(KeyboardInterrupt):
+        airr.fit(airr.asset_dir() + "/fit_example", samples=200000)
+    latency = time.monotonic() - sent[0]
+    print(f"Ctrl+C to KeyboardInterrupt in a fit: {latency * 1000:.0f} ms")
+    assert latency < 1.0
+    before = time.process_time()
+    time.sleep(0.5)
+    assert time.process_time() - before < 0.1
