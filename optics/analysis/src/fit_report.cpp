@@ -31,6 +31,7 @@ json settings_json(const fit_params& p) {
           {"c_tolerance_mm", p.c_tolerance_mm},
           {"alternation_tolerance", p.alternation_tolerance},
           {"shift_index", p.shift_index},
+          {"a_matches", p.a_by_mean_mtf ? "mean_mtf" : "curve"},
           {"method",
            "a: log-a scan (first fit) or downhill steps from the neighbouring tilt's a, then Brent's minimum "
            "of the MTF MSE over (0, 1] lp/mm, checked at a (1 -+ 2%); "

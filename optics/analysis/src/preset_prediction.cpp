@@ -53,6 +53,9 @@ fit_result predict_preset(const sheet_description& sheet, const scene& bench, co
                       p.synthesis, scaled(progress, 0, synthesis_share), share);
   fit_params fit = p.fit;
   fit.shift_index = shift_index_of(sheet);
+  // The sinc-shift lobe takes the shape of a shift-dominated sheet's curve, not of a diffraction
+  // cut-off (docs/models.md): a predicted preset matches the mean MTF, the designer's figure.
+  fit.a_by_mean_mtf = true;
   fit_result r = fit_sheet(load_fit_data(data_dir), fit, scaled(progress, synthesis_share, 1), share);
   r.preset.name = sheet.name;
   r.preset.provenance["source"] = "airr predict-preset";

@@ -138,7 +138,13 @@ class sheet_fitter {
     return curve.mtf;
   }
 
-  double a_loss(const mtf_target& t, double a, double c) const { return mse(simulate(t, a, c), t.measured); }
+  // The curve's mean squared difference, or with a_by_mean_mtf the squared difference of the means.
+  double a_loss(const mtf_target& t, double a, double c) const {
+    const std::vector<double> sim = simulate(t, a, c);
+    if (!p_.a_by_mean_mtf) return mse(sim, t.measured);
+    const double d = mean_of(sim) - t.mean;
+    return d * d;
+  }
 
   // The loss at each a, as items.
   std::vector<double> a_losses(const mtf_target& t, const std::vector<double>& as, double c) {

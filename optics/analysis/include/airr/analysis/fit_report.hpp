@@ -29,6 +29,10 @@ struct fit_params {
   double c_tolerance_mm = 1e-4;          // the root finder's final bracket width
   double alternation_tolerance = 0.005;  // converged: the final c bracket is narrower than this x c
   double shift_index = 1.0;              // of the simulated sheet (preset.hpp); 1: as the shipped presets
+  // a per tilt matches the measured mean MTF over the compared frequencies (the squared difference
+  // of the means is its loss) instead of the whole curve (the mean squared difference): for a
+  // sheet whose curve the sinc-shift lobe cannot take the shape of (predicted presets).
+  bool a_by_mean_mtf = false;
 };
 
 // A measured MTF curve as the fit compared with it.
