@@ -1,6 +1,9 @@
 // airr.render: the scene traced as `airr render` traces it, into numpy arrays.
+#include <atomic>
 #include <chrono>
 #include <cstdint>
+#include <future>
+#include <memory>
 #include <optional>
 
 #include <pybind11/numpy.h>
@@ -31,11 +34,20 @@ py::object render(const py_scene& ps, std::uint64_t spp, std::optional<std::uint
   render_snapshot snap;
   {
     py::gil_scoped_release released;
-    // As `airr render` sets it up, so that the same scene and seed give the same image.
-    render_session session(s, {.threads = threads, .target_spp = spp, .components = components});
-    snap = render_to_spp(
-        session, spp, [&](std::uint64_t done) { return job.keep_going(double(done) / double(spp)); },
-        std::chrono::milliseconds(50));
+    // As `airr render` sets it up, so that the same scene and seed give the same image. The
+    // session is built on another thread (its opening model image takes a second or more) while
+    // this one watches for Ctrl+C, which cancels the build.
+    std::atomic<bool> build_cancel{false};
+    const session_params params{
+        .threads = threads, .target_spp = spp, .components = components, .build_cancel = &build_cancel};
+    auto building = std::async(std::launch::async, [&] { return std::make_unique<render_session>(s, params); });
+    while (building.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready)
+      if (!job.keep_going(0.0)) build_cancel = true;
+    const std::unique_ptr<render_session> session = building.get();
+    if (!job.stopped())
+      snap = render_to_spp(
+          *session, spp, [&](std::uint64_t done) { return job.keep_going(double(done) / double(spp)); },
+          std::chrono::milliseconds(50));
   }
   job.finish();
   py::array_t<float> image = to_array(snap.image());

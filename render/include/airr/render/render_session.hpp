@@ -47,6 +47,10 @@ struct session_params {
   // does not depend on which rows are traced with it.
   int first_row = 0;
   int end_row = 0;
+  // When set (from another thread) while the constructor computes the opening model image, that
+  // stops early and the session starts without it: a caller waiting on the constructor can give
+  // up (and stop the session) at once.
+  const std::atomic<bool>* build_cancel = nullptr;
 };
 
 // An immutable picture of the accumulation after a whole wave.
