@@ -20,8 +20,8 @@
 #include "airr/core/random.hpp"
 #include "airr/formats/image.hpp"
 #include "airr/render/render_session.hpp"
-#include "airr/ui/analysis_worker.hpp"
-#include "airr/ui/fit_job.hpp"
+#include "airr/ui/jobs/analysis_worker.hpp"
+#include "airr/ui/jobs/fit_job.hpp"
 
 using namespace airr;
 namespace fs = std::filesystem;

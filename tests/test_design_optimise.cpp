@@ -14,12 +14,12 @@
 #include <tbb/global_control.h>
 
 #include "airr/core/assets.hpp"
+#include "airr/design/metrics.hpp"
+#include "airr/design/search.hpp"
 #include "airr/formats/design_spec.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/layout/viewing_zone.hpp"
-#include "airr/measure/design_metrics.hpp"
-#include "airr/measure/design_search.hpp"
 #include "airr/measure/sweep.hpp"
 #include "polygon_visible_fraction.hpp"
 #include "test_helpers.hpp"

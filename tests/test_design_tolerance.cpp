@@ -9,10 +9,10 @@
 #include <string>
 
 #include "airr/core/assets.hpp"
+#include "airr/design/metrics.hpp"
+#include "airr/design/tolerance.hpp"
 #include "airr/formats/design_spec.hpp"
 #include "airr/formats/scene_json.hpp"
-#include "airr/measure/design_metrics.hpp"
-#include "airr/measure/design_tolerance.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;

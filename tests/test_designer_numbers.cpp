@@ -14,9 +14,9 @@
 #include "airr/layout/layout.hpp"
 #include "airr/measure/mtf_routes.hpp"
 #include "airr/measure/sweep.hpp"
-#include "airr/ui/analysis_worker.hpp"
-#include "airr/ui/settings.hpp"
-#include "airr/ui/studio.hpp"
+#include "airr/ui/jobs/analysis_worker.hpp"
+#include "airr/ui/platform/settings.hpp"
+#include "airr/ui/studio/studio.hpp"
 #include "gltf_builder.hpp"
 #include "test_helpers.hpp"
 

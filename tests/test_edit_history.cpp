@@ -2,7 +2,7 @@
 // one named step, undo and redo walk the steps both ways, and a new edit drops what was undone.
 #include <gtest/gtest.h>
 
-#include "airr/ui/edit_history.hpp"
+#include "airr/ui/studio/edit_history.hpp"
 
 using namespace airr;
 using airr::ui::edit_history;

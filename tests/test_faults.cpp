@@ -25,7 +25,7 @@
 #include "airr/formats/scene_json.hpp"
 #include "airr/models/preset.hpp"
 #include "airr/models/retro_model.hpp"
-#include "airr/ui/studio.hpp"
+#include "airr/ui/studio/studio.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;

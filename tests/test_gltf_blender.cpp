@@ -9,6 +9,7 @@
 #include "airr/formats/gltf_layout.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
+#include "glb_file.hpp"
 #include "gltf_builder.hpp"
 #include "test_helpers.hpp"
 
@@ -17,40 +18,6 @@ using nlohmann::json;
 using test::error_of;
 
 namespace {
-
-// A GLB's JSON chunk and everything after it (the BIN chunk, header included), kept as bytes.
-struct glb_parts {
-  json doc;
-  std::string rest;
-};
-
-glb_parts read_glb(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::uint32_t length = 0;
-  std::memcpy(&length, bytes.data() + 12, 4);
-  return {json::parse(bytes.substr(20, length)), bytes.substr(20 + length)};
-}
-
-void write_glb(const std::string& path, const glb_parts& g) {
-  std::string text = g.doc.dump();
-  while (text.size() % 4) text += ' ';
-  std::ofstream out(path, std::ios::binary);
-  auto u32 = [&](std::uint32_t v) { out.write(reinterpret_cast<const char*>(&v), 4); };
-  u32(0x46546C67u);
-  u32(2);
-  u32(std::uint32_t(12 + 8 + text.size() + g.rest.size()));
-  u32(std::uint32_t(text.size()));
-  u32(0x4E4F534Au);
-  out << text << g.rest;
-}
-
-// `from` rewritten by `edit` into `to`.
-void rewrite(const std::string& from, const std::string& to, const std::function<void(json&)>& edit) {
-  glb_parts g = read_glb(from);
-  edit(g.doc);
-  write_glb(to, g);
-}
 
 int node_named(const json& doc, const std::string& name) {
   for (std::size_t k = 0; k < doc["nodes"].size(); ++k) {
@@ -139,7 +106,7 @@ TEST(GltfBlender, JsonStringsOnTheMeshDataReadAsNodeExtras) {
   const std::string objects = exported(a), data = b.file("layout.glb");
   write_box(b.file("box.glb"));
   int moved = 0;
-  rewrite(objects, data, [&](json& j) { moved = as_blender_strings(j); });
+  test::rewrite_glb(objects, data, [&](json& j) { moved = as_blender_strings(j); });
   EXPECT_EQ(moved, 4) << "display, half mirror, sheet and prop move to their meshes";
   EXPECT_EQ(gltf_layout_document(data), gltf_layout_document(objects));
   const scene from_data = load_scene(data), from_objects = load_scene(objects);
@@ -155,12 +122,12 @@ TEST(GltfBlender, JsonStringsOnTheMeshDataReadAsNodeExtras) {
 TEST(GltfBlender, MalformedJsonStringNamesTheFileTheNodeAndTheProblem) {
   test::temp_dir dir;
   const std::string base = exported(dir), bad = dir.file("bad.glb");
-  rewrite(base, bad, [](json& j) {
+  test::rewrite_glb(base, bad, [](json& j) {
     j["nodes"][node_named(j, "Half mirror")]["extras"]["airr"] = "{\"role\": \"half_mirror\", reflectance: 0.5}";
   });
   const std::string e = error_of([&] { load_scene(bad); });
   EXPECT_TRUE(has(e, bad + ": node 'Half mirror' (#1): extras airr (a JSON string): malformed JSON")) << e;
-  rewrite(base, bad, [](json& j) { j["nodes"][node_named(j, "Half mirror")]["extras"]["airr"] = "[1, 2]"; });
+  test::rewrite_glb(base, bad, [](json& j) { j["nodes"][node_named(j, "Half mirror")]["extras"]["airr"] = "[1, 2]"; });
   const std::string not_object = error_of([&] { load_scene(bad); });
   EXPECT_TRUE(has(not_object, "node 'Half mirror' (#1): extras airr must be a JSON object")) << not_object;
 }
@@ -170,7 +137,7 @@ TEST(GltfBlender, DevicesTenAndAThousandTimesTooLargeAreWarnedWithTheScale) {
   const std::string base = exported(dir);
   auto scaled = [&](double k) {
     const std::string path = dir.file("scaled_" + std::to_string(int(1000 * k)) + ".glb");
-    rewrite(base, path, [&](json& j) { scale_all(j, k); });
+    test::rewrite_glb(base, path, [&](json& j) { scale_all(j, k); });
     return path;
   };
   const std::string normal = scaled(1), ten = scaled(10), thousand = scaled(1000), tiny = scaled(0.001);
@@ -199,7 +166,7 @@ TEST(GltfBlender, ErrorsInANodesFieldsNameTheNodeAndTheFile) {
   test::temp_dir dir;
   const std::string base = exported(dir), bad = dir.file("bad.glb");
   auto error_after = [&](const std::function<void(json&)>& edit) {
-    rewrite(base, bad, edit);
+    test::rewrite_glb(base, bad, edit);
     return error_of([&] { load_scene(bad); });
   };
   auto airr_of = [](json& j, const char* node) -> json& { return j["nodes"][node_named(j, node)]["extras"]["airr"]; };
@@ -225,7 +192,7 @@ TEST(GltfBlender, ErrorsInANodesFieldsNameTheNodeAndTheFile) {
 TEST(GltfBlender, NodeExtrasWinOverMeshExtrasAndANoteSaysSo) {
   test::temp_dir dir;
   const std::string base = exported(dir), both = dir.file("both.glb");
-  rewrite(base, both, [](json& j) {
+  test::rewrite_glb(base, both, [](json& j) {
     const json& hm = j["nodes"][node_named(j, "Half mirror")];
     j["meshes"][hm["mesh"].get<std::size_t>()]["extras"] = {
         {"airr", json{{"role", "half_mirror"}, {"reflectance", 0.2}, {"transmittance", 0.7}}.dump()}};
@@ -253,7 +220,7 @@ TEST(GltfBlender, AMovedCameraWinsOverTheSceneExtrasUnlessTheySayOtherwise) {
   EXPECT_TRUE(has(all(notes), "observer: the scene extras' airr.observer, where the " + camera + " stands"))
       << all(notes);
   // Moved 50 mm to the right (+x) in Blender.
-  rewrite(base, moved, [](json& j) { j["nodes"][node_named(j, "Observer")]["translation"][0] = 0.05; });
+  test::rewrite_glb(base, moved, [](json& j) { j["nodes"][node_named(j, "Observer")]["translation"][0] = 0.05; });
   const pinhole_camera was = make_camera(s);
   notes.clear();
   const scene m = load_scene(moved, {}, notes);
@@ -268,16 +235,16 @@ TEST(GltfBlender, AMovedCameraWinsOverTheSceneExtrasUnlessTheySayOtherwise) {
   EXPECT_TRUE(has(all(notes), "observer: the " + camera + ", moved from the scene extras' airr.observer"))
       << all(notes);
   // The scene extras say to use theirs.
-  rewrite(moved, kept, [](json& j) { j["scenes"][0]["extras"]["airr"]["observer_source"] = "extras"; });
+  test::rewrite_glb(moved, kept, [](json& j) { j["scenes"][0]["extras"]["airr"]["observer_source"] = "extras"; });
   notes.clear();
   EXPECT_EQ(load_scene(kept, {}, notes).observer, s.observer);
   EXPECT_TRUE(has(all(notes), "observer: the scene extras' airr.observer (their observer_source is \"extras\"); the " +
                                   camera + " is not used"))
       << all(notes);
-  rewrite(moved, kept, [](json& j) { j["scenes"][0]["extras"]["airr"]["observer_source"] = "blender"; });
+  test::rewrite_glb(moved, kept, [](json& j) { j["scenes"][0]["extras"]["airr"]["observer_source"] = "blender"; });
   EXPECT_TRUE(has(error_of([&] { load_scene(kept); }), "observer_source: must be \"camera\" or \"extras\""));
   // Without an observer in the extras the camera places one, aiming 300 mm ahead.
-  rewrite(moved, kept, [](json& j) { j["scenes"][0]["extras"]["airr"].erase("observer"); });
+  test::rewrite_glb(moved, kept, [](json& j) { j["scenes"][0]["extras"]["airr"].erase("observer"); });
   notes.clear();
   const scene c = load_scene(kept, {}, notes);
   EXPECT_EQ(c.observer.position_mm, m.observer.position_mm);

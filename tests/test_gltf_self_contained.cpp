@@ -17,6 +17,7 @@
 #include "airr/formats/image.hpp"
 #include "airr/formats/mesh_gltf.hpp"
 #include "airr/formats/scene_json.hpp"
+#include "glb_file.hpp"
 #include "gltf_builder.hpp"
 #include "test_helpers.hpp"
 
@@ -42,39 +43,6 @@ std::string bytes_of(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
-
-// A GLB's JSON and binary chunks, read and written by the container's layout (glTF 2.0, 4.4).
-struct glb_file {
-  json doc;
-  std::string bin;
-  explicit glb_file(const std::string& path) {
-    const std::string b = bytes_of(path);
-    std::uint32_t json_len = 0, bin_len = 0;
-    std::memcpy(&json_len, b.data() + 12, 4);
-    doc = json::parse(b.substr(20, json_len));
-    std::memcpy(&bin_len, b.data() + 20 + json_len, 4);
-    bin = b.substr(28 + json_len, bin_len);
-  }
-  void write(const std::string& path) const {
-    std::string text = doc.dump();
-    while (text.size() % 4) text += ' ';
-    std::string out;
-    const auto u32 = [&](std::uint32_t v) { out.append(reinterpret_cast<const char*>(&v), 4); };
-    for (std::uint32_t v : {0x46546C67u, 2u, std::uint32_t(28 + text.size() + bin.size())}) u32(v);
-    u32(std::uint32_t(text.size()));
-    u32(0x4E4F534Au);  // "JSON"
-    out += text;
-    u32(std::uint32_t(bin.size()));
-    u32(0x004E4942u);  // "BIN\0"
-    out += bin;
-    std::ofstream(path, std::ios::binary) << out;
-  }
-  // The bytes of image i (in a buffer view).
-  std::string image(std::size_t i) const {
-    const json& view = doc["bufferViews"][doc["images"][i]["bufferView"].get<std::size_t>()];
-    return bin.substr(view.value("byteOffset", std::size_t(0)), view["byteLength"].get<std::size_t>());
-  }
-};
 
 // The shipped kiosk at 64 x 64; its emission profile (not embedded) by absolute path, so that a
 // copy of its GLB elsewhere lacks only the image.
@@ -116,7 +84,7 @@ double mean_of(const render_snapshot& a) {
 TEST(SelfContained, KioskGlbEmbedsTheChartsOwnBytesAsTheDisplaysTexture) {
   test::temp_dir dir;
   export_gltf_layout(kiosk(), dir.file("kiosk.glb"));
-  const glb_file glb(dir.file("kiosk.glb"));
+  const test::glb_file glb(dir.file("kiosk.glb"));
   ASSERT_EQ(glb.doc["images"].size(), 1u);
   EXPECT_EQ(glb.doc["images"][0]["mimeType"], "image/png");
   EXPECT_TRUE(glb.image(0) == bytes_of(asset_dir() + "/charts/test_chart.png"));
@@ -139,7 +107,7 @@ TEST(SelfContained, KioskGlbEmbedsTheChartsOwnBytesAsTheDisplaysTexture) {
   scene uniform = kiosk();
   uniform.source.image.clear();
   export_gltf_layout(uniform, dir.file("uniform.glb"));
-  EXPECT_FALSE(glb_file(dir.file("uniform.glb")).doc.contains("images"));
+  EXPECT_FALSE(test::glb_file(dir.file("uniform.glb")).doc.contains("images"));
 }
 
 TEST(SelfContained, KioskGlbCopiedAloneRendersLikeTheSceneAndNotWithoutItsTexture) {
@@ -163,7 +131,7 @@ TEST(SelfContained, KioskGlbCopiedAloneRendersLikeTheSceneAndNotWithoutItsTextur
   EXPECT_LE(max_difference(got, want), 1e-4 * std::max(1.0, mean_of(want)));
 
   // Without the texture (and with the missing file's name) it is an error naming the file...
-  glb_file bare(alone);
+  test::glb_file bare(alone);
   for (const char* key : {"images", "textures", "samplers"}) bare.doc.erase(key);
   for (auto& m : bare.doc["materials"]) {
     m.erase("emissiveTexture");
@@ -204,7 +172,7 @@ TEST(SelfContained, WideImagesAreEmbeddedAsSixteenBitPng) {
   s.source.image = dir.file("chart.exr");
   fs::create_directories(dir.path / "a" / "b");
   export_gltf_layout(s, dir.file("a/b/layout.glb"));
-  const std::string png = glb_file(dir.file("a/b/layout.glb")).image(0);
+  const std::string png = test::glb_file(dir.file("a/b/layout.glb")).image(0);
   ASSERT_GT(png.size(), 25u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
   EXPECT_EQ(int(static_cast<unsigned char>(png[24])), 16);  // IHDR bit depth
@@ -269,7 +237,7 @@ TEST(SelfContained, CorruptEmbeddedImageIsAnErrorNamingTheFileAndTheNode) {
   test::temp_dir dir;
   const cache_in cache(dir.file("cache"));
   const std::string alone = kiosk_copied_alone(dir);
-  glb_file glb(alone);
+  test::glb_file glb(alone);
   const json& view = glb.doc["bufferViews"][glb.doc["images"][0]["bufferView"].get<std::size_t>()];
   const std::size_t start = view["byteOffset"].get<std::size_t>() + 40, length = view["byteLength"].get<std::size_t>();
   for (std::size_t i = start; i < start + length - 60; ++i) glb.bin[i] = char(i * 7);  // the PNG's signature kept

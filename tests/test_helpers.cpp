@@ -160,4 +160,19 @@ command_result run_command(const std::string& shell_command) {
   return r;
 }
 
+void expect_preset_near_table(const sheet_preset& fitted, const sheet_preset& table, double relative) {
+  ASSERT_EQ(fitted.theta_deg, table.theta_deg);
+  std::printf("%8s %9s %9s %7s %9s %9s %7s\n", "tilt", "a_table", "a_fit", "a_err", "mu_table", "mu_fit", "mu_err");
+  for (std::size_t i = 0; i < table.theta_deg.size(); ++i) {
+    std::printf("%8g %9.5f %9.5f %+6.2f%% %9.5f %9.5f %+6.2f%%\n", table.theta_deg[i], table.a_per_mm[i],
+                fitted.a_per_mm[i], 100 * (fitted.a_per_mm[i] / table.a_per_mm[i] - 1), table.mu[i], fitted.mu[i],
+                100 * (fitted.mu[i] / table.mu[i] - 1));
+    EXPECT_NEAR(fitted.a_per_mm[i], table.a_per_mm[i], relative * table.a_per_mm[i]) << "tilt " << table.theta_deg[i];
+    EXPECT_NEAR(fitted.mu[i], table.mu[i], relative * table.mu[i]) << "tilt " << table.theta_deg[i];
+  }
+  std::printf("c: table %.5f mm, fitted %.5f mm (%+.2f%%)\n", table.c_mm, fitted.c_mm,
+              100 * (fitted.c_mm / table.c_mm - 1));
+  EXPECT_NEAR(fitted.c_mm, table.c_mm, relative * table.c_mm);
+}
+
 }  // namespace airr::test

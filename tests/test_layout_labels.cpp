@@ -7,7 +7,7 @@
 #include "airr/core/error.hpp"
 #include "airr/formats/mesh_gltf.hpp"
 #include "airr/formats/scene_json.hpp"
-#include "airr/ui/layout_projection.hpp"
+#include "airr/ui/views/layout_projection.hpp"
 #include "label_overlap.hpp"
 #include "test_helpers.hpp"
 

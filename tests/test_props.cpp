@@ -208,14 +208,22 @@ TEST(Props, PlateInFrontHidesTheProjectedPartOfTheAerialImage) {
   EXPECT_NEAR(visible_fraction(none, eye_position(s, g, 30, 0)), 1.0, 1e-9);
 }
 
+// A 100 mm square absorbing plate at z = 200 mm, in front of the default layout, as the scene's
+// one prop (checked, so its mesh is loaded).
+class PlateInFront : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    write_plate(plate(2, 200, -50, 50, -50, 50), dir.file("plate.glb"));
+    s.props.push_back(absorber_prop(dir.file("plate.glb")));
+    check_scene(s, "plate");
+  }
+  test::temp_dir dir;
+  scene s;
+};
+
 // An edit that leaves the props alone (the observer or a sheet moved) answers with the props'
 // scene built before; one that moves a prop builds a new one.
-TEST(Props, EditsThatLeaveThePropsAloneReuseTheirScene) {
-  test::temp_dir dir;
-  write_plate(plate(2, 200, -50, 50, -50, 50), dir.file("plate.glb"));
-  scene s;
-  s.props.push_back(absorber_prop(dir.file("plate.glb")));
-  check_scene(s, "plate");
+TEST_F(PlateInFront, EditsThatLeaveThePropsAloneReuseTheirScene) {
   const prop_hit_function first = scene_prop_hits(s);
   const std::uint64_t builds = prop_scene_builds();
   s.observer.azimuth_deg += 10;
@@ -233,12 +241,7 @@ TEST(Props, EditsThatLeaveThePropsAloneReuseTheirScene) {
 
 // An edit that moves a prop shares the mesh's acceleration structure with the layout before it:
 // each function still answers for its own layout, even after the next one is built.
-TEST(Props, HitsOfAMovedPropFollowItAndEarlierOnesKeepTheirLayout) {
-  test::temp_dir dir;
-  write_plate(plate(2, 200, -50, 50, -50, 50), dir.file("plate.glb"));
-  scene s;
-  s.props.push_back(absorber_prop(dir.file("plate.glb")));
-  check_scene(s, "plate");
+TEST_F(PlateInFront, HitsOfAMovedPropFollowItAndEarlierOnesKeepTheirLayout) {
   const prop_hit_function before = scene_prop_hits(s);
   s.props.front().pose.center_mm = {200, 0, 0};
   const prop_hit_function after = scene_prop_hits(s);

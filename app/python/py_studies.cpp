@@ -13,11 +13,11 @@
 #include <pybind11/stl/filesystem.h>
 
 #include "airr/core/error.hpp"
+#include "airr/design/search.hpp"
+#include "airr/design/tolerance.hpp"
 #include "airr/formats/design_spec.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/viewing_zone.hpp"
-#include "airr/measure/design_search.hpp"
-#include "airr/measure/design_tolerance.hpp"
 #include "airr/measure/sweep.hpp"
 #include "airr/measure/viewing_zone_full.hpp"
 #include "airr/render/prop_hits.hpp"
@@ -84,17 +84,8 @@ py::dict sweep(const py_scene& ps, const std::vector<std::string>& vary, bool ps
 
 py::dict viewzone(const py_scene& ps, bool sphere, double distance_mm, int grid, std::optional<std::vector<double>> x,
                   std::optional<std::vector<double>> y, int rows, bool full, std::uint64_t spp, py::object progress) {
-  eye_grid g;
-  g.kind = sphere ? eye_grid::shape::sphere : eye_grid::shape::plane;
-  g.distance_mm = distance_mm;
-  g.nx = g.ny = grid;
-  const double reach = sphere ? 60 : 200;
-  if ((x && x->size() != 2) || (y && y->size() != 2)) throw input_error("viewzone: x and y are (first, last)");
-  g.x_min = x ? (*x)[0] : -reach;
-  g.x_max = x ? (*x)[1] : reach;
-  g.y_min = y ? (*y)[0] : -reach;
-  g.y_max = y ? (*y)[1] : reach;
-  check_eye_grid(g);
+  const eye_grid g = requested_eye_grid(sphere, distance_mm, grid, x.value_or(std::vector<double>{}),
+                                        y.value_or(std::vector<double>{}));
   if (rows < 1 || rows > 100000) throw input_error("viewzone: rows must be in [1, 100000]");
   const scene& s = ps.current();
   if (s.retroreflectors.empty()) throw input_error(ps.path() + ": no retroreflector, no aerial image");

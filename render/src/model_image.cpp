@@ -69,9 +69,40 @@ void check_model_image_params(const model_image_params& p) {
   }
 }
 
+std::shared_ptr<const display_grids> compute_display_grids(const scene& s, const image_rgb* display,
+                                                           const model_image_params& p) {
+  check_model_image_params(p);
+  using clock_type = std::chrono::steady_clock;
+  const auto t0 = clock_type::now();
+  auto g = std::make_shared<display_grids>();
+  const part_frame src = source_frame(s);
+  // The grids' kernels stay within about 384 (fine) and 320 (tail) nodes of reach, however small
+  // the display: no finer grid than that pays.
+  const double longer_mm = std::max(src.width, src.height);
+  const int fine_texels = std::clamp(int(longer_mm / (p.core_radius_mm / 384) / p.texel_refine), 8, p.max_texels);
+  const int coarse_texels = std::clamp(int(longer_mm / (p.kernel_radius_mm / 320)), 4, p.tail_texels);
+  const cv::Mat texels = display_texels(s, display, fine_texels);
+  cv::Mat tail_texels = texels;
+  if (std::max(texels.cols, texels.rows) > coarse_texels) {
+    const double f = double(coarse_texels) / std::max(texels.cols, texels.rows);
+    cv::resize(texels, tail_texels,
+               cv::Size(std::max(1, int(std::lround(texels.cols * f))), std::max(1, int(std::lround(texels.rows * f)))),
+               0, 0, cv::INTER_AREA);
+  }
+  g->maps[model_fine] = make_grid(g->grids[model_fine], texels, p.texel_refine, p.core_radius_mm, src);
+  g->maps[model_tail] = make_grid(g->grids[model_tail], tail_texels, 1, p.kernel_radius_mm, src);
+  const auto t1 = clock_type::now();
+  g->grids_seconds = std::chrono::duration<double>(t1 - t0).count();
+  g->spectra[model_fine] = spectrum_of(g->grids[model_fine].padded);
+  g->spectra[model_tail] = spectrum_of(g->grids[model_tail].padded);
+  g->spectra_seconds = std::chrono::duration<double>(clock_type::now() - t1).count();
+  return g;
+}
+
 std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shared_ptr<const retro_model> model,
                                                        const image_rgb* display, const model_image_params& p,
-                                                       const std::atomic<bool>* cancel, std::size_t sheet) {
+                                                       const std::atomic<bool>* cancel, std::size_t sheet,
+                                                       std::shared_ptr<const display_grids> grids) {
   check_model_image_params(p);
   if (sheet >= s.retroreflectors.size() || !model) return nullptr;
   const auto t0 = std::chrono::steady_clock::now();
@@ -83,26 +114,16 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
   m->model = std::move(model);
   m->sheet = sheet;
   m->hm_factor = s.half_mirror.reflectance * s.half_mirror.transmittance;
-  // The grids' kernels stay within about 384 (fine) and 320 (tail) nodes of reach, however small
-  // the display: no finer grid than that pays.
-  const double longer_mm = std::max(parts.src.width, parts.src.height);
-  const int fine_texels = std::clamp(int(longer_mm / (p.core_radius_mm / 384) / p.texel_refine), 8, p.max_texels);
-  const int coarse_texels = std::clamp(int(longer_mm / (p.kernel_radius_mm / 320)), 4, p.tail_texels);
-  const cv::Mat texels = display_texels(s, display, fine_texels);
-  cv::Mat tail_texels = texels;
-  if (std::max(texels.cols, texels.rows) > coarse_texels) {
-    const double f = double(coarse_texels) / std::max(texels.cols, texels.rows);
-    cv::resize(texels, tail_texels,
-               cv::Size(std::max(1, int(std::lround(texels.cols * f))), std::max(1, int(std::lround(texels.rows * f)))),
-               0, 0, cv::INTER_AREA);
-  }
-  const grid_mapping maps[2] = {make_grid(m->grids[model_fine], texels, p.texel_refine, p.core_radius_mm, parts.src),
-                                make_grid(m->grids[model_tail], tail_texels, 1, p.kernel_radius_mm, parts.src)};
+  const bool own_grids = !grids;
+  m->display = own_grids ? compute_display_grids(s, display, p) : std::move(grids);
+  m->grids = m->display->grids;
+  const grid_mapping(&maps)[2] = m->display->maps;
 
   const std::vector<pixel_path> paths = pixel_paths(parts, emission.get(), p, cancel);
   if (paths.empty()) return nullptr;
   m->pixels = map_pixels(paths, maps, m->grids[model_tail], w, h, p.threads);
-  m->paths_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  m->paths_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() -
+                     (own_grids ? m->display->spectra_seconds : 0.0);
   double lo = INFINITY, hi = -INFINITY;
   for (const model_pixel& px : m->pixels) {
     if (px.ok) lo = std::min(lo, px.theta_deg), hi = std::max(hi, px.theta_deg);
@@ -149,10 +170,9 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
   auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
   using clock_type = std::chrono::steady_clock;
   auto since = [](clock_type::time_point t) { return std::chrono::duration<double>(clock_type::now() - t).count(); };
-  m->bins_seconds = since(t0) - m->paths_seconds;
-  const auto t_spectra = clock_type::now();
-  const grid_spectrum spectra[2] = {spectrum_of(m->grids[model_fine].padded), spectrum_of(m->grids[model_tail].padded)};
-  m->spectra_seconds = since(t_spectra);
+  m->spectra_seconds = own_grids ? m->display->spectra_seconds : 0.0;
+  m->bins_seconds = since(t0) - m->paths_seconds - m->spectra_seconds;
+  const grid_spectrum(&spectra)[2] = m->display->spectra;
   if (cancelled()) return nullptr;
   for (model_pixel& px : m->pixels) assign_bin(m->bins, px);
   // Each bin adds its share to the pixels it is the lower bin of, or the upper: no pixel is

@@ -137,6 +137,13 @@ std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std
 
 namespace airr {
 
+struct display_grids {
+  model_grid grids[2];
+  model_image_steps::grid_mapping maps[2];
+  model_image_steps::grid_spectrum spectra[2];
+  double grids_seconds = 0, spectra_seconds = 0;  // to compute them
+};
+
 struct model_correlations {
   model_image_steps::grid_mapping maps[2];
   std::vector<std::array<model_image_steps::correlated_grid, 2>> bins;

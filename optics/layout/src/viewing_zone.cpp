@@ -190,6 +190,23 @@ void check_eye_grid(const eye_grid& g) {
   }
 }
 
+eye_grid requested_eye_grid(bool sphere, double distance_mm, int per_side, const std::vector<double>& x,
+                            const std::vector<double>& y) {
+  if (!(x.empty() || x.size() == 2) || !(y.empty() || y.size() == 2))
+    throw input_error("viewing zone: x and y are (first, last)");
+  eye_grid g;
+  g.kind = sphere ? eye_grid::shape::sphere : eye_grid::shape::plane;
+  g.distance_mm = distance_mm;
+  g.nx = g.ny = per_side;
+  const double reach = sphere ? 60 : 200;
+  g.x_min = x.empty() ? -reach : x[0];
+  g.x_max = x.empty() ? reach : x[1];
+  g.y_min = y.empty() ? -reach : y[0];
+  g.y_max = y.empty() ? reach : y[1];
+  check_eye_grid(g);
+  return g;
+}
+
 viewing_zone_map geometric_viewing_zone(const scene& s, const eye_grid& g, const prop_hit_function& prop_hits,
                                         int rows_per_eye, const std::function<void(int, int)>& progress,
                                         const std::atomic<bool>* cancel, bool refine) {

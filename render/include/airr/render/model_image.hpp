@@ -96,11 +96,17 @@ struct model_pixel {
 // The bins' correlated grids and the grids' mappings (kept with keep_correlations).
 struct model_correlations;
 
+// The display on the two grids, where display points fall on them, and their spectra: the same for
+// every sheet of a layout, so computed once per layout (compute_display_grids) and shared by every
+// sheet's model image.
+struct display_grids;
+
 struct model_image {
   image_rgb image;  // the model image itself
   std::vector<model_pixel> pixels;
   std::vector<model_bin> bins;
-  model_grid grids[2];
+  const model_grid* grids = nullptr;                       // the display's two grids, held by `display`
+  std::shared_ptr<const display_grids> display;            // shared with the layout's other sheets
   double hm_factor = 0;                                    // R x T of the half mirror, once each way
   std::shared_ptr<const model_correlations> correlations;  // null unless kept
   std::shared_ptr<const retro_model> model;
@@ -117,14 +123,22 @@ struct model_image {
 // Throws input_error when a parameter is out of range.
 void check_model_image_params(const model_image_params& p);
 
+// The display's grids and their spectra for a layout's model images (`display` is the display's
+// texture, null: uniform; the scene's intensity is applied here). Throws input_error for parameters
+// out of range.
+std::shared_ptr<const display_grids> compute_display_grids(const scene& s, const image_rgb* display,
+                                                           const model_image_params& p = {});
+
 // Sheet `sheet`'s model image (`model` is that sheet's). Null when no pixel has an ideal path to
 // the sheet (or there is no such sheet), or when `cancel` is set while it runs. `display` is the
-// display's texture (null: uniform); the scene's intensity is applied here. Throws input_error for
-// parameters out of range, or when a bin's chief ray grazes a part's edge.
+// display's texture (null: uniform); the scene's intensity is applied here. `grids`, when given,
+// are the layout's (compute_display_grids with the same scene, display and `p`); else they are
+// computed. Throws input_error for parameters out of range, or when a bin's chief ray grazes a
+// part's edge.
 std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shared_ptr<const retro_model> model,
                                                        const image_rgb* display, const model_image_params& p = {},
-                                                       const std::atomic<bool>* cancel = nullptr,
-                                                       std::size_t sheet = 0);
+                                                       const std::atomic<bool>* cancel = nullptr, std::size_t sheet = 0,
+                                                       std::shared_ptr<const display_grids> grids = nullptr);
 
 // Sheet `sheet`'s model image `from`, moved to `s`, a placement of the layout it was computed for
 // (differ_in_placement_alone): the pixels' ideal paths are traced anew (`p`'s path stride and

@@ -64,6 +64,13 @@ void place_observer(scene& s, const eye_grid& g, double x, double y);
 // distance > 0, elevations within +-89 degrees).
 void check_eye_grid(const eye_grid& g);
 
+// The grid a user asks for (airr viewzone, airr.viewzone): `per_side` eyes each way on the plane
+// `distance_mm` in front of the aerial image (x, y in mm) or on the sphere of that radius (azimuth,
+// elevation in degrees); `x` and `y` are (first, last), empty for -200 to 200 mm or -60 to 60
+// degrees. Checked as check_eye_grid does.
+eye_grid requested_eye_grid(bool sphere, double distance_mm, int per_side, const std::vector<double>& x = {},
+                            const std::vector<double>& y = {});
+
 struct viewing_zone_map {
   eye_grid grid;
   std::vector<double> visible;  // ny rows of nx, row j at y_at(j)

@@ -1,0 +1,119 @@
+#include "bench/model_error_bench.hpp"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "airr/core/error.hpp"
+#include "airr/formats/image.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/sheet_models.hpp"
+#include "airr/measure/noise_level.hpp"
+#include "airr/render/layout_model_image.hpp"
+#include "airr/render/render_session.hpp"
+#include "bench/bench_case.hpp"
+#include "bench/other_build.hpp"
+
+std::string model_error_arguments(const model_error_options& o) {
+  std::string args = "bench --model-error " + shell_quoted(o.scene_path) + " --size " + std::to_string(o.size) +
+                     " --spp " + std::to_string(o.spp) + " --threads " + std::to_string(o.threads) + " --presets";
+  for (const std::string& p : o.presets) args += " " + shell_quoted(p);
+  args += " --tilts";
+  for (double t : o.tilts_deg) args += " " + std::to_string(t);
+  return args;
+}
+
+namespace {
+
+// The other build's `airr bench --model-error` on the same cases, each beside this build's view
+// image: its model image's relative RMS difference from its own tracer, raw and with its tracer's
+// noise taken out.
+void print_other_build(const build_under_test& b, const model_error_options& o,
+                       const std::vector<std::array<double, 4>>& rows) {
+  std::fflush(stdout);
+  const std::string out = run_build(b, model_error_arguments(o), "model error bench");
+  std::printf("other build (%s): its model image against its tracer, beside this build's view image\n", b.airr.c_str());
+  std::printf("%-8s %6s %12s %12s %14s %12s %14s\n", "preset", "tilt", "its noise", "its model", "its model,",
+              "this view", "this view,");
+  std::printf("%-8s %6s %12s %12s %14s %12s %14s\n", "", "deg", "", "", "noise out", "", "noise out");
+  std::istringstream lines(out);
+  std::size_t k = 0;
+  for (std::string line; std::getline(lines, line) && k < rows.size();) {
+    std::istringstream words(line);
+    std::string preset;
+    double tilt = 0;
+    if (!(words >> preset >> tilt) || std::find(o.presets.begin(), o.presets.end(), preset) == o.presets.end()) {
+      continue;
+    }
+    double noise = 0, model = 0, first = 0, clean = 0;
+    char pct = 0;
+    if (!(words >> noise >> pct >> model >> pct >> first >> pct >> clean)) {
+      std::printf("%-8s %6.0f %12s\n", preset.c_str(), tilt, "none");  // no model image there
+      ++k;
+      continue;
+    }
+    std::printf("%-8s %6.0f %11.2f%% %11.2f%% %13.2f%% %11.2f%% %13.2f%%\n", preset.c_str(), tilt, noise, model, clean,
+                100 * rows[k][2], 100 * rows[k][3]);
+    ++k;
+  }
+  if (k != rows.size()) {
+    throw airr::input_error("model error bench: " + b.airr + " printed " + std::to_string(k) + " cases, not " +
+                            std::to_string(rows.size()));
+  }
+}
+
+}  // namespace
+
+void run_model_error_bench(const model_error_options& o) {
+  std::printf("model image against the tracer at %llu spp, %dx%d, default scene; relative RMS (of the tracer's mean)\n",
+              static_cast<unsigned long long>(o.spp), o.size, o.size);
+  const std::vector<build_under_test> builds = builds_under_test(o.compare);
+  std::printf("%-8s %6s %12s %12s %12s %12s %14s %14s %8s %8s\n", "preset", "tilt", "tracer noise", "model image",
+              "view image", "first look", "model, noise", "view, noise", "model s", "view s");
+  std::printf("%-8s %6s %12s %12s %12s %12s %14s %14s %8s %8s\n", "", "deg", "", "", "", "", "taken out", "taken out",
+              "", "");
+  std::vector<std::array<double, 4>> rows;  // per case: tracer noise, model image, view image, view taken out
+  for (const std::string& preset : o.presets) {
+    for (double tilt : o.tilts_deg) {
+      const bench_case c = load_bench_case(o.scene_path, o.size, preset, tilt);
+      const airr::scene& s = c.s;
+      const airr::retro_model_list& models = c.models;
+      const airr::image_rgb* display = c.display();
+      const auto t0 = std::chrono::steady_clock::now();
+      const auto full = airr::compute_layout_model_image(
+          s, models, display, airr::model_image_params::for_image(s.observer.width, s.observer.height));
+      const double model_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      const auto t1 = std::chrono::steady_clock::now();
+      const auto view = airr::compute_layout_model_image(s, models, display, airr::model_image_params::for_view());
+      const double view_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+      const airr::image_rgb first = airr::model_image_first_look(s, models, display);
+
+      airr::render_session session(s, {.threads = o.threads, .target_spp = o.spp, .preview_stride = 1});
+      const airr::render_snapshot traced = session.wait_for(0, o.spp);
+      const std::vector<float> even = traced.even_rgb();
+      const airr::image_rgb odd_image{traced.width, traced.height, *traced.odd_rgb};
+      const airr::image_rgb even_image{traced.width, traced.height, even};
+      // Each half has twice the full mean's variance; their difference four times.
+      const double noise = airr::pair_relative_noise(odd_image, even_image) / std::sqrt(2.0);
+      if (!full || !view || first.rgb.empty()) {
+        std::printf("%-8s %6.0f %11.2f%% %12s %12s %12s\n", preset.c_str(), tilt, 100 * noise, "none", "none", "none");
+        rows.push_back({noise, NAN, NAN, NAN});
+        continue;
+      }
+      const double e_full = airr::relative_rms_difference(*traced.rgb, full->image.rgb, *traced.rgb);
+      const double e_first = airr::relative_rms_difference(*traced.rgb, first.rgb, *traced.rgb);
+      const double e_view = airr::relative_rms_difference(*traced.rgb, view->image.rgb, *traced.rgb);
+      const double e_clean = std::sqrt(std::max(0.0, e_full * e_full - noise * noise));
+      const double e_view_clean = std::sqrt(std::max(0.0, e_view * e_view - noise * noise));
+      std::printf("%-8s %6.0f %11.2f%% %11.2f%% %11.2f%% %11.2f%% %13.2f%% %13.2f%% %8.2f %8.3f\n", preset.c_str(),
+                  tilt, 100 * noise, 100 * e_full, 100 * e_view, 100 * e_first, 100 * e_clean, 100 * e_view_clean,
+                  model_s, view_s);
+      rows.push_back({noise, e_full, e_view, e_view_clean});
+      std::fflush(stdout);
+    }
+  }
+  if (builds.size() == 2) print_other_build(builds[1], o, rows);
+}

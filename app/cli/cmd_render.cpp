@@ -1,0 +1,139 @@
+// airr render SCENE -o OUT.exr|OUT.png [--spp N] [--seed S] [--components | --component NAME]
+//             [--set key=value ...] [--shard i/N]
+#include <chrono>
+#include <cmath>
+#include <functional>
+#include <optional>
+#include <tuple>
+
+#include "airr/core/error.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/render/render_metadata.hpp"
+#include "airr/render/render_session.hpp"
+#include "airr/render/render_shards.hpp"
+#include "airr_version.hpp"
+#include "cli/commands.hpp"
+#include "cli/progress_bar.hpp"
+#include "cluster/mpi_job.hpp"
+
+void add_render_command(CLI::App& app) {
+  struct options {
+    std::string scene_path, out;
+    std::uint64_t spp = 64;
+    std::optional<std::uint64_t> seed;
+    std::vector<std::string> sets;
+    double exposure = 0;
+    int threads = 0;
+    bool components = false;
+    std::string component;
+    std::string shard;
+  };
+  auto opt = std::make_shared<options>();
+  auto* cmd = app.add_subcommand("render", "Render a scene to EXR (linear) or PNG (sRGB)");
+  cmd->add_option("scene", opt->scene_path, "Scene JSON file")->required();
+  cmd->add_option("-o,--output", opt->out, "Output image (.exr or .png)")->required();
+  cmd->add_option("--spp", opt->spp, "Samples per pixel")->check(CLI::Range(1, 1 << 24));
+  cmd->add_option("--seed", opt->seed, "Random seed (overrides the scene's)");
+  cmd->add_option("--set", opt->sets,
+                  "Override a scene value, e.g. retroreflectors.0.pose.pitch_deg=20 or floating_distance_mm=200");
+  cmd->add_option("--exposure", opt->exposure,
+                  "PNG scale factor; default maps a white source through a lossless retroreflector to 1");
+  cmd->add_option("--threads", opt->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
+  auto* layers = cmd->add_flag("--components", opt->components,
+                               "EXR: also write the image's components as layers aerial, direct, reflection, rest");
+  cmd->add_option("--component", opt->component,
+                  "Write one component instead of the whole image: aerial, direct, reflection or rest")
+      ->check(CLI::IsMember({"aerial", "direct", "reflection", "rest"}))
+      ->excludes(layers);
+  cmd->add_option("--shard", opt->shard,
+                  "Render rows of shard i of N (0 <= i < N) alone into an EXR for airr merge (e.g. a Slurm array "
+                  "task's share)");
+  cmd->callback([opt] {
+    std::vector<airr::scene_override> overrides;
+    for (const auto& s : opt->sets) overrides.push_back(airr::parse_override(s));
+    airr::scene s = load_scene_noting(opt->scene_path, overrides);
+    if (opt->seed) s.seed = *opt->seed;
+    const bool split = opt->components || !opt->component.empty();
+    if (opt->components && !opt->out.ends_with(".exr")) {
+      throw airr::input_error(opt->out + ": --components needs an EXR output (layers); use --component for a PNG");
+    }
+    const mpi_job& job = this_job();
+    std::optional<airr::shard_index> shard;  // this process's rows go to a shard file
+    airr::session_params params{.threads = opt->threads, .target_spp = opt->spp, .components = split};
+    if (!opt->shard.empty()) {
+      if (job.size > 1) throw airr::input_error("--shard: not under mpirun or srun, whose ranks split the render");
+      shard = airr::parse_shard(opt->shard, "--shard");
+      if (!opt->out.ends_with(".exr")) throw airr::input_error(opt->out + ": a shard is written to an EXR file");
+    }
+    // Under mpirun or srun each rank traces the rows of its shard, and rank 0 gathers them.
+    const std::optional<airr::shard_index> rows = shard ? shard
+                                                  : job.size > 1
+                                                      ? std::optional<airr::shard_index>({job.rank, job.size})
+                                                      : std::nullopt;
+    if (rows) {
+      if (rows->count > s.observer.height)
+        throw airr::input_error(std::string(shard ? "--shard: " : "mpirun/srun: ") + std::to_string(rows->count) +
+                                (shard ? " shards" : " ranks") + " for an image " + std::to_string(s.observer.height) +
+                                " rows high (at most one per row)");
+      std::tie(params.first_row, params.end_row) = airr::shard_rows(*rows, s.observer.height);
+    }
+    airr::render_session session(s, params);
+    std::optional<progress_bar> bar;
+    if (job.root()) bar.emplace(job.size > 1 ? "render (" + std::to_string(job.size) + " ranks)" : "render");
+    // The job's progress is its slowest rank's: every rank counts, each time, until all are done.
+    std::function<std::uint64_t(std::uint64_t)> job_spp;
+    if (job.size > 1) job_spp = job_min;
+    const airr::render_snapshot snap = airr::render_to_spp(
+        session, opt->spp,
+        [&](std::uint64_t job_spp) {
+          if (bar) bar->update(double(job_spp) / double(opt->spp), std::to_string(job_spp) + " spp");
+          return true;
+        },
+        std::chrono::milliseconds(0), job_spp);
+    if (bar)
+      bar->finish(std::to_string(snap.spp) + " spp, " +
+                  std::to_string(std::uint64_t(snap.rays / std::max(snap.seconds, 1e-9))) + " rays/s");
+    const float exposure = opt->exposure > 0 ? float(opt->exposure) : float(airr::default_exposure(s));
+    std::vector<airr::image_rgb> parts = snap.component_images();
+    std::vector<airr::image_layer> layers;
+    for (int k = 0; k < int(parts.size()) && opt->components; ++k)
+      layers.push_back({airr::component_names[k], &parts[k]});
+    airr::image_rgb image = snap.image();
+    if (job.size > 1) {
+      image = gather_rows(image, params.first_row, params.end_row);
+      for (auto& p : parts) p = gather_rows(p, params.first_row, params.end_row);
+      if (!job.root()) return;
+    }
+    if (!opt->component.empty()) {
+      for (int k = 0; k < airr::component_count; ++k) {
+        if (opt->component == airr::component_names[k]) image = parts[std::size_t(k)];
+      }
+    }
+    airr::image_metadata meta = airr::render_metadata(s, snap, exposure);
+    if (!opt->component.empty()) meta["airr:component"] = opt->component;
+    if (shard) {
+      airr::render_image whole{image, {}, meta};
+      for (const auto& l : layers) whole.layers.emplace_back(l.name, *l.image);
+      airr::write_render_shard(opt->out, whole, *shard, AIRR_VERSION);
+      const auto [first, end] = airr::shard_rows(*shard, snap.height);
+      std::fprintf(stderr, "wrote %s (shard %s: rows %d to %d of %dx%d, %llu spp)\n", opt->out.c_str(),
+                   opt->shard.c_str(), first, end - 1, snap.width, snap.height,
+                   static_cast<unsigned long long>(snap.spp));
+      return;
+    }
+    airr::write_image(opt->out, image, meta, exposure, layers);
+    std::fprintf(stderr, "wrote %s (%dx%d, %llu spp, %.6g mm/pixel)\n", opt->out.c_str(), snap.width, snap.height,
+                 static_cast<unsigned long long>(snap.spp), snap.mm_per_pixel);
+    // Rounding noise of the mirror image (1e-14 mm) printed as 0.
+    const auto tidy = [](double v) { return std::abs(v) < 1e-9 ? 0.0 : v; };
+    const glm::dvec3 aerial = airr::aerial_image_center(s);
+    const airr::pinhole_camera cam = airr::make_camera(s);
+    std::fprintf(stderr,
+                 "floating distance D %.6g mm; aerial image centred at (%.6g, %.6g, %.6g) mm; observer (%s) at (%.6g, "
+                 "%.6g, %.6g) mm, %s\n",
+                 airr::floating_distance(s), tidy(aerial.x), tidy(aerial.y), tidy(aerial.z),
+                 s.observer.placement == airr::observer_placement::orbit ? "orbit" : "look_at", tidy(cam.position.x),
+                 tidy(cam.position.y), tidy(cam.position.z), cam.aperture_mm > 0 ? "thin lens" : "pinhole");
+  });
+}

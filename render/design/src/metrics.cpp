@@ -1,0 +1,196 @@
+#include "airr/design/metrics.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <optional>
+
+#include <tbb/parallel_for.h>
+
+#include "airr/core/error.hpp"
+#include "airr/formats/mesh_gltf.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/layout/psf.hpp"
+#include "airr/layout/sheet_models.hpp"
+#include "airr/layout/viewing_zone.hpp"
+#include "airr/measure/mtf_routes.hpp"
+#include "airr/measure/viewing_zone_full.hpp"
+#include "airr/render/prop_hits.hpp"
+
+namespace airr {
+
+namespace {
+
+// The eye metrics of one layout at one eye, each worked out once when first asked for.
+class eye_metrics {
+ public:
+  // `parts`: the layout's viewing parts, when a visible fraction is asked for.
+  eye_metrics(const design_spec& spec, const scene& s, const glm::dvec3& eye, const viewing_parts* parts)
+      : spec_(spec), s_(observer_at(s, eye)), eye_(eye), parts_(parts) {}
+
+  double value(design_metric m) {
+    if (m == design_metric::visible_fraction) return visible_fraction(*parts_, eye_);
+    if (m == design_metric::stray_light) {
+      const double r = stray_light_ratio(s_, eye_);
+      return std::isnan(r) ? std::numeric_limits<double>::infinity() : r;  // none of the aerial image seen
+    }
+    const psf_samples& p = psf();
+    switch (m) {
+      case design_metric::mean_mtf:
+        return mtf().mean_mtf;
+      case design_metric::mtf50_lp_per_mm:
+        return mtf().mtf50_lp_per_mm.value_or(4.0);  // above 0.5 as far as searched
+      case design_metric::r50_mm:
+        return p.offset_mm.empty() ? std::numeric_limits<double>::infinity() : energy_radius(p, 0.5);
+      case design_metric::brightness:
+        return p.brightness();
+      default:
+        return 0;
+    }
+  }
+
+ private:
+  const psf_samples& psf() {
+    if (!psf_) psf_ = scene_psf(s_, spec_.search.psf_samples);
+    return *psf_;
+  }
+  const mtf_summary& mtf() {
+    if (!mtf_) mtf_ = psf_route_mtf(psf(), 0.0);
+    return *mtf_;
+  }
+
+  const design_spec& spec_;
+  scene s_;
+  glm::dvec3 eye_;
+  const viewing_parts* parts_;
+  std::optional<psf_samples> psf_;
+  std::optional<mtf_summary> mtf_;
+};
+
+}  // namespace
+
+scene observer_at(scene s, const glm::dvec3& eye) {
+  const glm::dvec3 target = aerial_image_center(s);
+  s.observer.placement = observer_placement::look_at;
+  s.observer.position_mm = {eye.x, eye.y, eye.z};
+  s.observer.look_at_mm = {target.x, target.y, target.z};
+  return s;
+}
+
+glm::dvec3 device_size_mm(const scene& s) {
+  glm::dvec3 lo(std::numeric_limits<double>::infinity()), hi(-lo);
+  auto add = [&](const part_frame& f) {
+    for (const glm::dvec3& c : corners(f)) lo = glm::min(lo, c), hi = glm::max(hi, c);
+  };
+  add(source_panel_frame(s));
+  add(half_mirror_frame(s));
+  for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) add(retroreflector_frame(s, i));
+  return hi - lo;
+}
+
+double prop_cut_length_mm(const scene& s) {
+  std::vector<part_frame> parts = {source_panel_frame(s), half_mirror_frame(s)};
+  for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) parts.push_back(retroreflector_frame(s, i));
+  double length = 0;
+  for (const prop_params& p : s.props) {
+    if (!p.visible) continue;
+    const auto mesh = cached_prop_mesh(resolve_scene_path(s, p.mesh), p.node);
+    const glm::dmat4 to_world = prop_transform(p);
+    // Fixed blocks of triangles summed in order: the same length on any number of threads.
+    constexpr std::size_t block = 4096;
+    const std::size_t triangles = mesh->indices.size() / 3;
+    std::vector<double> sums((triangles + block - 1) / block, 0.0);
+    tbb::parallel_for(std::size_t(0), sums.size(), [&](std::size_t b) {
+      for (std::size_t t = b * block; t < std::min(triangles, (b + 1) * block); ++t) {
+        std::array<glm::dvec3, 3> tri;
+        for (int k = 0; k < 3; ++k)
+          tri[k] = glm::dvec3(to_world * glm::dvec4(glm::dvec3(mesh->positions[mesh->indices[3 * t + k]]), 1.0));
+        for (const part_frame& f : parts) sums[b] += part_cut_length(f, tri);
+      }
+    });
+    for (double v : sums) length += v;
+  }
+  return length;
+}
+
+double constraint_violation(const design_constraint& c, double value) {
+  double v = 0;
+  if (c.min && value < *c.min) v = *c.min - value;
+  if (c.max && value > *c.max) v = value - *c.max;
+  return v;
+}
+
+double design_score(const design_spec& spec, const std::vector<double>& objective_values) {
+  double score = 0;
+  for (std::size_t i = 0; i < spec.objectives.size() && i < objective_values.size(); ++i)
+    score += (spec.objectives[i].maximise ? 1 : -1) * spec.objectives[i].weight * objective_values[i];
+  return score;
+}
+
+std::vector<std::string> broken_constraints(const design_spec& spec, const std::vector<double>& constraint_values) {
+  std::vector<std::string> broken;
+  for (std::size_t i = 0; i < spec.constraints.size() && i < constraint_values.size(); ++i) {
+    const design_constraint& c = spec.constraints[i];
+    const double v = constraint_values[i];
+    if (constraint_violation(c, v) > 0)
+      broken.push_back(std::string(to_string(c.metric)) + " " + number_text(v) +
+                       (c.min && v < *c.min ? " < min " + number_text(*c.min) : " > max " + number_text(*c.max)));
+  }
+  return broken;
+}
+
+design_evaluation evaluate_design(const design_spec& spec, const scene& s) {
+  std::vector<design_metric> asked;  // the eye metrics the spec names
+  for (const design_objective& o : spec.objectives) asked.push_back(o.metric);
+  for (const design_constraint& c : spec.constraints) asked.push_back(c.metric);
+  std::erase_if(asked, [](design_metric m) { return !metric_at_eye(m); });
+  std::sort(asked.begin(), asked.end());
+  asked.erase(std::unique(asked.begin(), asked.end()), asked.end());
+  // Only a visible fraction needs the viewing parts (and the props' Embree scene); built once,
+  // before the eyes are measured in parallel (each eye's values alone, so any threads agree).
+  std::optional<viewing_parts> parts;
+  if (std::find(asked.begin(), asked.end(), design_metric::visible_fraction) != asked.end())
+    parts.emplace(s, scene_prop_hits(s));
+  const std::vector<glm::dvec3> eyes = design_eyes(spec);
+  std::vector<std::map<design_metric, double>> at_eye(eyes.size());
+  tbb::parallel_for(std::size_t(0), eyes.size(), [&](std::size_t i) {
+    eye_metrics e(spec, s, eyes[i], parts ? &*parts : nullptr);
+    for (design_metric m : asked) at_eye[i][m] = e.value(m);
+  });
+  const glm::dvec3 size = device_size_mm(s);
+  const bool cuts_asked =
+      std::any_of(spec.constraints.begin(), spec.constraints.end(),
+                  [](const design_constraint& c) { return c.metric == design_metric::prop_cut_mm; }) ||
+      std::any_of(spec.objectives.begin(), spec.objectives.end(),
+                  [](const design_objective& o) { return o.metric == design_metric::prop_cut_mm; });
+  const double cut = cuts_asked ? prop_cut_length_mm(s) : 0;
+  auto value = [&](design_metric m, over_eyes over, double threshold) {
+    if (m == design_metric::size_x_mm) return size.x;
+    if (m == design_metric::size_y_mm) return size.y;
+    if (m == design_metric::size_z_mm) return size.z;
+    if (m == design_metric::prop_cut_mm) return cut;
+    double sum = 0, least = std::numeric_limits<double>::infinity();
+    int above = 0;
+    for (const auto& values : at_eye) {
+      const double v = values.at(m);
+      sum += v;
+      least = std::min(least, v);
+      above += v >= threshold;
+    }
+    if (over == over_eyes::share_above) return double(above) / double(at_eye.size());
+    return over == over_eyes::min ? least : sum / double(at_eye.size());
+  };
+  design_evaluation out;
+  for (const design_objective& o : spec.objectives)
+    out.objective_values.push_back(value(o.metric, o.over, o.threshold));
+  out.score = design_score(spec, out.objective_values);
+  for (const design_constraint& c : spec.constraints)
+    out.constraint_values.push_back(value(c.metric, c.over, c.threshold));
+  out.broken = broken_constraints(spec, out.constraint_values);
+  return out;
+}
+
+}  // namespace airr

@@ -1,0 +1,46 @@
+#pragma once
+// The panels: what the user edits, one file each (panel_layout.cpp, panel_fit.cpp,
+// panel_optimise.cpp, panel_tolerance.cpp; design_windows.cpp runs the last two's jobs).
+#include <string>
+
+#include "airr/models/preset.hpp"
+#include "airr/ui/studio/studio.hpp"
+
+namespace airr::ui {
+
+void draw_layout_panel(studio& st);
+
+void draw_fit_window(studio& st);
+// Starts predicting a preset for the first sheet's model in the background (the fit window shows
+// it); sets fit_error when the model cannot be measured (a sinc-shift sheet already has a preset).
+void start_preset_prediction(studio& st);
+void save_fitted_preset(studio& st, const std::string& path);
+// Saves the preset (to config_dir()/presets unless saved already) and points the model at it.
+void apply_fitted_preset(studio& st, const sheet_preset& preset);
+
+// The Optimise and Tolerance windows.
+void draw_optimise_window(studio& st);
+void draw_tolerance_window(studio& st);
+// A layout panel row picked by its --set key: a variable of the Optimise window (its range about
+// the value) or a tolerance of the Tolerance window; opens the window.
+void add_design_pick(studio& st, const std::string& key, bool tolerance);
+// Starts the search or the analysis of the windows' spec over the applied layout (false with
+// design.error when the spec cannot run).
+bool start_design_job(studio& st, design_job::kind k);
+// Takes a finished run's result into the windows (call once per frame); true when one finished.
+bool collect_design_job(studio& st);
+// Puts the chosen trial's layout into the scene as one undoable step (false when there is none).
+bool apply_design_choice(studio& st);
+// A scripted run of the design windows (airr-studio --optimise, --tolerance): once the scene's
+// edits are applied, the search and then the analysis run to their ends; then the optimised layout
+// is applied and `undo` steps undone, as asked.
+struct design_script {
+  bool optimise = false, tolerance = false, apply = false;
+  int undo = 0;
+  bool optimise_started = false, tolerance_started = false, finished = false;
+  std::string error;  // why it failed
+};
+// Advances the script by a frame: true while it needs more frames.
+bool run_design_script(studio& st, design_script& script);
+
+}  // namespace airr::ui

@@ -1,0 +1,21 @@
+#pragma once
+// The views: what the designer shows of the studio's state, one file each (view_render.cpp,
+// view_layout.cpp, view_3d.cpp, view_plots.cpp, view_bokeh.cpp).
+#include <imgui.h>
+
+#include "airr/ui/studio/studio.hpp"
+
+namespace airr::ui {
+
+void draw_render_view(studio& st, double now_seconds);
+void draw_layout_view(studio& st);
+// The 3D layout view in the screen rectangle at `at` of `size` (inside the layout view's window).
+void draw_view_3d(studio& st, ImVec2 at, ImVec2 size);
+// The Plots window: MTF, PSF, mean MTF against D, the viewing zone; its Bokeh tab.
+void draw_plots_panel(studio& st);
+void draw_bokeh_tab(studio& st);
+// Starts the viewing zone's full pass for the applied layout, on the predicted map's sphere
+// (false while the predicted plots are not yet those of the current layout).
+bool start_full_zone(studio& st);
+
+}  // namespace airr::ui

@@ -1,0 +1,225 @@
+// The plots, in two tabs. MTF: predicted from the model PSF (every edit) and measured on the
+// render (when the source shows a slanted edge), the PSF's cross-section, and mean MTF against
+// floating distance. Bokeh: panel_bokeh.cpp.
+// "Pin" keeps the current predicted curve for before/after comparisons. The viewing zone shows
+// where on the observer's orbit the aerial image can be seen; a click moves the observer there.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+
+#include <imgui.h>
+
+#include "airr/layout/layout.hpp"
+#include "airr/layout/viewing_zone.hpp"
+#include "airr/ui/views/plot_widget.hpp"
+#include "airr/ui/views/views.hpp"
+
+namespace airr::ui {
+
+bool start_full_zone(studio& st) {
+  const auto pred = st.analysis.predicted();
+  if (!pred || pred->zone.visible.empty() || pred->generation != st.generation) return false;
+  eye_grid g = pred->zone.grid;
+  g.nx = g.ny = 15;
+  st.zone_job_ = std::make_unique<zone_job>(
+      st.applied, g, full_zone_params{.rows_per_eye = 32, .render_size = 32, .render_spp = 8}, st.generation);
+  return true;
+}
+
+// The viewing zone: the geometric visible fraction from the predicted plots, or a quantity of
+// the full pass (started on demand, for the current layout only).
+template <typename Keep>
+static void draw_viewing_zone(studio& st, const predicted_plots* pred, float h, const Keep& keep) {
+  static const char* const quantities[] = {"visible fraction", "brightness (full)", "mean MTF (full)",
+                                           "stray light (full)"};
+  ImGui::SetNextItemWidth(10 * ImGui::GetFontSize());
+  ImGui::Combo("viewing zone", &st.zone_quantity, quantities, IM_ARRAYSIZE(quantities));
+  const eye_grid* grid = nullptr;
+  const std::vector<double>* values = nullptr;
+  double hi = 1;
+  std::optional<full_zone_map> full;
+  if (st.zone_quantity == 0) {
+    if (pred && !pred->zone.visible.empty()) {
+      grid = &pred->zone.grid;
+      values = &pred->zone.visible;
+    }
+  } else {
+    zone_job* job = st.zone_job_.get();
+    const bool current = job && job->generation() == st.generation;
+    if (current && job->running()) {
+      ImGui::ProgressBar(float(job->progress()), ImVec2(-6 * ImGui::GetFontSize(), 0));
+      ImGui::SameLine();
+      if (ImGui::Button("Cancel")) st.zone_job_.reset();
+    } else if (pred && !pred->zone.visible.empty() && (!current || !job->result())) {
+      if (current && !job->error().empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", job->error().c_str());
+      if (ImGui::Button("Compute the full pass (15 x 15 eyes)")) start_full_zone(st);
+    }
+    if (current && !job->running()) full = job->result();
+    if (full) {
+      grid = &full->grid;
+      values = st.zone_quantity == 1 ? &full->brightness : st.zone_quantity == 2 ? &full->mean_mtf : &full->stray_ratio;
+      if (st.zone_quantity != 1) {
+        hi = 0;
+        for (double v : *values) hi = std::isfinite(v) ? std::max(hi, v) : hi;
+        if (!(hi > 0)) hi = 1;
+      }
+    }
+  }
+  if (!grid || !values) return;
+  const eye_grid& g = *grid;
+  const plot_heatmap map{*values, g.nx, g.ny, g.x_min, g.x_max, g.y_min, g.y_max, 0.0, hi};
+  const glm::dvec2 at = eye_grid_coordinates(st.doc, g, observer_position(st.doc));
+  const std::vector<plot_curve> observer = {{"observer", {at.x}, {at.y}, IM_COL32(255, 255, 255, 255)}};
+  char title[96];
+  std::snprintf(title, sizeof title, "%s, 0 to %.3g", quantities[st.zone_quantity], hi);
+  const double hx = 0.5 * (g.x_max - g.x_min) / std::max(1, g.nx - 1),
+               hy = 0.5 * (g.y_max - g.y_min) / std::max(1, g.ny - 1);
+  const plot_hover zone = draw_plot("zone", observer,
+                                    {.title = title,
+                                     .x_title = "observer azimuth (deg)",
+                                     .y_title = "elevation (deg)",
+                                     .x_min = g.x_min - hx,
+                                     .x_max = g.x_max + hx,
+                                     .y_min = g.y_min - hy,
+                                     .y_max = g.y_max + hy,
+                                     .auto_x = false,
+                                     .auto_y = false,
+                                     .height = h,
+                                     .heatmap = &map});
+  keep("plot_zone", zone);
+  if (st.zone_quantity == 0 && pred) {
+    ImGui::TextDisabled("%.0f ms (%d x %d eyes, geometric); click: move the observer", pred->zone_ms, g.nx, g.ny);
+  } else if (full) {
+    ImGui::TextDisabled("full pass %.1f s (%d x %d eyes); grey: nothing seen; click: move the observer", full->seconds,
+                        g.nx, g.ny);
+  }
+  if (zone.clicked) {
+    place_observer(st.doc, g, zone.x, zone.y);
+    char msg[96];
+    std::snprintf(msg, sizeof msg, "observer moved to azimuth %.1f, elevation %.1f deg", zone.x, zone.y);
+    st.status = msg;
+  }
+}
+
+static void draw_mtf_tab(studio& st) {
+  const auto pred = st.analysis.predicted();
+  const auto meas = st.analysis.measured();
+  const bool current = pred && pred->generation == st.generation;
+
+  if (pred && !pred->error.empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", pred->error.c_str());
+  if (pred) {
+    ImGui::Text("model PSF: r50 %.3f mm   mean MTF (0-1 lp/mm) %.3f", pred->r50_mm, pred->mean_mtf);
+    ImGui::Text("MTF50 %.2f lp/mm   brightness %.4f x source", pred->mtf50, pred->brightness);
+    ImGui::TextDisabled("PSF %.1f ms, sweep %.1f ms%s", pred->psf_ms, pred->sweep_ms, current ? "" : "   (updating)");
+  }
+  if (ImGui::Button("Pin MTF") && pred && !pred->mtf.empty()) {
+    char label[64];
+    std::snprintf(label, sizeof label, "pinned D=%.0f tilt=%.0f", airr::floating_distance(st.doc),
+                  st.doc.sheet().pose.pitch_deg);
+    st.pinned_mtf.push_back({label, pred->lp_per_mm, pred->mtf});
+    if (st.pinned_mtf.size() > 4) st.pinned_mtf.erase(st.pinned_mtf.begin());
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Clear pins")) st.pinned_mtf.clear();
+
+  const float h = std::max(120.0f, (ImGui::GetContentRegionAvail().y - 3 * ImGui::GetFrameHeightWithSpacing()) / 4.0f /
+                                       (ImGui::GetFontSize() / 13.0f));
+  std::vector<plot_curve> mtf;
+  if (pred) mtf.push_back({"predicted (model PSF)", pred->lp_per_mm, pred->mtf});
+  if (meas && meas->found && meas->generation == st.generation && meas->readable_lp_per_mm > 0) {
+    // Only where the noise allows a reading, with a band of two standard deviations.
+    plot_curve c;
+    char label[80];
+    std::snprintf(label, sizeof label, "measured on render (%llu spp, +-2 sd)",
+                  static_cast<unsigned long long>(meas->spp));
+    c.label = label;
+    for (std::size_t i = 0; i < meas->lp_per_mm.size() && meas->lp_per_mm[i] <= meas->readable_lp_per_mm; ++i) {
+      c.x.push_back(meas->lp_per_mm[i]);
+      c.y.push_back(meas->mtf[i]);
+      c.band.push_back(2 * meas->mtf_sigma[i]);
+    }
+    mtf.push_back(std::move(c));
+  }
+  for (std::size_t i = 0; i < st.pinned_mtf.size(); ++i) {
+    mtf.push_back({st.pinned_mtf[i].label, st.pinned_mtf[i].x, st.pinned_mtf[i].y, plot_palette(int(i) + 2), true});
+  }
+  auto keep = [&](const char* name, const plot_hover& h) {
+    st.regions[name] = {h.area[0], h.area[1], h.area[2], h.area[3]};
+  };
+  keep("plot_mtf", draw_plot("mtf", mtf,
+                             {.title = "MTF",
+                              .x_title = "spatial frequency (lp/mm)",
+                              .y_title = "MTF",
+                              .x_min = 0,
+                              .x_max = 2,
+                              .y_min = 0,
+                              .y_max = 1.05,
+                              .auto_x = false,
+                              .auto_y = false,
+                              .height = h}));
+  if (meas && !meas->found && !meas->note.empty()) ImGui::TextDisabled("render MTF: %s", meas->note.c_str());
+  if (meas && meas->found && meas->generation == st.generation) {
+    const double top = meas->lp_per_mm.empty() ? 0 : meas->lp_per_mm.back();
+    if (meas->readable_lp_per_mm <= 0) {
+      ImGui::TextDisabled("render MTF: held back until its noise allows a reading (%llu spp)",
+                          static_cast<unsigned long long>(meas->spp));
+    } else if (meas->readable_lp_per_mm < top) {
+      ImGui::TextDisabled("render MTF: readable to %.2f lp/mm at %llu spp (sd <= %.2f); beyond, noise",
+                          meas->readable_lp_per_mm, static_cast<unsigned long long>(meas->spp), measured_mtf_max_sigma);
+    }
+  }
+
+  std::vector<plot_curve> psf;
+  if (pred) psf.push_back({"PSF cross-section", pred->psf_x_mm, pred->psf_density});
+  keep("plot_psf", draw_plot("psf", psf,
+                             {.title = "PSF through the centre (y = 0)",
+                              .x_title = "x on the aerial-image plane (mm)",
+                              .y_title = "energy density (1/mm^2)",
+                              .auto_x = true,
+                              .auto_y = true,
+                              .height = h}));
+
+  std::vector<plot_curve> sweep;
+  if (pred && !pred->sweep_d_mm.empty()) {
+    sweep.push_back({"mean MTF (0-1 lp/mm)", pred->sweep_d_mm, pred->sweep_mean_mtf});
+    sweep.push_back({"current D",
+                     {airr::floating_distance(st.doc), airr::floating_distance(st.doc)},
+                     {0.0, 1.0},
+                     IM_COL32(160, 160, 160, 255),
+                     true});
+  }
+  keep("plot_sweep", draw_plot("sweep", sweep,
+                               {.title = "Mean MTF against floating distance",
+                                .x_title = "floating distance D (mm)",
+                                .y_title = "mean MTF",
+                                .x_min = 140,
+                                .x_max = 310,
+                                .y_min = 0,
+                                .y_max = 1.05,
+                                .auto_x = false,
+                                .auto_y = false,
+                                .height = h}));
+
+  draw_viewing_zone(st, pred.get(), h, keep);
+}
+
+void draw_plots_panel(studio& st) {
+  ImGui::Begin("Plots");
+  if (ImGui::BeginTabBar("plots_tabs")) {
+    const char* names[] = {"MTF", "Bokeh"};
+    for (int k = 0; k < 2; ++k) {
+      const ImGuiTabItemFlags flags = st.select_plots_tab && st.plots_tab == k ? ImGuiTabItemFlags_SetSelected : 0;
+      if (ImGui::BeginTabItem(names[k], nullptr, flags)) {
+        if (!st.select_plots_tab) st.plots_tab = k;
+        k == 0 ? draw_mtf_tab(st) : draw_bokeh_tab(st);
+        ImGui::EndTabItem();
+      }
+    }
+    st.select_plots_tab = false;
+    ImGui::EndTabBar();
+  }
+  ImGui::End();
+}
+
+}  // namespace airr::ui

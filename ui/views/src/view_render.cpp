@@ -1,0 +1,174 @@
+// The render view: the progressive image with its statistics, pause/resume, exposure, zoom and
+// pan, and a cursor readout of the pixel value and its position on the aerial-image plane.
+#include <algorithm>
+#include <cmath>
+
+#include <imgui.h>
+
+#include "airr/core/color.hpp"
+#include "airr/formats/image.hpp"
+#include "airr/layout/layout.hpp"
+#include "airr/render/render_metadata.hpp"
+#include "airr/render/tracer.hpp"
+#include "airr/ui/views/views.hpp"
+
+namespace airr::ui {
+
+// The component the view shows of this snapshot (-1: the whole image, the best estimate shown;
+// a component is the tracer's alone, and previews have none).
+static int shown_component(const studio& st, const render_snapshot& snap) {
+  return snap.components ? st.view.component : -1;
+}
+
+static void upload_snapshot(studio& st, const render_snapshot& snap, float exposure) {
+  std::vector<std::uint8_t> rgba(std::size_t(snap.width) * snap.height * 4);
+  const int component = shown_component(st, snap);
+  for (std::size_t i = 0; i < std::size_t(snap.width) * snap.height; ++i) {
+    const float* v = component < 0 ? snap.shown->data() + 3 * i
+                                   : snap.components->data() + 3 * (component_count * i + std::size_t(component));
+    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = srgb_encode_8bit(v[c] * exposure);
+    rgba[4 * i + 3] = 255;
+  }
+  st.view.uploaded_component = component;
+  st.view.texture.upload(snap.width, snap.height, rgba);
+  st.view.uploaded_generation = snap.generation;
+  st.view.uploaded_spp = snap.spp;
+  st.view.uploaded_model_image = snap.model_image;
+  st.view.uploaded_estimate = estimate_name(snap);
+  st.view.uploaded_exposure = exposure;
+}
+
+void draw_render_view(studio& st, double now) {
+  ImGui::Begin("Render", nullptr, ImGuiWindowFlags_NoScrollbar | ImGuiWindowFlags_NoScrollWithMouse);
+  const render_snapshot snap = st.session->snapshot();
+  const float exposure = float(default_exposure(st.doc) * std::exp2(st.settings.exposure_ev));
+
+  if (snap.shown && (snap.spp > 0 || snap.preview) &&
+      (snap.generation != st.view.uploaded_generation || snap.spp != st.view.uploaded_spp ||
+       estimate_name(snap) != st.view.uploaded_estimate || exposure != st.view.uploaded_exposure ||
+       shown_component(st, snap) != st.view.uploaded_component)) {
+    const bool first_of_edit = snap.generation != st.view.uploaded_generation;
+    upload_snapshot(st, snap, exposure);
+    if (first_of_edit && st.edit_time >= 0 && snap.generation == st.generation) {
+      st.first_image_uploaded = true;
+      st.first_image_ready_ms.push_back(1e3 * snap.edit_seconds);
+      if (snap.model_image) ++st.first_images_from_model;
+    }
+    // Measure the render's MTF at most twice a second, on new samples only.
+    if (!snap.preview && now - st.last_measure_time > 0.5 && snap.spp != st.last_measured_spp) {
+      st.analysis.submit_render(snap, st.doc);
+      st.last_measure_time = now;
+      st.last_measured_spp = snap.spp;
+    }
+  }
+
+  // Toolbar.
+  if (ImGui::Button(st.view.paused ? "Resume" : "Pause")) {
+    st.view.paused = !st.view.paused;
+    st.session->set_paused(st.view.paused);
+  }
+  ImGui::SameLine();
+  if (ImGui::Button("Fit")) {
+    st.view.zoom = 1.0f;
+    st.view.pan_x = st.view.pan_y = 0;
+  }
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(8 * ImGui::GetFontSize());
+  ImGui::SliderFloat("exposure (EV)", &st.settings.exposure_ev, -6.0f, 6.0f, "%+.1f");
+  ImGui::SameLine();
+  if (ImGui::Button("Auto") && snap.shown) {
+    // The 99th percentile of luminance maps to 90% of white.
+    std::vector<float> lum(std::size_t(snap.width) * snap.height);
+    for (std::size_t i = 0; i < lum.size(); ++i) {
+      lum[i] = float(rec709_luminance((*snap.shown)[3 * i], (*snap.shown)[3 * i + 1], (*snap.shown)[3 * i + 2]));
+    }
+    auto q = lum.begin() + std::ptrdiff_t(0.99 * double(lum.size() - 1));
+    std::nth_element(lum.begin(), q, lum.end());
+    const double base = default_exposure(st.doc);
+    if (*q > 0) st.settings.exposure_ev = std::clamp(float(std::log2(0.9 / (*q * base))), -6.0f, 6.0f);
+  }
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("0 EV shows a white source seen through a lossless retroreflector as white");
+  ImGui::SameLine();
+  ImGui::SetNextItemWidth(9 * ImGui::GetFontSize());
+  static const char* const shows[] = {"whole image", "aerial image", "display, direct", "its reflection", "the rest"};
+  int show = st.view.component + 1;
+  if (ImGui::Combo("##component", &show, shows, IM_ARRAYSIZE(shows))) st.view.component = show - 1;
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(
+        "The image's components: paths through a retroreflection (the aerial image), the display "
+        "seen directly, its plain reflection in the half mirror, and the rest");
+  }
+  ImGui::SameLine();
+  const double rays_per_s = snap.seconds > 0 ? double(snap.rays) / snap.seconds : 0.0;
+  const int shown = shown_component(st, snap);
+  ImGui::Text("%llu spp  %.1f Mrays/s  %.1f s%s%s%s%s", static_cast<unsigned long long>(snap.spp), rays_per_s * 1e-6,
+              snap.seconds, ("  " + st.view.uploaded_estimate).c_str(), shown >= 0 ? ": " : "",
+              shown >= 0 ? component_names[shown] : "", st.view.paused ? "  (paused)" : "");
+  if (!snap.error.empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", snap.error.c_str());
+
+  // Image area: fit the image, then zoom about the cursor and pan by dragging.
+  const ImVec2 avail = ImGui::GetContentRegionAvail();
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  ImGui::InvisibleButton(
+      "image_area", ImVec2(std::max(avail.x, 10.0f), std::max(avail.y - ImGui::GetTextLineHeightWithSpacing(), 10.0f)));
+  const ImVec2 area = ImGui::GetItemRectSize();
+  const bool hovered = ImGui::IsItemHovered();
+  ImDrawList* dl = ImGui::GetWindowDrawList();
+  dl->AddRectFilled(origin, ImVec2(origin.x + area.x, origin.y + area.y), IM_COL32(20, 20, 20, 255));
+  if (st.view.texture.id() == 0 || snap.width == 0) {
+    ImGui::TextDisabled("waiting for the first samples...");
+    ImGui::End();
+    return;
+  }
+  const float fit = std::min(area.x / snap.width, area.y / snap.height);
+  const ImGuiIO& io = ImGui::GetIO();
+  if (hovered && io.MouseWheel != 0) {
+    const float old_zoom = st.view.zoom;
+    st.view.zoom = std::clamp(st.view.zoom * std::pow(1.2f, io.MouseWheel), 0.1f, 64.0f);
+    // Keep the image point under the cursor fixed.
+    const float cx = io.MousePos.x - origin.x - area.x / 2 - st.view.pan_x;
+    const float cy = io.MousePos.y - origin.y - area.y / 2 - st.view.pan_y;
+    st.view.pan_x -= cx * (st.view.zoom / old_zoom - 1);
+    st.view.pan_y -= cy * (st.view.zoom / old_zoom - 1);
+  }
+  if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Left)) {
+    st.view.pan_x += io.MouseDelta.x;
+    st.view.pan_y += io.MouseDelta.y;
+  }
+  const float scale = fit * st.view.zoom;
+  const ImVec2 size(snap.width * scale, snap.height * scale);
+  const ImVec2 p0(origin.x + (area.x - size.x) / 2 + st.view.pan_x, origin.y + (area.y - size.y) / 2 + st.view.pan_y);
+  dl->PushClipRect(origin, ImVec2(origin.x + area.x, origin.y + area.y), true);
+  dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(st.view.texture.id())), p0,
+               ImVec2(p0.x + size.x, p0.y + size.y));
+  dl->PopClipRect();
+  st.regions["render_image"] = {std::max(p0.x, origin.x), std::max(p0.y, origin.y),
+                                std::min(p0.x + size.x, origin.x + area.x), std::min(p0.y + size.y, origin.y + area.y)};
+  const glm::dvec2 centre = camera_project(make_camera(st.doc), aerial_image_center(st.doc));
+  const glm::dvec2 half(0.5 * st.doc.source.width_mm / snap.mm_per_pixel,
+                        0.5 * st.doc.source.height_mm / snap.mm_per_pixel);
+  st.regions["render_aerial_image"] = {
+      float(p0.x + (centre.x - half.x) * scale), float(p0.y + (centre.y - half.y) * scale),
+      float(p0.x + (centre.x + half.x) * scale), float(p0.y + (centre.y + half.y) * scale)};
+
+  // Cursor readout: pixel, linear value, position in mm on the aerial-image plane (centre (0, 0, D)).
+  std::string readout = "cursor outside the image";
+  if (hovered) {
+    const double px = (io.MousePos.x - p0.x) / scale, py = (io.MousePos.y - p0.y) / scale;
+    if (px >= 0 && py >= 0 && px < snap.width && py < snap.height && snap.shown) {
+      const int ix = int(px), iy = int(py);
+      const float* v = snap.shown->data() + 3 * (std::size_t(iy) * snap.width + ix);
+      const double x_mm = (px - 0.5 * snap.width) * snap.mm_per_pixel;
+      const double y_mm = (0.5 * snap.height - py) * snap.mm_per_pixel;
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "pixel (%d, %d)  value %.4g %.4g %.4g  at x %+.3f mm, y %+.3f mm  (%.4f mm/px)",
+                    ix, iy, v[0], v[1], v[2], x_mm, y_mm, snap.mm_per_pixel);
+      readout = buf;
+    }
+  }
+  ImGui::TextUnformatted(readout.c_str());
+  ImGui::End();
+}
+
+}  // namespace airr::ui
