@@ -192,6 +192,24 @@ TEST(ResourceLimits, LibraryMessagesDoNotLeakAroundTheErrorLine) {
 
 // A full disk while a render is written (a file-size limit of a few KiB, as `ulimit -f` sets): one
 // line naming the output, and the render already there is untouched with nothing left beside it.
+// An image that cannot be created says the system's reason.
+TEST(ResourceLimits, AnImageThatCannotBeCreatedSaysWhy) {
+  test::temp_dir dir;
+  const auto path = scene_file(dir, [](nlohmann::json& j) {
+    j["observer"]["width"] = 16;
+    j["observer"]["height"] = 16;
+  });
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"/dev/full/x.png", "Not a directory"},
+      {dir.file("no/such/folder/x.exr"), "No such file or directory"},
+  };
+  for (const auto& [out, reason] : cases) {
+    const auto r = test::run_cli("render " + path + " -o " + out + " --spp 1");
+    EXPECT_NE(r.exit_code, 0) << r.out;
+    EXPECT_NE(r.out.find("error: " + out + ": cannot write image: " + reason + "\n"), std::string::npos) << r.out;
+  }
+}
+
 TEST(ResourceLimits, FullDiskWhileWritingARenderLeavesTheOldOne) {
   test::temp_dir dir;
   const auto path = scene_file(dir, [](nlohmann::json& j) {

@@ -17,37 +17,19 @@
 #include "airr/render/render_shards.hpp"
 #include "airr_version.hpp"
 #include "cluster/mpi_job.hpp"
+#include "cluster/partial_file.hpp"
 
 namespace {
 
-constexpr const char* part_format = "airr-partial";
-
-struct recorded_call {
-  std::size_t n = 0, width = 0;
-  std::map<std::size_t, std::vector<double>> items;
-};
-
 struct shard_state {
   std::vector<std::string> command_line;
-  std::vector<recorded_call> calls;                  // a shard's own items, call by call
-  std::optional<std::vector<recorded_call>> replay;  // a merge's items
+  std::vector<partial_batch> calls;                  // a shard's own items, call by call
+  std::optional<std::vector<partial_batch>> replay;  // a merge's items
   std::size_t next_call = 0;
 };
 shard_state& state() {
   static shard_state s;
   return s;
-}
-
-nlohmann::json number_json(double v) {
-  if (std::isfinite(v)) return v;
-  return std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf";
-}
-double json_number(const nlohmann::json& j, const std::string& where) {
-  if (j.is_number()) return j.get<double>();
-  if (j == "nan") return std::numeric_limits<double>::quiet_NaN();
-  if (j == "inf") return std::numeric_limits<double>::infinity();
-  if (j == "-inf") return -std::numeric_limits<double>::infinity();
-  throw airr::input_error(where + ": not a number");
 }
 
 // The command line without its --shard and --part options.
@@ -79,12 +61,6 @@ nlohmann::json input_fingerprints(const std::vector<std::string>& args) {
   return out;
 }
 
-struct partial {
-  std::string path;
-  airr::shard_index place;
-  nlohmann::json j;
-};
-
 }  // namespace
 
 void add_shard_options(CLI::App* cmd, shard_options& o) {
@@ -103,7 +79,7 @@ airr::item_share command_item_share(const shard_options& o,
       if (st.next_call >= st.replay->size() || (*st.replay)[st.next_call].n != n ||
           (*st.replay)[st.next_call].width != width)
         throw airr::input_error("merge: the partials do not hold this command's work");
-      const recorded_call& call = (*st.replay)[st.next_call++];
+      const partial_batch& call = (*st.replay)[st.next_call++];
       std::vector<double> all(n * width);
       for (const auto& [i, v] : call.items) std::copy(v.begin(), v.end(), all.begin() + std::ptrdiff_t(i * width));
       return all;
@@ -121,7 +97,7 @@ airr::item_share command_item_share(const shard_options& o,
       for (std::size_t i = std::size_t(place.index); i < n; i += std::size_t(place.count)) mine.push_back(i);
       tbb::parallel_for(std::size_t(0), mine.size(),
                         [&](std::size_t k) { compute(mine[k], all.data() + mine[k] * width); });
-      recorded_call call{n, width, {}};
+      partial_batch call{n, width, {}};
       for (std::size_t i : mine)
         call.items[i] =
             std::vector<double>(all.begin() + std::ptrdiff_t(i * width), all.begin() + std::ptrdiff_t((i + 1) * width));
@@ -134,26 +110,14 @@ airr::item_share command_item_share(const shard_options& o,
 
 bool write_shard_part(const shard_options& o) {
   if (o.shard.empty() || state().replay) return false;
-  const std::vector<std::string> command = without_shard_options(state().command_line);
-  nlohmann::json j = {{"format", part_format},
-                      {"version", 1},
-                      {"airr_version", AIRR_VERSION},
-                      {"shard", o.shard},
-                      {"command", command},
-                      {"directory", std::filesystem::current_path().string()},
-                      {"inputs", input_fingerprints(command)}};
-  nlohmann::json calls = nlohmann::json::array();
-  for (const recorded_call& c : state().calls) {
-    nlohmann::json items = nlohmann::json::array();
-    for (const auto& [i, v] : c.items) {
-      nlohmann::json item = nlohmann::json::array({i});
-      for (double x : v) item.push_back(number_json(x));
-      items.push_back(item);
-    }
-    calls.push_back({{"n", c.n}, {"width", c.width}, {"items", items}});
-  }
-  j["calls"] = calls;
-  airr::write_file_atomic(o.part, j.dump() + "\n");
+  partial_file p;
+  p.airr_version = AIRR_VERSION;
+  p.shard = o.shard;
+  p.command = without_shard_options(state().command_line);
+  p.directory = std::filesystem::current_path().string();
+  p.inputs = input_fingerprints(p.command);
+  p.batches = state().calls;
+  airr::write_file_atomic(o.part, partial_text(p));
   std::fprintf(stderr, "wrote %s (shard %s: %zu batches of items)\n", o.part.c_str(), o.shard.c_str(),
                state().calls.size());
   return true;
@@ -168,61 +132,53 @@ bool are_partials(const std::vector<std::string>& paths) {
 }
 
 std::vector<std::string> merged_command_line(const std::vector<std::string>& paths) {
-  std::vector<partial> parts;
+  std::vector<partial_file> parts;
   airr::shard_roll roll;
-  for (const std::string& p : paths) {
-    partial part{p, {}, {}};
-    try {
-      part.j = nlohmann::json::parse(airr::read_text_file(p));
-    } catch (const nlohmann::json::exception& e) {
-      throw airr::input_error(p + ": not a partial result (" + std::string(e.what()) + ")");
-    }
-    if (!part.j.is_object() || part.j.value("format", "") != part_format || part.j.value("version", 0) != 1)
-      throw airr::input_error(p + ": not a partial result (format " + part_format + ", version 1)");
-    part.place = airr::parse_shard(part.j.value("shard", ""), p + ": shard");
+  for (const std::string& path : paths) {
+    partial_file part = read_partial(path);
     if (!parts.empty()) {
-      const nlohmann::json& first = parts.front().j;
-      for (const char* key : {"airr_version", "command", "directory", "inputs"}) {
-        if (part.j[key] != first[key])
-          throw airr::input_error(p + ": not a shard of the work " + parts.front().path + " is a shard of (its " + key +
-                                  " differs)");
-      }
-      if (part.place.count != parts.front().place.count)
-        throw airr::input_error(p + ": split into " + std::to_string(part.place.count) + " shards, not " +
-                                std::to_string(parts.front().place.count));
+      const partial_file& first = parts.front();
+      const char* differs = part.airr_version != first.airr_version ? "airr_version"
+                            : part.command != first.command         ? "command"
+                            : part.directory != first.directory     ? "directory"
+                            : part.inputs != first.inputs           ? "inputs"
+                                                                    : nullptr;
+      if (differs)
+        throw airr::input_error(path + ": not a shard of the work " + paths.front() + " is a shard of (its " + differs +
+                                " differs)");
+      if (part.place.count != first.place.count)
+        throw airr::input_error(path + ": split into " + std::to_string(part.place.count) + " shards, not " +
+                                std::to_string(first.place.count));
+      if (part.batches.size() != first.batches.size())
+        throw airr::input_error(path + ": holds another number of batches");
     }
-    roll.add(p, part.place);
+    roll.add(path, part.place);
     parts.push_back(std::move(part));
   }
   const int count = parts.front().place.count;
   roll.check_complete(count);
-  const nlohmann::json& first = parts.front().j;
-  const std::vector<std::string> command = first.at("command").get<std::vector<std::string>>();
+  const partial_file& first = parts.front();
   // The command line's paths are the shards' working directory's: the merge runs it there.
-  const std::string directory = first.value("directory", "");
   std::error_code ec;
-  std::filesystem::current_path(directory, ec);
+  std::filesystem::current_path(first.directory, ec);
   if (ec)
-    throw airr::input_error(parts.front().path + ": the shards ran in " + directory + ", which is not here (" +
+    throw airr::input_error(paths.front() + ": the shards ran in " + first.directory + ", which is not here (" +
                             ec.message() + ")");
-  if (input_fingerprints(command) != first.at("inputs"))
-    throw airr::input_error(parts.front().path + ": an input file changed since the shards ran");
-  // Every call's items from the shard that computed them.
-  std::vector<recorded_call> calls(first.at("calls").size());
-  for (const partial& part : parts) {
-    const nlohmann::json& pc = part.j.at("calls");
-    if (pc.size() != calls.size()) throw airr::input_error(part.path + ": holds another number of batches");
+  if (input_fingerprints(first.command) != first.inputs)
+    throw airr::input_error(paths.front() + ": an input file changed since the shards ran");
+  // Every batch's items from the shard that computed them.
+  std::vector<partial_batch> calls(first.batches.size());
+  for (std::size_t p = 0; p < parts.size(); ++p) {
     for (std::size_t k = 0; k < calls.size(); ++k) {
-      calls[k].n = pc[k].at("n").get<std::size_t>();
-      calls[k].width = pc[k].at("width").get<std::size_t>();
-      for (const nlohmann::json& item : pc[k].at("items")) {
-        const std::size_t i = item.at(0).get<std::size_t>();
-        if (i >= calls[k].n || i % std::size_t(count) != std::size_t(part.place.index) ||
-            item.size() != calls[k].width + 1)
-          throw airr::input_error(part.path + ": batch " + std::to_string(k) + " holds an item it should not");
-        std::vector<double> v;
-        for (std::size_t x = 1; x < item.size(); ++x) v.push_back(json_number(item[x], part.path));
-        calls[k].items[i] = std::move(v);
+      const partial_batch& b = parts[p].batches[k];
+      if (p > 0 && (b.n != calls[k].n || b.width != calls[k].width))
+        throw airr::input_error(paths[p] + ": calls[" + std::to_string(k) + "]: another size than in " + paths.front());
+      calls[k].n = b.n;
+      calls[k].width = b.width;
+      for (const auto& [i, v] : b.items) {
+        if (i % std::size_t(count) != std::size_t(parts[p].place.index))
+          throw airr::input_error(paths[p] + ": batch " + std::to_string(k) + " holds an item it should not");
+        calls[k].items[i] = v;
       }
     }
   }
@@ -232,5 +188,5 @@ std::vector<std::string> merged_command_line(const std::vector<std::string>& pat
   }
   state().replay = std::move(calls);
   state().next_call = 0;
-  return command;
+  return first.command;
 }

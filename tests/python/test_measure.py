@@ -70,3 +70,11 @@ def test_bad_images_are_value_errors(tmp_path):
         airr.mtf(np.zeros((4, 4, 2)))
     with pytest.raises(ValueError):
         airr.mtf(np.full((64, 64), 0.5))  # flat: no edge
+
+
+def test_an_image_that_cannot_be_written_says_why(tmp_path):
+    pixels = np.zeros((4, 4, 3), dtype=np.float32)
+    with pytest.raises(ValueError, match="Not a directory"):
+        airr.write_image("/dev/full/x.png", pixels)
+    with pytest.raises(ValueError, match="No such file or directory"):
+        airr.write_image(str(tmp_path / "no" / "x.exr"), pixels)

@@ -38,6 +38,8 @@ BAD_SETS = [
     ("retroreflectors.5.pose.pitch_deg", 1),
     ("floating_distance_mm", -5),
     ("observer.width", 0),
+    ("observer.width", 10**12),
+    ("observer.height", -(2**40)),
     ("tilt_deg", 100),
 ]
 
@@ -54,6 +56,14 @@ def test_a_bad_set_raises_the_clis_message(tmp_path, cli, key, value):
         scene.set(key, value)
     assert str(raised.value) == message
     assert scene.get("tilt_deg") == tilt and scene.overrides == []  # unchanged
+
+
+def test_a_value_beyond_the_fields_type_is_reported_as_given():
+    scene = airr.Scene.load(airr.default_scene_path())
+    with pytest.raises(ValueError, match=r"observer.width: .*\(is 1000000000000\)"):
+        scene.set("observer.width", 10**12)
+    with pytest.raises(ValueError, match=r"\(is 1000000000000\)"):
+        scene.set("observer.width", np.int64(10**12))
 
 
 def test_set_get_and_save_round_trip(tmp_path):

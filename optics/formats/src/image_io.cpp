@@ -210,8 +210,14 @@ void write_image(const std::string& path, const image_rgb& img, const image_meta
   std::error_code ec;
   auto o = ImageOutput::create(tmp.string());
   if (!o || !o->open(tmp.string(), spec)) {
+    const std::string library = one_line(geterror());
     fs::remove(tmp, ec);
-    throw input_error(path + ": cannot write image: " + one_line(geterror()));
+    // The system's reason (a missing or unwritable folder) first: the library's may not say it.
+    const std::string os = reason_cannot_create(tmp.string());
+    throw input_error(path + ": cannot write image: " +
+                      (!os.empty()        ? os
+                       : !library.empty() ? library
+                                          : std::string("the writer refused the file")));
   }
   // Closing flushes: a full disk may only show there.
   const bool ok = o->write_image(TypeDesc::FLOAT, out.data()) && o->close();

@@ -24,6 +24,11 @@ std::string read_text_file(const std::string& path);
 // input_error naming the path and the system's reason (e.g. "No space left on device").
 void write_file_atomic(const std::string& path, std::string_view bytes);
 
+// The operating system's reason a file cannot be created at `path` (e.g. "Not a directory",
+// "Permission denied"), found by creating it and removing it again; empty when it can be created.
+// For writers whose library says no reason of its own.
+std::string reason_cannot_create(const std::string& path);
+
 // `path` as written in a file whose relative paths count from `base_dir`: empty stays empty, an
 // absolute path (or an empty base) is returned as it is, anything else is joined and normalised.
 std::string resolve_path(const std::string& path, const std::string& base_dir);

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <set>
 #include <string>
@@ -103,15 +104,27 @@ class json_reader {
     number(key, v);
     out = v;
   }
+  // An integer that fits Int; a larger one is reported as given, never narrowed.
   template <class Int>
   void integer(const std::string& key, Int& out) {
     if (!has(key)) return;
     const auto& v = j_.at(key);
     if (!v.is_number_integer()) fail(field(key), "must be an integer");
+    using limits = std::numeric_limits<Int>;
+    const auto out_of_range = [&](const std::string& given) {
+      fail(field(key),
+           "must be " + std::to_string(limits::min()) + " to " + std::to_string(limits::max()) + " (is " + given + ")");
+    };
     if (v.is_number_unsigned()) {
-      out = static_cast<Int>(v.get<std::uint64_t>());
+      const std::uint64_t u = v.get<std::uint64_t>();
+      if (u > static_cast<std::uint64_t>(limits::max())) out_of_range(std::to_string(u));
+      out = static_cast<Int>(u);
     } else {
-      out = static_cast<Int>(v.get<std::int64_t>());
+      const std::int64_t s = v.get<std::int64_t>();
+      if (s < static_cast<std::int64_t>(limits::min()) ||
+          (s > 0 && static_cast<std::uint64_t>(s) > static_cast<std::uint64_t>(limits::max())))
+        out_of_range(std::to_string(s));
+      out = static_cast<Int>(s);
     }
   }
   void string(const std::string& key, std::string& out) {
