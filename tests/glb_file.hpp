@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace test {
+namespace airr::test {
 
 struct glb_file {
   nlohmann::json doc;
@@ -61,4 +61,4 @@ inline void rewrite_glb(const std::string& from, const std::string& to,
   g.write(to);
 }
 
-}  // namespace test
+}  // namespace airr::test

@@ -2,6 +2,7 @@
 // plots come from the measurement library's functions, not from a copy of them.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -63,6 +64,35 @@ TEST(DesignerNumbers, PredictedPlotsEqualTheMeasurementLibrary) {
     EXPECT_EQ(pred.sweep_d_mm[i], r.points[i].floating_distance_mm);
     EXPECT_EQ(pred.sweep_mean_mtf[i], r.points[i].mean_mtf) << "D " << r.points[i].floating_distance_mm;
   }
+}
+
+// On the shipped kiosk some floating distances of the mean-MTF curve are no layout: the curve
+// keeps them as gaps with the sweep's reasons, and its other points are the sweep's.
+TEST(DesignerNumbers, MeanMtfCurveKeepsTheDistancesThatAreNoLayout) {
+  const scene s = load_scene(asset_dir() + "/scenes/two_sheet_kiosk.json");
+  const std::uint64_t samples = 5000;
+  const ui::predicted_plots pred = ui::compute_predicted(s, 1, {.psf_samples = samples, .sweep_psf_samples = samples});
+  sweep_params sp;
+  sp.axes = {parse_sweep_axis("floating_distance=150:300:25")};
+  sp.psf_route = true;
+  sp.psf_samples = samples;
+  const sweep_result r = run_sweep(s, sp);
+  ASSERT_EQ(pred.sweep_d_mm.size(), r.points.size());
+  ASSERT_EQ(pred.sweep_reasons.size(), r.points.size());
+  int gaps = 0;
+  for (std::size_t i = 0; i < r.points.size(); ++i) {
+    EXPECT_EQ(pred.sweep_d_mm[i], r.points[i].floating_distance_mm);
+    EXPECT_EQ(pred.sweep_reasons[i].empty(), r.points[i].valid()) << "D " << pred.sweep_d_mm[i];
+    if (r.points[i].valid()) {
+      EXPECT_EQ(pred.sweep_mean_mtf[i], r.points[i].mean_mtf) << "D " << pred.sweep_d_mm[i];
+    } else {
+      ++gaps;
+      EXPECT_TRUE(std::isnan(pred.sweep_mean_mtf[i])) << "D " << pred.sweep_d_mm[i];
+      std::printf("D %g mm: %s\n", pred.sweep_d_mm[i], pred.sweep_reasons[i].c_str());
+    }
+  }
+  EXPECT_GE(gaps, 1);
+  EXPECT_LT(gaps, int(r.points.size()));
 }
 
 TEST(DesignerNumbers, PredictedPlotsEqualAirrPsf) {

@@ -285,6 +285,8 @@ TEST(Gui, LayoutLabelsNeverOverprintInTheShippedScenes) {
       std::printf("%s, %s view: %zu labels, %zu outline segments, %d overlaps\n", name, view, labels.size(),
                   lines.size(), o.label_pairs + o.label_lines + o.label_marks + o.outside);
     }
+    // "add the second sheet" is offered while the layout has one sheet, not beside the kiosk's two.
+    EXPECT_EQ(j.at("regions").contains("button_add_second_sheet"), std::string(name) == "default.json") << name;
     const auto r3 = j.at("regions").at("layout_3d").get<test::rect4>();
     const auto rs = j.at("regions").at("layout_side").get<test::rect4>();
     std::printf("%s: 3D view %.0f x %.0f px, side view %.0f x %.0f px\n", name, r3[2] - r3[0], r3[3] - r3[1],

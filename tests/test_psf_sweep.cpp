@@ -2,6 +2,7 @@
 // `airr sweep` and `airr psf` on the command line.
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <ostream>
@@ -14,6 +15,7 @@
 
 #include "airr/analysis/mtf_metrics.hpp"
 #include "airr/core/assets.hpp"
+#include "airr/core/csv_table.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/measure/mtf_routes.hpp"
@@ -234,11 +236,69 @@ TEST(Sweep, BadVaryIsAOneLineError) {
     EXPECT_EQ(r.out.rfind("error: --vary " + vary + ": ", 0), 0u) << r.out;
     EXPECT_NE(r.out.find(message), std::string::npos) << "missing '" << message << "' in: " << r.out;
   }
-  // A point whose layout is impossible is named before anything is measured.
-  const auto r = test::run_cli("sweep " + default_scene_path() + " --psf --vary floating_distance=-100:150:250");
+  // A sweep none of whose points is a layout names the first point and its reason.
+  const auto r = test::run_cli("sweep " + default_scene_path() + " --psf --vary floating_distance=-100:-50:50");
   EXPECT_NE(r.exit_code, 0) << r.out;
   EXPECT_EQ(line_count(r.out), 1) << r.out;
-  EXPECT_NE(r.out.find("error: sweep point floating_distance=-100, tilt=0: "), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.rfind("error: sweep point floating_distance=-100, tilt=0: ", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("no other point of the sweep is a layout"), std::string::npos) << r.out;
+}
+
+// A sweep goes on past the layouts that are no layout: on the shipped kiosk, the camera ray
+// through the aerial image misses the half mirror from D = 270 mm on, while D up to 240 mm works.
+// Each such point is a row of the CSV with its reason and no numbers; the others are measured as a
+// sweep of the valid range alone measures them.
+TEST(Sweep, PointsThatAreNoLayoutAreRowsWithTheirReason) {
+  test::temp_dir dir;
+  const std::string kiosk = asset_dir() + "/scenes/two_sheet_kiosk.json";
+  const std::string csv = dir.file("kiosk.csv"), plot = dir.file("kiosk.png");
+  const auto r = test::run_cli("sweep " + kiosk + " --psf --samples 20000 --vary floating_distance=120:300:30 -o " +
+                               csv + " --plot " + plot);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("no layout: "), std::string::npos) << r.out;
+  const auto rows = lines_of(read_file(csv));
+  ASSERT_EQ(rows.size(), 8u) << read_file(csv);
+  const auto header = split_csv_line(rows[0]);
+  ASSERT_EQ(header.back(), "reason") << rows[0];
+  int valid = 0, invalid = 0;
+  for (std::size_t i = 1; i < rows.size(); ++i) {
+    const auto fields = split_csv_line(rows[i]);
+    ASSERT_EQ(fields.size(), header.size()) << rows[i];
+    const double d = std::stod(fields[0]);
+    EXPECT_DOUBLE_EQ(d, 120.0 + 30.0 * double(i - 1));
+    if (fields.back().empty()) {
+      ++valid;
+      EXPECT_LE(d, 240.0);
+      EXPECT_GT(std::stod(fields[2]), 0.0) << rows[i];
+      EXPECT_GT(std::stod(fields[4]), 0.0) << rows[i];
+    } else {
+      ++invalid;
+      EXPECT_GE(d, 270.0);
+      EXPECT_NE(fields.back().find("misses the half mirror"), std::string::npos) << rows[i];
+      for (std::size_t c = 2; c + 1 < fields.size(); ++c) EXPECT_EQ(fields[c], "") << rows[i];
+    }
+  }
+  std::printf("kiosk sweep D 120..300: %d points measured, %d no layout\n", valid, invalid);
+  EXPECT_EQ(valid, 5);
+  EXPECT_EQ(invalid, 2);
+  EXPECT_TRUE(std::filesystem::is_regular_file(plot));
+
+  const std::string valid_csv = dir.file("valid.csv");
+  ASSERT_EQ(
+      test::run_cli("sweep " + kiosk + " --psf --samples 20000 --vary floating_distance=120:240:30 -o " + valid_csv)
+          .exit_code,
+      0);
+  const auto valid_rows = lines_of(read_file(valid_csv));
+  ASSERT_EQ(valid_rows.size(), 6u);
+  for (std::size_t i = 1; i < valid_rows.size(); ++i) EXPECT_EQ(rows[i], valid_rows[i] + ",");
+
+  // A sweep whose every point misses names the first point and its reason.
+  const auto none = test::run_cli("sweep " + kiosk + " --psf --samples 2000 --vary floating_distance=270:330:30");
+  EXPECT_NE(none.exit_code, 0) << none.out;
+  EXPECT_NE(none.out.find("error: sweep point floating_distance=270, tilt=10: psf: retroreflectors[0]: the camera "
+                          "ray through the aerial image misses the half mirror (and no other point"),
+            std::string::npos)
+      << none.out;
 }
 
 // ---------------------------------------------------------------- airr psf

@@ -24,7 +24,8 @@
 namespace {
 
 void write_sweep_plot(const std::string& path, const airr::sweep_result& r, const airr::sweep_params& p) {
-  const bool d_varies = !r.slopes.empty();
+  bool d_varies = false;  // more than one floating distance
+  for (const auto& pt : r.points) d_varies |= pt.floating_distance_mm != r.points.front().floating_distance_mm;
   std::map<double, airr::analysis::plot_series> by_group;  // one curve per tilt when D varies
   for (const auto& pt : r.points) {
     auto& s = by_group[d_varies ? pt.tilt_deg : 0.0];
@@ -173,6 +174,10 @@ void add_sweep_command(CLI::App& app) {
     std::printf("%8s %8s %12s %12s %10s %11s  %s\n", "D_mm", "tilt_deg", "mean_mtf_0_1", "mtf50_lp/mm", "r50_mm",
                 "brightness", "by sheet");
     for (const auto& pt : r.points) {
+      if (!pt.valid()) {
+        std::printf("%8g %8g  no layout: %s\n", pt.floating_distance_mm, pt.tilt_deg, pt.reason.c_str());
+        continue;
+      }
       char m50[32] = "not reached";
       if (pt.mtf50_lp_per_mm) std::snprintf(m50, sizeof m50, "%.4f", *pt.mtf50_lp_per_mm);
       std::string shares;

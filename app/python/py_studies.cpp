@@ -60,7 +60,9 @@ py::dict sweep(const py_scene& ps, const std::vector<std::string>& vary, bool ps
   }
   job.finish();
   std::vector<double> d, t, mean, mtf50, r50, brightness;
+  py::list reasons;
   for (const sweep_point& pt : r->points) {
+    reasons.append(pt.reason);
     d.push_back(pt.floating_distance_mm);
     t.push_back(pt.tilt_deg);
     mean.push_back(pt.mean_mtf);
@@ -73,6 +75,7 @@ py::dict sweep(const py_scene& ps, const std::vector<std::string>& vary, bool ps
   out["tilt_deg"] = to_array(t);
   out["mean_mtf"] = to_array(mean);
   out["mtf50_lp_per_mm"] = to_array(mtf50);
+  out["reason"] = reasons;
   out["r50_mm"] = to_array(r50);
   out["brightness"] = to_array(brightness);
   py::dict slopes;
@@ -235,8 +238,10 @@ fraction done; an exception it raises (or Ctrl+C) stops the sweep and reaches th
 
 Returns a dict of float64 arrays, one value per point: "floating_distance_mm", "tilt_deg",
 "mean_mtf" (over (0, 1] lp/mm), "mtf50_lp_per_mm" (NaN where not reached), "r50_mm",
-"brightness"; "mean_mtf_slope_per_mm" (per tilt, when D varies) and "csv" (the CSV `airr
-sweep` writes).)");
+"brightness" (NaN at a point whose layout is no layout); "reason" (a list of str: why a point is
+no layout, empty where it was measured); "mean_mtf_slope_per_mm" (per tilt, over its valid
+points, when D varies) and "csv" (the CSV `airr sweep` writes). Raises ValueError when no point
+is a layout.)");
   m.def("viewzone", &viewzone, py::arg("scene"), py::kw_only(), py::arg("sphere") = false,
         py::arg("distance_mm") = 300.0, py::arg("grid") = 21, py::arg("x") = py::none(), py::arg("y") = py::none(),
         py::arg("rows") = 64, py::arg("full") = false, py::arg("spp") = 16, py::arg("progress") = py::none(),

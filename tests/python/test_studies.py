@@ -26,6 +26,20 @@ def test_sweep_equals_airr_sweep(tmp_path, cli, small_scene):
         airr.sweep(small_scene, vary=["tilt=10:0:5"])
 
 
+def test_sweep_keeps_points_that_are_no_layout(tmp_path, cli):
+    kiosk = airr.Scene.load(airr.asset_dir() + "/scenes/two_sheet_kiosk.json")
+    vary = ["floating_distance=240:300:30"]
+    code, _, err = cli("sweep", kiosk.path, "--vary", vary[0], "--psf", "--samples", 5000, "-o", tmp_path / "k.csv")
+    assert code == 0, err
+    s = airr.sweep(kiosk, vary=vary, psf=True, psf_samples=5000)
+    assert s["csv"] == (tmp_path / "k.csv").read_text()
+    assert list(s["floating_distance_mm"]) == [240, 270, 300]
+    assert s["reason"][0] == "" and s["mean_mtf"][0] > 0
+    assert all("misses the half mirror" in r for r in s["reason"][1:]) and np.all(np.isnan(s["mean_mtf"][1:]))
+    with pytest.raises(ValueError, match="no other point of the sweep is a layout"):
+        airr.sweep(kiosk, vary=["floating_distance=270:300:30"])
+
+
 def test_viewzone_equals_airr_viewzone(tmp_path, cli, small_scene):
     code, _, err = cli("viewzone", small_scene.path, "--grid", 5, "-o", tmp_path / "z.csv")
     assert code == 0, err

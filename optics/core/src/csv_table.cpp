@@ -29,6 +29,12 @@ std::vector<std::string> split_csv_line(const std::string& line) {
   return out;
 }
 
+std::string csv_quoted(const std::string& field) {
+  std::string out = "\"";
+  for (char c : field) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
 csv_table read_csv_table(const std::string& path) {
   csv_table t;
   t.path = path;

@@ -14,6 +14,7 @@
 #include <tbb/parallel_for.h>
 
 #include "airr/core/assets.hpp"
+#include "airr/core/csv_table.hpp"
 #include "airr/core/error.hpp"
 #include "airr/core/number_range.hpp"
 #include "airr/formats/scene_json.hpp"
@@ -37,6 +38,22 @@ std::string point_label(double d, double tilt) {
 
 std::string detail_of(const sweep_point& pt) {
   return "D " + number(pt.floating_distance_mm) + " mm, tilt " + number(pt.tilt_deg) + " deg";
+}
+
+// What an error at a point says, without the point's label its message may begin with.
+std::string reason_of(const std::exception& e, const std::string& label) {
+  std::string m = e.what();
+  if (m.starts_with(label + ": ")) m.erase(0, label.size() + 2);
+  return m;
+}
+
+// The point as no layout, for `reason`: no numbers.
+void mark_invalid(sweep_point& pt, std::string reason) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  pt.mean_mtf = pt.r50_mm = pt.brightness = nan;
+  pt.mtf50_lp_per_mm.reset();
+  pt.sheet_brightness.clear();
+  pt.reason = std::move(reason);
 }
 
 // The model PSF's numbers at one point (both routes report them); the PSF itself.
@@ -77,6 +94,30 @@ mtf_summary edge_point_mtf(std::unique_ptr<render_session>& session, const scene
   }
 }
 
+// Measures a point whose layout passed the checks; one that still is no layout (a camera ray
+// missing a part) keeps its reason instead. `session`: the edge route's, made on first use.
+void measure_point(const scene& s, const sweep_params& p, sweep_point& pt, std::unique_ptr<render_session>& session,
+                   const std::function<void(std::uint64_t)>& spp_done) {
+  const std::string label = point_label(pt.floating_distance_mm, pt.tilt_deg);
+  try {
+    const psf_samples psf = measure_psf(s, p, pt);
+    const mtf_summary m =
+        p.psf_route ? psf_route_mtf(psf, make_camera(s).mm_per_pixel) : edge_point_mtf(session, s, p, label, spp_done);
+    pt.mean_mtf = m.mean_mtf;
+    pt.mtf50_lp_per_mm = m.mtf50_lp_per_mm;
+  } catch (const airr_error& e) {
+    mark_invalid(pt, reason_of(e, label));
+  }
+}
+
+// Throws input_error naming the first point and its reason when no point is a layout.
+void check_some_point_valid(const sweep_result& r) {
+  if (std::any_of(r.points.begin(), r.points.end(), [](const sweep_point& pt) { return pt.valid(); })) return;
+  const sweep_point& first = r.points.front();
+  throw input_error(point_label(first.floating_distance_mm, first.tilt_deg) + ": " + first.reason +
+                    " (and no other point of the sweep is a layout)");
+}
+
 }  // namespace
 
 sweep_axis parse_sweep_axis(const std::string& text) {
@@ -111,33 +152,32 @@ sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_pro
   std::string chart = p.chart.empty() ? asset_dir() + "/charts/slanted_edge.png" : p.chart;
   chart = std::filesystem::absolute(chart).lexically_normal().string();
 
-  // Every point's layout is checked before the first one is measured.
+  // Every point's layout is checked before the first one is measured; one that is no layout
+  // keeps its reason.
+  sweep_result r;
   std::vector<scene> scenes;
-  std::vector<std::pair<double, double>> grid;  // (D, tilt) as asked, for the results
   for (double tilt : tilts) {
     for (double d : distances) {
+      sweep_point& pt = r.points.emplace_back();
+      pt.floating_distance_mm = d;
+      pt.tilt_deg = tilt;
+      const std::string label = point_label(d, tilt);
       scene s = base;
       try {
         airr::set_floating_distance(s, d);
-      } catch (const input_error& e) {
-        throw input_error(point_label(d, tilt) + ": " + e.what());
+        s.sheet().pose.pitch_deg = tilt;
+        if (!p.psf_route) s = with_edge_chart(s, chart);
+        check_scene(s, label);
+      } catch (const airr_error& e) {
+        mark_invalid(pt, reason_of(e, label));
       }
-      s.sheet().pose.pitch_deg = tilt;
-      grid.emplace_back(d, tilt);
-      if (!p.psf_route) s = with_edge_chart(s, chart);
-      check_scene(s, point_label(d, tilt));
       scenes.push_back(std::move(s));
     }
   }
 
-  sweep_result r;
+  check_some_point_valid(r);  // before anything is measured, when the checks already tell
   r.mm_per_pixel = make_camera(base).mm_per_pixel;
   const double n = double(scenes.size());
-  r.points.resize(scenes.size());
-  for (std::size_t i = 0; i < scenes.size(); ++i) {
-    r.points[i].floating_distance_mm = grid[i].first;
-    r.points[i].tilt_deg = grid[i].second;
-  }
   std::unique_ptr<render_session> session;
   if (share) {
     // Each point as a shared item (an MPI job's ranks): its numbers travel, the edge route's
@@ -145,29 +185,35 @@ sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_pro
     const std::size_t width = 5 + base.retroreflectors.size();
     std::mutex mutex;
     int done = 0;
+    // A point that is no layout travels as a count of -1 sheets: its reason is found again where
+    // it is read (a point's measurement is the same on every process).
     const std::vector<double> values = share(scenes.size(), width, [&](std::size_t i, double* o) {
       sweep_point pt = r.points[i];
-      const psf_samples psf = measure_psf(scenes[i], p, pt);
-      mtf_summary m;
-      if (p.psf_route) {
-        m = psf_route_mtf(psf, make_camera(scenes[i]).mm_per_pixel);
-      } else {
+      if (pt.valid()) {
         std::unique_ptr<render_session> own;
-        m = edge_point_mtf(own, scenes[i], p, point_label(pt.floating_distance_mm, pt.tilt_deg), {});
-        own->stop();
+        measure_point(scenes[i], p, pt, own, {});
+        if (own) own->stop();
       }
-      o[0] = m.mean_mtf;
-      o[1] = m.mtf50_lp_per_mm.value_or(std::numeric_limits<double>::quiet_NaN());
+      o[0] = pt.mean_mtf;
+      o[1] = pt.mtf50_lp_per_mm.value_or(std::numeric_limits<double>::quiet_NaN());
       o[2] = pt.r50_mm;
       o[3] = pt.brightness;
-      o[4] = double(std::min(pt.sheet_brightness.size(), width - 5));
-      for (std::size_t k = 0; k < std::size_t(o[4]); ++k) o[5 + k] = pt.sheet_brightness[k];
+      o[4] = pt.valid() ? double(std::min(pt.sheet_brightness.size(), width - 5)) : -1.0;
+      for (std::size_t k = 0; k < pt.sheet_brightness.size() && k < width - 5; ++k) o[5 + k] = pt.sheet_brightness[k];
       std::lock_guard lock(mutex);
       if (progress) progress(double(++done) / n, detail_of(pt));
     });
     for (std::size_t i = 0; i < scenes.size(); ++i) {
       const double* v = values.data() + i * width;
       sweep_point& pt = r.points[i];
+      if (v[4] < 0) {
+        if (pt.valid()) {
+          std::unique_ptr<render_session> own;
+          measure_point(scenes[i], p, pt, own, {});
+          if (own) own->stop();
+        }
+        continue;
+      }
       pt.mean_mtf = v[0];
       if (!std::isnan(v[1])) pt.mtf50_lp_per_mm = v[1];
       pt.r50_mm = v[2];
@@ -182,10 +228,7 @@ sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_pro
       const std::size_t last = std::min(scenes.size(), first + batch);
       if (progress) progress(double(first) / n, detail_of(r.points[first]));
       tbb::parallel_for(first, last, [&](std::size_t i) {
-        const psf_samples psf = measure_psf(scenes[i], p, r.points[i]);
-        const mtf_summary m = psf_route_mtf(psf, make_camera(scenes[i]).mm_per_pixel);
-        r.points[i].mean_mtf = m.mean_mtf;
-        r.points[i].mtf50_lp_per_mm = m.mtf50_lp_per_mm;
+        if (r.points[i].valid()) measure_point(scenes[i], p, r.points[i], session, {});
       });
     }
   } else {
@@ -193,40 +236,53 @@ sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_pro
       sweep_point& pt = r.points[i];
       const std::string detail = detail_of(pt);
       if (progress) progress(double(i) / n, detail);
-      measure_psf(scenes[i], p, pt);
-      const mtf_summary m = edge_point_mtf(
-          session, scenes[i], p, point_label(pt.floating_distance_mm, pt.tilt_deg), [&](std::uint64_t spp) {
-            if (progress)
-              progress((double(i) + double(spp) / double(p.spp)) / n, detail + ", " + std::to_string(spp) + " spp");
-          });
-      pt.mean_mtf = m.mean_mtf;
-      pt.mtf50_lp_per_mm = m.mtf50_lp_per_mm;
+      if (!pt.valid()) continue;
+      measure_point(scenes[i], p, pt, session, [&](std::uint64_t spp) {
+        if (progress)
+          progress((double(i) + double(spp) / double(p.spp)) / n, detail + ", " + std::to_string(spp) + " spp");
+      });
     }
   }
   if (session) session->stop();
   if (progress) progress(1.0, std::to_string(scenes.size()) + " points");
 
+  check_some_point_valid(r);
   if (distances.size() > 1) {
+    // Each tilt's slope over its valid points (two at least).
     for (std::size_t t = 0; t < tilts.size(); ++t) {
-      std::vector<double> y;
-      for (std::size_t k = 0; k < distances.size(); ++k) y.push_back(r.points[t * distances.size() + k].mean_mtf);
-      r.slopes.push_back({tilts[t], analysis::least_squares_slope(distances, y)});
+      std::vector<double> x, y;
+      for (std::size_t k = 0; k < distances.size(); ++k) {
+        const sweep_point& pt = r.points[t * distances.size() + k];
+        if (!pt.valid()) continue;
+        x.push_back(distances[k]);
+        y.push_back(pt.mean_mtf);
+      }
+      if (x.size() >= 2) r.slopes.push_back({tilts[t], analysis::least_squares_slope(x, y)});
     }
   }
   return r;
 }
 
 std::string sweep_csv(const sweep_result& r) {
-  const std::size_t sheets = r.points.empty() ? 0 : r.points.front().sheet_brightness.size();
+  std::size_t sheets = 0;
+  bool reasons = false;
+  for (const auto& pt : r.points) {
+    sheets = std::max(sheets, pt.sheet_brightness.size());
+    reasons |= !pt.valid();
+  }
   std::string out = "floating_distance_mm,tilt_deg,mean_mtf_0_1,mtf50_lp_per_mm,r50_mm,brightness";
   for (std::size_t i = 0; i < sheets; ++i) out += ",brightness_sheet_" + std::to_string(i);
-  out += "\n";
+  out += reasons ? ",reason\n" : "\n";
   for (const auto& pt : r.points) {
-    out += number(pt.floating_distance_mm) + "," + number(pt.tilt_deg) + "," + number(pt.mean_mtf) + "," +
-           (pt.mtf50_lp_per_mm ? number(*pt.mtf50_lp_per_mm) : "") + "," + number(pt.r50_mm) + "," +
-           number(pt.brightness);
-    for (std::size_t i = 0; i < sheets; ++i) out += "," + number(pt.sheet_brightness.at(i));
-    out += "\n";
+    out += number(pt.floating_distance_mm) + "," + number(pt.tilt_deg);
+    if (pt.valid()) {
+      out += "," + number(pt.mean_mtf) + "," + (pt.mtf50_lp_per_mm ? number(*pt.mtf50_lp_per_mm) : "") + "," +
+             number(pt.r50_mm) + "," + number(pt.brightness);
+      for (std::size_t i = 0; i < sheets; ++i) out += "," + number(pt.sheet_brightness.at(i));
+      out += reasons ? ",\n" : "\n";
+    } else {
+      out += std::string(4 + sheets, ',') + "," + csv_quoted(pt.reason) + "\n";
+    }
   }
   return out;
 }

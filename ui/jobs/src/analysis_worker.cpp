@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include <opencv2/core.hpp>
 
@@ -49,15 +50,19 @@ predicted_plots compute_predicted(const scene& s, std::uint64_t generation, cons
 
     const auto t1 = clock_type::now();
     for (double d = 150; d <= 300 + 1e-9; d += 25) {
-      scene sd = s;
-      set_floating_distance(sd, d);
+      out.sweep_d_mm.push_back(d);
       try {
+        scene sd = s;
+        set_floating_distance(sd, d);
+        check_layout(sd, "mean MTF against D");
         // Built again at each D: a per-render lookup follows the sheet's chief ray there.
         const psf_samples pd = scene_psf(sd, make_sheet_models(sd), p.sweep_psf_samples);
         out.sweep_mean_mtf.push_back(psf_route_mtf(pd, make_camera(sd).mm_per_pixel).mean_mtf);
-        out.sweep_d_mm.push_back(d);
-      } catch (const std::exception&) {
-        // A distance at which the layout does not work is left out of the curve.
+        out.sweep_reasons.emplace_back();
+      } catch (const std::exception& e) {
+        // A distance at which the layout is no layout: a gap in the curve, with its reason.
+        out.sweep_mean_mtf.push_back(std::numeric_limits<double>::quiet_NaN());
+        out.sweep_reasons.push_back(e.what());
       }
     }
     out.sweep_ms = ms_since(t1);

@@ -304,6 +304,7 @@ void props_section(studio& st) {
 void draw_layout_panel(studio& st) {
   ImGui::Begin("Layout");
   scene& s = st.doc;
+  st.regions.erase("button_add_second_sheet");  // drawn again below when it is offered
   if (ImGui::CollapsingHeader("Arrangement", ImGuiTreeNodeFlags_DefaultOpen)) {
     double d = floating_distance(s);
     if (edit_number("floating distance D", d, 30, 400, "mm", "%.1f",
@@ -364,7 +365,14 @@ void draw_layout_panel(studio& st) {
       ImGui::PopID();
     }
     if (remove) s.retroreflectors.erase(s.retroreflectors.begin() + std::ptrdiff_t(*remove));
-    if (s.retroreflectors.size() < std::size_t(max_retroreflectors) && ImGui::Button("add the second sheet")) {
+    // Offered while the layout has one sheet (a second one goes across the half mirror).
+    bool add_second = false;
+    if (s.retroreflectors.size() == 1) {
+      add_second = ImGui::Button("add the second sheet");
+      const ImVec2 a = ImGui::GetItemRectMin(), b = ImGui::GetItemRectMax();
+      st.regions["button_add_second_sheet"] = {a.x, a.y, b.x, b.y};
+    }
+    if (add_second) {
       // The common second sheet: across the half mirror from the display, facing it, so that the
       // display's light reaches it through the half mirror and returns by reflection.
       retroreflector_params r = s.sheet();

@@ -183,6 +183,15 @@ static void draw_mtf_tab(studio& st) {
   std::vector<plot_curve> sweep;
   if (pred && !pred->sweep_d_mm.empty()) {
     sweep.push_back({"mean MTF (0-1 lp/mm)", pred->sweep_d_mm, pred->sweep_mean_mtf});
+    // Distances where the layout is no layout: the curve's gap, marked on the axis.
+    plot_curve none{"no layout", {}, {}, IM_COL32(230, 80, 60, 255)};
+    none.points = true;
+    for (std::size_t i = 0; i < pred->sweep_reasons.size() && i < pred->sweep_d_mm.size(); ++i) {
+      if (pred->sweep_reasons[i].empty()) continue;
+      none.x.push_back(pred->sweep_d_mm[i]);
+      none.y.push_back(0.02);
+    }
+    if (!none.x.empty()) sweep.push_back(std::move(none));
     sweep.push_back({"current D",
                      {airr::floating_distance(st.doc), airr::floating_distance(st.doc)},
                      {0.0, 1.0},

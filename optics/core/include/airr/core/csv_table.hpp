@@ -21,6 +21,9 @@ struct csv_table {
 // Splits one line at commas, trimming blanks around each field.
 std::vector<std::string> split_csv_line(const std::string& line);
 
+// A text field as a CSV file holds it: in double quotes, each quote doubled.
+std::string csv_quoted(const std::string& field);
+
 // Reads a file; blank lines are skipped. Throws input_error for a missing or empty file, a row
 // whose field count differs from the header's, or a field that is not a finite number.
 csv_table read_csv_table(const std::string& path);

@@ -43,6 +43,10 @@ struct sweep_point {
   double r50_mm = 0;                      // 50%-energy radius of the model PSF (optics alone)
   double brightness = 0;                  // the model PSF's, every sheet together
   std::vector<double> sheet_brightness;   // each sheet's share (0 where its chief ray misses it)
+  // Why the layout is no layout at this point (parts meeting, the camera ray missing a part, ...);
+  // empty for a measured point. A point with a reason has no numbers (NaN).
+  std::string reason;
+  bool valid() const { return reason.empty(); }
 };
 
 // Least-squares slope of mean MTF against D, per mm, at one tilt.
@@ -59,14 +63,18 @@ struct sweep_result {
 
 using sweep_progress = std::function<void(double fraction, const std::string& detail)>;
 
-// Checks every point's layout first (input_error naming the point), then measures: on this
-// machine's cores, or as the items of `share` (an MPI job's ranks; progress then counts this
-// process's points).
+// Measures every point: on this machine's cores, or as the items of `share` (an MPI job's ranks;
+// progress then counts this process's points). A point whose layout is no layout (it fails the
+// scene's checks, or a camera ray misses a part) keeps its reason and the sweep goes on; slopes
+// are fitted to the valid points. Throws input_error naming the first point's reason when no
+// point is valid.
 sweep_result run_sweep(const scene& s, const sweep_params& p, const sweep_progress& progress = {},
                        const item_share& share = {});
 
-// Header "floating_distance_mm,tilt_deg,mean_mtf_0_1,mtf50_lp_per_mm,r50_mm"; an MTF50 that was
-// not reached is an empty field.
+// Header "floating_distance_mm,tilt_deg,mean_mtf_0_1,mtf50_lp_per_mm,r50_mm,brightness" and a
+// brightness per sheet; an MTF50 that was not reached is an empty field. When a point is no layout,
+// a last column "reason": empty for measured points, the reason (quoted) for the others, whose
+// numbers are empty.
 std::string sweep_csv(const sweep_result& r);
 
 }  // namespace airr

@@ -26,6 +26,7 @@ struct predicted_plots {
   double mean_mtf = 0, mtf50 = 0, r50_mm = 0, brightness = 0;
   std::vector<double> psf_x_mm, psf_density;       // cross-section through the PSF's centre (per mm)
   std::vector<double> sweep_d_mm, sweep_mean_mtf;  // mean MTF over (0, 1] lp/mm against D
+  std::vector<std::string> sweep_reasons;          // per D: why the layout is none there (NaN), or empty
   double psf_ms = 0;                               // time for the PSF and its MTF (a plot-quality estimate)
   double sweep_ms = 0;
   // Where the aerial image can be seen: the geometric visible fraction on the observer's orbit
