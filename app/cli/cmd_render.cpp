@@ -9,6 +9,7 @@
 #include "airr/core/error.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
+#include "airr/render/memory_need.hpp"
 #include "airr/render/render_metadata.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/render/render_shards.hpp"
@@ -78,6 +79,7 @@ void add_render_command(CLI::App& app) {
                                 " rows high (at most one per row)");
       std::tie(params.first_row, params.end_row) = airr::shard_rows(*rows, s.observer.height);
     }
+    airr::check_render_memory(s, params);  // refused before anything is allocated
     airr::render_session session(s, params);
     std::optional<progress_bar> bar;
     if (job.root()) bar.emplace(job.size > 1 ? "render (" + std::to_string(job.size) + " ranks)" : "render");

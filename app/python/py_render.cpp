@@ -10,6 +10,7 @@
 #include <pybind11/stl.h>
 
 #include "airr/core/error.hpp"
+#include "airr/render/memory_need.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/render/tracer.hpp"
 #include "py_arrays.hpp"
@@ -40,6 +41,7 @@ py::object render(const py_scene& ps, std::uint64_t spp, std::optional<std::uint
     std::atomic<bool> build_cancel{false};
     const session_params params{
         .threads = threads, .target_spp = spp, .components = components, .build_cancel = &build_cancel};
+    check_render_memory(s, params);  // refused before anything is allocated
     auto building = std::async(std::launch::async, [&] { return std::make_unique<render_session>(s, params); });
     while (building.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready)
       if (!job.keep_going(0.0)) build_cancel = true;

@@ -1,0 +1,29 @@
+#pragma once
+// What a render will hold in memory, estimated before it starts, against what this process may
+// still take, so that a render too large for the machine (or for the process's limit) is refused
+// with one line instead of failing half-way.
+#include <cstdint>
+#include <string>
+
+#include "airr/layout/scene.hpp"
+#include "airr/render/render_session.hpp"
+
+namespace airr {
+
+// What this process may still take: the smaller of what its address-space limit (ulimit -v)
+// leaves and the machine's available memory and swap; `source` says which.
+struct memory_allowance {
+  std::uint64_t bytes = 0;
+  std::string source;
+};
+memory_allowance process_memory_allowance();
+
+// The peak a render of `s` with `p` holds (accumulators, their even/odd halves and components,
+// the model image, the shown mix), from measured per-pixel costs (docs/architecture.md).
+std::uint64_t render_memory_need(const scene& s, const session_params& p);
+
+// Throws input_error "render: W x H ... needs about N GB of memory; this process may take M GB
+// more (source)" when the need exceeds the allowance.
+void check_render_memory(const scene& s, const session_params& p);
+
+}  // namespace airr
