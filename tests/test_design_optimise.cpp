@@ -73,6 +73,42 @@ TEST(DesignSpec, BadSpecsAreOneLineErrorsNamingTheField) {
   expect(
       error_for(var + R"("objectives": [{"metric": "visible_fraction", "goal": "maximise", "over": "share_above"}])"),
       {"objectives[0].threshold", "missing"});
+  // Wrong types, missing keys, negative and huge sizes, a truncated file.
+  const std::vector<std::pair<std::string, std::vector<std::string>>> more = {
+      {R"("variables": [{"key": "floating_distance_mm", "min": "120", "max": 300}], )" + obj,
+       {"variables[0].min", "must be a number"}},
+      {R"("variables": [{"key": "floating_distance_mm", "max": 300}], )" + obj, {"variables[0].min", "missing"}},
+      {R"("variables": {"key": "floating_distance_mm"}, )" + obj, {"variables", "must be an array of objects"}},
+      {R"("variables": [7], )" + obj, {"variables[0]", "must be a JSON object"}},
+      {var + R"("objectives": [{"metric": 3, "goal": "maximise"}])", {"objectives[0].metric", "must be a string"}},
+      {var + R"("objectives": [{"metric": "r50_mm"}])", {"objectives[0].goal", "missing"}},
+      {var + R"("objectives": [{"metric": "r50_mm", "goal": "minimise", "weight": -1}])",
+       {"objectives[0].weight", "must be positive"}},
+      {var + obj + R"(, "tolerance": {"samples": -5})", {"tolerance.samples", "must be 10 to 1000000"}},
+      {var + obj + R"(, "tolerance": {"samples": 1000000000000})",
+       {"tolerance.samples: must be 10 to 1000000 (is 1000000000000)"}},
+      {var + obj + R"(, "tolerance": {"seed": -1})", {"tolerance.seed", "-1"}},
+      {var + obj + R"(, "search": {"psf_samples": 1e15})", {"search.psf_samples"}},
+      {var + obj + R"(, "search": {"psf_samples": 999})", {"search.psf_samples: must be 1000 to 100000000 (is 999)"}},
+      {var + obj + R"(, "search": {"local_evaluations": 2.5})", {"search.local_evaluations", "must be an integer"}},
+      {var + obj + R"(, "pareto": {"points": 100000000000})", {"pareto.points: must be 3 to 101 (is 100000000000)"}},
+      {var + obj + R"(, "eye_zone": {"x": [-10, 10], "y": [-10, 10], "n": [1e300, 1e300]})", {"eye_zone.n"}},
+      {var + obj + R"(, "eye_zone": {"x": [-10, 10], "y": [-10, 10], "n": [-1, 3]})", {"eye_zone.n"}},
+      {var + obj + R"(, "eye_zone": {"x": [-10], "y": [-10, 10], "n": [2, 2]})", {"eye_zone.x", "[first, last]"}},
+      {var + obj + R"(, "eyes_mm": [[1, 2]])", {"eyes_mm[0]", "[x, y, z]"}},
+      {var + obj + R"(, "eyes_mm": [[1, 2, "3"]])", {"eyes_mm[0]", "[x, y, z]"}},
+      {var + obj + R"(, "eyes_mm": [[1, 2, 1e999]])", {"malformed JSON"}},
+      {var + obj + R"(, "eyes_mm": "observer")", {"eyes_mm", "non-empty array"}},
+      {var + obj + R"(, "tolerances": [{"key": "floating_distance_mm", "sd": 0}])", {"tolerances[0].sd", "positive"}},
+      {var + obj + R"(, "tolerances": [{"key": "floating_distance_mm", "distribution": "cauchy", "sd": 1}])",
+       {"tolerances[0].distribution"}},
+  };
+  for (const auto& [members, parts] : more) expect(error_for(members), parts);
+  const std::string text = spec_text(var + obj);
+  write_text(dir.file("spec.json"), text.substr(0, text.size() / 2));
+  expect(test::error_of([&] { load_design_spec(dir.file("spec.json")); }), {"malformed JSON"});
+  write_text(dir.file("spec.json"), "");
+  expect(test::error_of([&] { load_design_spec(dir.file("spec.json")); }), {});
 }
 
 // A spec written as text reads back the same, over a scene at hand too (as the designer runs it).

@@ -356,3 +356,67 @@ TEST(Faults, FilesDeletedOrReplacedUnderTheDesignerAreNamedNotFatal) {
   EXPECT_EQ(st.session->snapshot().error, "");
   st.session->stop();
 }
+
+namespace {
+
+// Holds this process's address space to what it uses now and `more` bytes besides, for a test's
+// length.
+struct address_space_limit {
+  rlimit before{};
+  explicit address_space_limit(std::uint64_t more) {
+    ::getrlimit(RLIMIT_AS, &before);
+    std::ifstream statm("/proc/self/statm");
+    std::uint64_t pages = 0;
+    statm >> pages;
+    rlimit limit = before;
+    limit.rlim_cur = rlim_t(pages * std::uint64_t(::sysconf(_SC_PAGESIZE)) + more);
+    ::setrlimit(RLIMIT_AS, &limit);
+  }
+  ~address_space_limit() { ::setrlimit(RLIMIT_AS, &before); }
+};
+
+}  // namespace
+
+// Under an address-space limit, the designer refuses an edit whose render would not fit (its
+// memory check), and a session made to take one anyway says it ran out of memory: both keep the
+// last image, and the next edit that fits renders.
+TEST(Faults, AnEditBeyondTheProcesssMemoryIsRefusedAndTheLastImageStays) {
+  const scene small = test::uniform_source_scene(50, 32);
+  ui::studio st;
+  st.keep_recovery = false;
+  st.session_options = {.threads = 1, .target_spp = 4};
+  ui::studio_start(st, small, "");
+  const auto wait_for = [&](const std::function<bool()>& done) {
+    for (int i = 0; i < 400 && !done(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(25));
+  };
+  wait_for([&] { return st.session->snapshot().spp >= 4; });
+  ASSERT_GE(st.session->snapshot().spp, 4u);
+  const address_space_limit limit(3'000'000'000ULL);
+
+  const std::uint64_t generation = st.generation;
+  st.doc.observer.width = 8192;
+  st.doc.observer.height = 4096;
+  ui::studio_apply_edits(st, 2);
+  EXPECT_NE(st.doc_error.find("render: 8192 x 4096 needs about"), std::string::npos) << st.doc_error;
+  EXPECT_NE(st.doc_error.find("ulimit -v"), std::string::npos) << st.doc_error;
+  EXPECT_EQ(st.generation, generation);
+  EXPECT_EQ(st.session->snapshot().width, 32);
+
+  // Past the check: the session's worker fails to allocate, says so, and waits for the next edit.
+  scene big = small;
+  big.observer.width = 8192;
+  big.observer.height = 4096;
+  const std::uint64_t refused = st.session->edit(big);
+  wait_for([&] { return !st.session->snapshot().error.empty(); });
+  const render_snapshot failed = st.session->snapshot();
+  EXPECT_NE(failed.error.find("render: out of memory (an allocation failed"), std::string::npos) << failed.error;
+  EXPECT_GE(failed.generation, refused);
+
+  scene again = small;
+  again.observer.width = 40;
+  const std::uint64_t good = st.session->edit(again);
+  wait_for([&] { return st.session->snapshot().generation == good && st.session->snapshot().spp >= 4; });
+  EXPECT_EQ(st.session->snapshot().error, "");
+  EXPECT_EQ(st.session->snapshot().width, 40);
+  st.session->stop();
+}

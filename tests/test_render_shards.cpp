@@ -6,8 +6,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include "airr/core/assets.hpp"
 #include "airr/formats/image.hpp"
@@ -96,5 +98,73 @@ TEST(RenderShards, MergeRefusesMissingForeignAndRepeatedShards) {
   test::expect_one_line_error(test::run_cli(render_args(dir.file("x.exr"), "--shard 3/3")), {"--shard", "3/3"});
   test::expect_one_line_error(test::run_cli(render_args(dir.file("x.exr"), "--shard 0/62")),
                               {"--shard", "62 shards", "61 rows"});
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// Hand-made bad shards (a good shard's header or pixels changed and written again): each is one line
+// naming the file and the key, and nothing is written.
+TEST(RenderShards, BadShardsNameTheFileAndTheKey) {
+  test::temp_dir dir;
+  const std::string s0 = dir.file("s0.exr"), s1 = dir.file("s1.exr"), s2 = dir.file("s2.exr");
+  const std::string bad = dir.file("bad.exr"), out = dir.file("out.exr");
+  for (const std::string i : {"0", "1", "2"})
+    ASSERT_EQ(test::run_cli(render_args(dir.file("s" + i + ".exr"), "--components --shard " + i + "/3")).exit_code, 0);
+  const image_rgb pixels = load_image(s0, image_encoding::linear).pixels;
+  const image_metadata meta = read_image_metadata(s0);
+  const auto layers = load_image_layers(s0);
+  ASSERT_EQ(pixels.height, 20);
+  const auto write_bad = [&](const image_metadata& m, const image_rgb& img, const image_rgb* layer) {
+    std::vector<image_layer> written;
+    for (const auto& [name, l] : layers) written.push_back({name, layer ? layer : &l});
+    write_image(bad, img, m, 1.0f, written);
+  };
+  const auto merge_bad = [&] { return test::run_cli("merge " + bad + " " + s1 + " " + s2 + " -o " + out); };
+  write_bad(meta, pixels, nullptr);
+  ASSERT_EQ(merge_bad().exit_code, 0);  // written again unchanged, it merges
+  std::filesystem::remove(out);
+
+  const std::vector<std::pair<std::function<void(image_metadata&)>, std::string>> cases = {
+      {[](image_metadata& m) { m.erase("airr:rows"); }, "not a render shard (no airr:rows"},
+      {[](image_metadata& m) { m.erase("airr:height"); }, "not a render shard (no airr:height"},
+      {[](image_metadata& m) { m["airr:shard"] = "3/2"; }, "airr:shard: '3/2' is not a shard i/N"},
+      {[](image_metadata& m) { m["airr:shard"] = "-1/3"; }, "airr:shard: '-1/3' is not a shard i/N"},
+      {[](image_metadata& m) { m["airr:shard"] = "0/99999999999"; }, "airr:shard: '0/99999999999' is not a shard"},
+      {[](image_metadata& m) { m["airr:shard"] = "0/100"; }, "airr:shard: 100 shards of an image 61 rows high"},
+      {[](image_metadata& m) { m["airr:height"] = "sixty"; }, "airr:height: 'sixty' is not an image height"},
+      {[](image_metadata& m) { m["airr:height"] = "-61"; }, "airr:height: '-61' is not an image height"},
+      {[](image_metadata& m) { m["airr:height"] = "4294967357"; }, "airr:height: '4294967357' is not an image"},
+      {[](image_metadata& m) { m["airr:height"] = "100000"; }, "airr:height: '100000' is not an image height of 1"},
+      {[](image_metadata& m) { m["airr:height"] = "70"; }, "airr:rows: '0 20' are not shard 0/3's rows of 70"},
+      {[](image_metadata& m) { m["airr:rows"] = "0 2000000000"; }, "airr:rows: '0 2000000000' are not shard 0/3"},
+  };
+  for (const auto& [mutate, message] : cases) {
+    image_metadata m = meta;
+    mutate(m);
+    write_bad(m, pixels, nullptr);
+    test::expect_one_line_error(merge_bad(), {"bad.exr: " + message});
+    EXPECT_FALSE(std::filesystem::exists(out)) << message;
+  }
+  // Of another render (named by the shard merged against it).
+  for (const auto& [key, message] : {std::pair{"airr:version", "written by another build (airr:version differs)"},
+                                     std::pair{"airr:spp", "another number of samples (airr:spp differs)"}}) {
+    image_metadata m = meta;
+    m[key] = "9";
+    write_bad(m, pixels, nullptr);
+    test::expect_one_line_error(merge_bad(), {"bad.exr is a shard of: " + std::string(message)});
+  }
+  // Pixels that are not the header's: fewer rows, a width beyond the render's limit.
+  write_image(bad, image_rows(pixels, 0, 19), meta);
+  test::expect_one_line_error(merge_bad(), {"bad.exr: holds 19 rows, not its shard's 20"});
+  image_rgb wide;
+  wide.width = 8193, wide.height = 20;
+  wide.rgb.assign(std::size_t(3) * wide.width * wide.height, 0.5f);
+  write_image(bad, wide, meta);
+  test::expect_one_line_error(merge_bad(), {"bad.exr: the render, 8193 x 61, is beyond the render's limits"});
+  // Truncated, and not an image at all.
+  const std::string good = bytes_of(s0);
+  std::ofstream(bad, std::ios::binary | std::ios::trunc) << good.substr(0, good.size() / 2);
+  test::expect_one_line_error(merge_bad(), {"bad.exr"});
+  std::ofstream(bad, std::ios::binary | std::ios::trunc) << "not an image";
+  test::expect_one_line_error(merge_bad(), {"bad.exr"});
   EXPECT_FALSE(std::filesystem::exists(out));
 }

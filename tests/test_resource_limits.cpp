@@ -14,6 +14,7 @@
 #include "airr/core/files.hpp"
 #include "airr/core/json_reader.hpp"
 #include "airr/formats/scene_json.hpp"
+#include "airr/measure/viewing_zone_full.hpp"
 #include "airr/models/shift_table.hpp"
 #include "gltf_builder.hpp"
 #include "test_helpers.hpp"
@@ -209,6 +210,34 @@ TEST(ResourceLimits, ARenderBeyondTheProcesssMemoryIsRefusedBeforeItStarts) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("small.exr")));
 }
 
+// A sweep whose points at once would not fit is refused before it measures; a small one runs.
+TEST(ResourceLimits, ASweepBeyondTheProcesssMemoryIsRefusedBeforeItStarts) {
+  test::temp_dir dir;
+  const std::string sweep = std::string(AIRR_CLI) + " sweep " + default_scene_path() +
+                            " --psf --vary tilt=0:10:10 --threads 2 -o " + dir.file("s.csv");
+  const auto big = test::run_command("ulimit -v 4000000; " + sweep + " --samples 100000000");
+  test::expect_one_line_error(big, {"sweep: 2 points at once of 100000000 PSF samples needs about 13", "ulimit -v"});
+  EXPECT_EQ(big.exit_code, 1) << big.out;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("s.csv")));
+  const auto small = test::run_command("ulimit -v 4000000; " + sweep + " --samples 10000");
+  EXPECT_EQ(small.exit_code, 0) << small.out;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("s.csv")));
+}
+
+// A zone pass whose workers' PSFs would not fit in any machine is refused before its first eye.
+TEST(ResourceLimits, AZonePassBeyondTheMachinesMemoryIsRefused) {
+  const scene s = load_scene(default_scene_path());
+  eye_grid g;
+  g.nx = g.ny = 2;
+  full_zone_params p;
+  p.psf_samples = 10'000'000'000ULL;  // 640 GB a worker
+  const std::string error = test::error_of([&] { full_viewing_zone(s, g, p); });
+  EXPECT_NE(error.find("viewing zone: 4 eyes of 10000000000 PSF samples and a 48 x 48 render each needs about"),
+            std::string::npos)
+      << error;
+  EXPECT_NE(error.find("more ("), std::string::npos) << error;
+}
+
 // An image that cannot be created says the system's reason.
 TEST(ResourceLimits, AnImageThatCannotBeCreatedSaysWhy) {
   test::temp_dir dir;
@@ -242,9 +271,18 @@ TEST(ResourceLimits, FullDiskWhileWritingARenderLeavesTheOldOne) {
                                    " --spp 2 --seed 9");
   EXPECT_NE(r.exit_code, 0) << r.out;
   EXPECT_EQ(r.out.find("File size limit"), std::string::npos) << "killed by the signal: " << r.out;
-  EXPECT_NE(r.out.find("error: " + out + ": cannot write image"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("error: " + out + ": write failed: File too large"), std::string::npos) << r.out;
   EXPECT_EQ(read_text_file(out), before);
+  // A PNG too: its writer alone would leave the file cut at the limit and report it written.
+  const std::string png = dir.file("render.png");
+  ASSERT_EQ(test::run_cli("render " + path + " -o " + png + " --spp 1").exit_code, 0);
+  const std::string png_before = read_text_file(png);
+  const auto r2 = test::run_command("ulimit -f 4; " + std::string(AIRR_CLI) + " render " + path + " -o " + png +
+                                    " --spp 2 --seed 9 --set observer.width=512 --set observer.height=512");
+  EXPECT_NE(r2.exit_code, 0) << r2.out;
+  EXPECT_NE(r2.out.find("error: " + png + ": write failed: File too large"), std::string::npos) << r2.out;
+  EXPECT_EQ(read_text_file(png), png_before);
   std::size_t files = 0;
   for ([[maybe_unused]] const auto& e : std::filesystem::directory_iterator(dir.path)) ++files;
-  EXPECT_EQ(files, 2u) << "a temporary file was left beside the render";
+  EXPECT_EQ(files, 3u) << "a temporary file was left beside the renders";
 }

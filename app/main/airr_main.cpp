@@ -2,8 +2,10 @@
 #include <csignal>
 #include <cstdio>
 #include <exception>
+#include <new>
 #include <string>
 
+#include "airr/render/memory_need.hpp"
 #include "airr_version.hpp"
 #include "cli/commands.hpp"
 #include "cluster/item_shards.hpp"
@@ -52,15 +54,18 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   } catch (const std::exception& e) {
+    // An allocation that failed past the commands' own memory checks is said as such.
+    const std::string message =
+        dynamic_cast<const std::bad_alloc*>(&e) ? airr::out_of_memory_message(argc > 1 ? argv[1] : "airr") : e.what();
     if (job.size == 1) {
-      std::fprintf(stderr, "error: %s\n", e.what());
+      std::fprintf(stderr, "error: %s\n", message.c_str());
       return 1;
     }
     // The ranks of an MPI job fail alike on bad input: rank 0 says why; any rank's failure ends them all.
     if (job.root())
-      std::fprintf(stderr, "error: %s\n", e.what());
+      std::fprintf(stderr, "error: %s\n", message.c_str());
     else
-      std::fprintf(stderr, "error: rank %d: %s\n", job.rank, e.what());
+      std::fprintf(stderr, "error: rank %d: %s\n", job.rank, message.c_str());
     abort_job(1);
   }
   return 0;

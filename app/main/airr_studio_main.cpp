@@ -16,11 +16,13 @@
 #include "airr/core/assets.hpp"
 #include "airr/formats/design_spec.hpp"
 #include "airr/formats/scene_json.hpp"
+#include "airr/render/memory_need.hpp"
 #include "airr/ui/panels/panels.hpp"
 #include "airr/ui/platform/screenshot.hpp"
 #include "airr/ui/studio/studio.hpp"
-#include "airr/ui/views/layout_projection.hpp"
 #include "airr/ui/views/views.hpp"
+#include "airr/ui/window/screenshot_notes.hpp"
+#include "airr/ui/window/soak.hpp"
 #include "airr/ui/window/window.hpp"
 #include "airr_version.hpp"
 
@@ -45,6 +47,7 @@ struct options {
   std::string zone;                // the viewing zone's quantity; a full one is computed before the screenshot
   std::string design;              // a design spec for the Optimise and Tolerance windows
   airr::ui::design_script design_run;
+  airr::ui::soak_script soak;  // --soak: a long scripted run
 };
 
 struct app_state {
@@ -125,6 +128,9 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"mtf", "bokeh"}));
   cli.add_option("--component", opt.component, "The render view shows one component of the image")
       ->check(CLI::IsMember({"aerial", "direct", "reflection", "rest"}));
+  cli.add_option("--soak", opt.soak.seconds, "Run the designer's soak cycle this many seconds, then exit")
+      ->check(CLI::Range(1.0, 1e6));
+  cli.add_option("--soak-log", opt.soak.log, "With --soak: the samples as CSV (default soak.csv)");
   cli.add_option("--design", opt.design, "A design spec (airr-design) for the Optimise and Tolerance windows");
   cli.add_flag("--optimise", opt.design_run.optimise, "After the scripted frames, run the Optimise window's search");
   cli.add_flag("--tolerance", opt.design_run.tolerance,
@@ -144,6 +150,7 @@ int main(int argc, char** argv) {
     s = airr::load_scene(path, overrides, notes);
     for (const auto& line : notes) std::fprintf(stderr, "%s\n", line.c_str());
     as_saved = overrides.empty() ? s : airr::load_scene(path);
+    airr::check_render_memory(as_saved, airr::session_params{.components = true});  // as the designer renders
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;
@@ -211,6 +218,10 @@ int main(int argc, char** argv) {
     if (opt.zone == zone_quantities[k]) st.zone_quantity = k;
   }
   st.keep_recovery = opt.frames == 0 && opt.bench_edits == 0;
+  if (opt.soak.seconds > 0) {
+    if (opt.soak.log.empty()) opt.soak.log = "soak.csv";
+    opt.soak.scene_file = std::filesystem::path(opt.soak.log).replace_extension(".scene.json").string();
+  }
   if (st.keep_recovery) airr::ui::studio_check_recovery(st);
   airr::ui::studio_start(st, as_saved, path);
   st.doc = s;  // --set overrides show as unsaved changes
@@ -273,6 +284,11 @@ int main(int argc, char** argv) {
       st.show_save_prompt = true;
     }
     if (st.quit_requested) break;
+    if (opt.soak.seconds > 0 && !airr::ui::run_soak_script(st, opt.soak, now())) {
+      if (!opt.soak.error.empty()) std::fprintf(stderr, "error: %s\n", opt.soak.error.c_str());
+      exit_code = opt.soak.error.empty() ? 0 : 1;
+      break;
+    }
     if (app.rebuild_fonts) {
       load_fonts(app.content_scale);
       ImGui_ImplOpenGL3_DestroyFontsTexture();
@@ -368,54 +384,10 @@ int main(int argc, char** argv) {
       if (screenshot_pending) {
         try {
           airr::ui::write_framebuffer_png(opt.screenshot, fw, fh);
-          // The panels' rectangles in framebuffer pixels, for checks of the screenshot.
           int ww = 0, wh = 0;
           glfwGetWindowSize(window, &ww, &wh);
-          const float sx = ww ? float(fw) / ww : 1.0f, sy = wh ? float(fh) / wh : 1.0f;
-          nlohmann::json regions;
-          for (const auto& [name, r] : st.regions) regions[name] = {r[0] * sx, r[1] * sy, r[2] * sx, r[3] * sy};
-          // The layout view's labels, the parts' outlines and the marks (scale bar, handles) they keep clear of.
-          auto rect = [&](const airr::ui::screen_rect& r) {
-            return nlohmann::json{r.x0 * sx, r.y0 * sy, r.x1 * sx, r.y1 * sy};
-          };
-          nlohmann::json views;
-          for (const auto& [name, drawn] : st.layout_views) {
-            const airr::ui::projection_view& v = *drawn;
-            nlohmann::json& j = views[name];
-            j["labels"] = nlohmann::json::array();
-            for (const auto& t : v.labels) j["labels"].push_back({{"text", t.text}, {"box", rect(t.place.box)}});
-            j["outlines"] = nlohmann::json::array();
-            for (const auto& g : v.outlines) j["outlines"].push_back({g.a.x * sx, g.a.y * sy, g.b.x * sx, g.b.y * sy});
-            j["marks"] = nlohmann::json::array({rect(v.scale_box)});
-            for (const auto& r : v.handles) j["marks"].push_back(rect(r));
-          }
-          // What the Bokeh tab showed (when it was open), its views' times per edit.
-          nlohmann::json bokeh;
-          if (const auto b = st.analysis.bokeh(); b && st.plots_tab == 1) {
-            const auto& shown = st.bokeh_shown;
-            bokeh = {{"generation", shown.generation},
-                     {"current", shown.current},
-                     {"r50_mm", shown.r50_mm},
-                     {"psf_area",
-                      {shown.psf_area[0] * sx, shown.psf_area[1] * sy, shown.psf_area[2] * sx, shown.psf_area[3] * sy}},
-                     {"psf_x_mm", shown.psf_x_mm},
-                     {"marker", {shown.marker[0] * sx, shown.marker[1] * sy}},
-                     {"marker_d_tilt", shown.marker_d_tilt},
-                     {"best_focus_mm", b->focus.best_offset_mm},
-                     {"ms", {{"psf", b->psf_ms}, {"focus", b->focus_ms}, {"spots", b->spots_ms}, {"map", b->map_ms}}}};
-            std::fprintf(stderr,
-                         "bokeh views (generation %llu%s): 2D PSF %.1f ms, through focus %.1f ms, spot matrix %.1f "
-                         "ms, D x tilt map %.0f ms; MTF plot %.1f ms\n",
-                         static_cast<unsigned long long>(b->generation), shown.current ? ", current" : ", previous",
-                         b->psf_ms, b->focus_ms, b->spots_ms, b->map_ms,
-                         st.analysis.predicted() ? st.analysis.predicted()->psf_ms : 0.0);
-          }
-          airr::write_file_atomic(
-              opt.screenshot + ".json",
-              nlohmann::json{
-                  {"width", fw}, {"height", fh}, {"regions", regions}, {"layout_views", views}, {"bokeh", bokeh}}
-                      .dump(2) +
-                  "\n");
+          airr::ui::write_screenshot_notes(st, opt.screenshot + ".json", fw, fh, ww ? float(fw) / ww : 1.0f,
+                                           wh ? float(fh) / wh : 1.0f);
           const int shown = st.view.uploaded_component;
           std::fprintf(stderr, "wrote %s (%dx%d); the render view shows %s%s%s\n", opt.screenshot.c_str(), fw, fh,
                        ("the " + st.view.uploaded_estimate).c_str(), shown >= 0 ? ", component " : "",

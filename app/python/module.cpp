@@ -22,8 +22,9 @@ namespace airr::python {
 namespace {
 
 // A Python value as `--set` text: strings as they are, True/False as true/false, NaN and the
-// infinities as nan/inf, numbers (numpy's too) and lists as JSON.
-std::string set_text(const py::object& value) {
+// infinities as nan/inf, numbers (numpy's too) and lists as JSON; any other value (bytes, complex,
+// objects) is a ValueError naming the key.
+std::string set_text(const std::string& key, const py::object& value) {
   if (py::isinstance<py::str>(value)) return value.cast<std::string>();
   if (py::isinstance<py::bool_>(value)) return value.cast<bool>() ? "true" : "false";
   py::object v = value;
@@ -33,7 +34,12 @@ std::string set_text(const py::object& value) {
     if (std::isnan(d)) return "nan";
     if (std::isinf(d)) return d > 0 ? "inf" : "-inf";
   }
-  return py::module_::import("json").attr("dumps")(v).cast<std::string>();
+  try {
+    return py::module_::import("json").attr("dumps")(v).cast<std::string>();
+  } catch (const py::error_already_set&) {
+    throw py::value_error(key + ": a " + std::string(py::str(value.get_type().attr("__name__"))) +
+                          " cannot be set (a number, text, True/False or a list)");
+  }
 }
 
 void add_scene(py::module_& m) {
@@ -48,7 +54,7 @@ and leaves the scene as it was.)")
           "load", [](const std::filesystem::path& path) { return py_scene::load(path.string()); }, py::arg("path"),
           "Reads and checks a scene file (JSON or glTF layout).")
       .def(
-          "set", [](py_scene& s, const std::string& key, const py::object& value) { s.set(key, set_text(value)); },
+          "set", [](py_scene& s, const std::string& key, const py::object& value) { s.set(key, set_text(key, value)); },
           py::arg("key"), py::arg("value"),
           "Sets a value as `--set key=value` does (a number, text, True/False or a list); raises ValueError as "
           "`airr --set` fails.")

@@ -18,6 +18,10 @@ namespace {
 // scene at 1024 x 1024 and 2048 x 2048 (1 spp): 852 and 1773 MB, 1097 and 2756 MB with components.
 constexpr double bytes_per_pixel = 300, bytes_per_pixel_components = 540;
 constexpr double fixed_bytes = 540e6;
+// Peak resident bytes of `airr sweep --psf` (one point, one thread) beyond its 150 MB at the start:
+// 48 bytes a sample at 10 million samples, 58 at 30 million (the samples' arrays doubling as
+// they grow); two points on two threads took twice one point's.
+constexpr double psf_bytes_per_sample = 64, psf_fixed_bytes = 16e6;
 
 // A field of /proc/meminfo in bytes (0 when it cannot be read).
 std::uint64_t meminfo_bytes(const std::string& name) {
@@ -63,18 +67,37 @@ memory_allowance process_memory_allowance() {
 }
 
 std::uint64_t render_memory_need(const scene& s, const session_params& p) {
-  const double pixels = double(s.observer.width) * double(s.observer.height);
-  return std::uint64_t(fixed_bytes + pixels * (p.components ? bytes_per_pixel_components : bytes_per_pixel));
+  return std::uint64_t(fixed_bytes) +
+         traced_pixels_memory_need(std::uint64_t(s.observer.width) * std::uint64_t(s.observer.height), p.components);
+}
+
+std::uint64_t traced_pixels_memory_need(std::uint64_t pixels, bool components) {
+  return std::uint64_t(double(pixels) * (components ? bytes_per_pixel_components : bytes_per_pixel));
 }
 
 void check_render_memory(const scene& s, const session_params& p) {
+  check_memory_need("render: " + std::to_string(s.observer.width) + " x " + std::to_string(s.observer.height) +
+                        (p.components ? " with components" : ""),
+                    render_memory_need(s, p));
+}
+
+std::uint64_t psf_memory_need(std::uint64_t samples) {
+  return std::uint64_t(psf_fixed_bytes + psf_bytes_per_sample * double(samples));
+}
+
+void check_memory_need(const std::string& what, std::uint64_t need) {
   const memory_allowance a = process_memory_allowance();
   if (a.source.empty()) return;  // nothing known of the machine: nothing to refuse on
-  const std::uint64_t need = render_memory_need(s, p);
   if (need <= a.bytes) return;
-  throw input_error("render: " + std::to_string(s.observer.width) + " x " + std::to_string(s.observer.height) +
-                    (p.components ? " with components" : "") + " needs about " + gigabytes(double(need)) +
-                    " of memory; this process may take " + gigabytes(double(a.bytes)) + " more (" + a.source + ")");
+  throw input_error(what + " needs about " + gigabytes(double(need)) + " of memory; this process may take " +
+                    gigabytes(double(a.bytes)) + " more (" + a.source + ")");
+}
+
+std::string out_of_memory_message(const std::string& what) {
+  const memory_allowance a = process_memory_allowance();
+  return what + ": out of memory (an allocation failed" +
+         (a.source.empty() ? std::string(")")
+                           : "; this process may take " + gigabytes(double(a.bytes)) + " more, " + a.source + ")");
 }
 
 }  // namespace airr

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <future>
+#include <new>
 #include <utility>
 
 #include <sys/resource.h>
@@ -12,6 +13,7 @@
 #include "airr/core/error.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/sheet_models.hpp"
+#include "airr/render/memory_need.hpp"
 #include "airr/render/parallel_rows.hpp"
 
 namespace airr {
@@ -309,7 +311,34 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const accumul
   changed_.notify_all();
 }
 
+namespace {
+
+// What a failed edit or wave says: an allocation that failed as running out of memory.
+std::string failure_text(const std::exception& e) {
+  return dynamic_cast<const std::bad_alloc*>(&e) ? out_of_memory_message("render") : e.what();
+}
+
+}  // namespace
+
 void render_session::run() {
+  while (true) {
+    try {
+      run_loop();
+      return;
+    } catch (const std::exception& e) {
+      // An allocation (or anything else) that failed mid-render: the snapshot says why over the
+      // last image, and the worker waits for the next edit instead of ending the process.
+      std::unique_lock lock(mutex_);
+      snapshot_.generation = generation_;
+      snapshot_.error = failure_text(e);
+      changed_.notify_all();
+      changed_.wait(lock, [&] { return stopping_ || pending_; });
+      if (stopping_) return;
+    }
+  }
+}
+
+void render_session::run_loop() {
   using clock = std::chrono::steady_clock;
   accumulation acc, wave;
   std::uint64_t gen = 0, spp = 0, rays = 0, next_wave = 1;
@@ -345,7 +374,14 @@ void render_session::run() {
     acc.component_sums.assign(params_.components ? component_count * acc.sums.size() : 0, 0.0);
     acc.predictions = {acc.sums, acc.sums};
   };
-  reset_sums();
+  {
+    // Entered again after a failure with an edit waiting: that edit's layout gets the sums.
+    std::unique_lock lock(mutex_);
+    if (!pending_) {
+      lock.unlock();
+      reset_sums();
+    }
+  }
 
   while (true) {
     std::uint64_t count = 0;
@@ -370,7 +406,7 @@ void render_session::run() {
         try {
           build_tracer_scene(scene_, device_, s, std::move(models));
         } catch (const std::exception& e) {
-          error = e.what();
+          error = failure_text(e);
         }
         reset_sums();
         spp = rays = 0;

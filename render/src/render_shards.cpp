@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "airr/core/error.hpp"
+#include "airr/layout/scene.hpp"
 
 namespace airr {
 
@@ -24,69 +25,96 @@ std::optional<int> whole_number(const std::string& text) {
 
 struct read_shard {
   std::string path;
-  shard_index place;
-  int height = 0;
+  render_shard_header header;
   render_image image;
 };
 
 read_shard read_one(const std::string& path) {
   read_shard s;
   s.path = path;
-  s.image.meta = read_image_metadata(path);
-  auto take = [&](const char* key) {
-    const auto it = s.image.meta.find(key);
-    if (it == s.image.meta.end())
-      throw input_error(path + ": not a render shard (no " + key + "; shards are written by airr render --shard)");
-    std::string v = it->second;
-    s.image.meta.erase(it);
-    return v;
-  };
-  s.place = parse_shard(take(shard_key), path + ": " + shard_key);
-  const std::string rows = take(rows_key);
-  const auto height = whole_number(take(height_key));
-  if (!height || *height < s.place.count) throw input_error(path + ": " + height_key + " is not a valid image height");
-  s.height = *height;
-  const auto [first, end] = shard_rows(s.place, s.height);
-  if (rows != std::to_string(first) + " " + std::to_string(end))
-    throw input_error(path + ": " + rows_key + " '" + rows + "' are not shard " + std::to_string(s.place.index) + "/" +
-                      std::to_string(s.place.count) + "'s rows of " + std::to_string(s.height));
+  image_metadata meta = read_image_metadata(path);
+  if (!meta.count(shard_key))
+    throw input_error(path + ": not a render shard (no " + shard_key + "; shards are written by airr render --shard)");
   s.image.rgb = load_image(path, image_encoding::linear).pixels;
-  if (s.image.rgb.height != end - first)
-    throw input_error(path + ": holds " + std::to_string(s.image.rgb.height) + " rows, not its shard's " +
-                      std::to_string(end - first));
   s.image.layers = load_image_layers(path);
+  std::vector<std::string> names;
+  for (const auto& [name, layer] : s.image.layers) {
+    if (layer.width != s.image.rgb.width || layer.height != s.image.rgb.height)
+      throw input_error(path + ": layer " + name + " is " + std::to_string(layer.width) + " x " +
+                        std::to_string(layer.height) + ", not the image's " + std::to_string(s.image.rgb.width) +
+                        " x " + std::to_string(s.image.rgb.height));
+    names.push_back(name);
+  }
+  s.header = check_shard_header(path, std::move(meta), s.image.rgb.width, s.image.rgb.height, std::move(names));
+  s.image.meta = s.header.meta;
   return s;
 }
 
-// Why shard b is not of the render shard a is of (empty when it is).
-std::string differs(const read_shard& a, const read_shard& b) {
+}  // namespace
+
+render_shard_header check_shard_header(const std::string& path, image_metadata meta, int width, int rows,
+                                       std::vector<std::string> layers) {
+  render_shard_header h;
+  auto take = [&](const char* key) {
+    const auto it = meta.find(key);
+    if (it == meta.end())
+      throw input_error(path + ": not a render shard (no " + key + "; shards are written by airr render --shard)");
+    std::string v = it->second;
+    meta.erase(it);
+    return v;
+  };
+  h.place = parse_shard(take(shard_key), path + ": " + shard_key);
+  const std::string row_text = take(rows_key);
+  const std::string height_text = take(height_key);
+  const auto height = whole_number(height_text);
+  if (!height || *height < 1 || *height > max_resolution_side)
+    throw input_error(path + ": " + height_key + ": '" + height_text + "' is not an image height of 1 to " +
+                      std::to_string(max_resolution_side));
+  if (h.place.count > *height)
+    throw input_error(path + ": " + shard_key + ": " + std::to_string(h.place.count) + " shards of an image " +
+                      std::to_string(*height) + " rows high");
+  if (width < 1 || width > max_resolution_side || std::int64_t(width) * *height > max_resolution_pixels)
+    throw input_error(path + ": the render, " + std::to_string(width) + " x " + std::to_string(*height) +
+                      ", is beyond the render's limits (" + std::to_string(max_resolution_side) + " a side, " +
+                      std::to_string(max_resolution_pixels) + " pixels)");
+  h.height = *height;
+  const auto [first, end] = shard_rows(h.place, h.height);
+  if (row_text != std::to_string(first) + " " + std::to_string(end))
+    throw input_error(path + ": " + rows_key + ": '" + row_text + "' are not shard " + std::to_string(h.place.index) +
+                      "/" + std::to_string(h.place.count) + "'s rows of " + std::to_string(h.height));
+  if (rows != end - first)
+    throw input_error(path + ": holds " + std::to_string(rows) + " rows, not its shard's " +
+                      std::to_string(end - first));
+  h.width = width;
+  h.rows = rows;
+  h.meta = std::move(meta);
+  h.layers = std::move(layers);
+  return h;
+}
+
+std::string shard_mismatch(const render_shard_header& a, const render_shard_header& b) {
   if (a.place.count != b.place.count)
     return "split into " + std::to_string(b.place.count) + " shards, not " + std::to_string(a.place.count);
-  if (a.height != b.height || a.image.rgb.width != b.image.rgb.width) return "an image of another size";
+  if (a.height != b.height || a.width != b.width) return "an image of another size";
   // The likeliest differences first, each said in its own words.
   const std::pair<const char*, const char*> named[] = {{version_key, "written by another build"},
                                                        {"airr:seed", "another seed"},
                                                        {"airr:spp", "another number of samples"},
                                                        {"airr:layout", "another scene"}};
-  auto value_of = [](const read_shard& s, const std::string& key) {
-    const auto it = s.image.meta.find(key);
-    return it == s.image.meta.end() ? std::optional<std::string>() : it->second;
+  auto value_of = [](const render_shard_header& s, const std::string& key) {
+    const auto it = s.meta.find(key);
+    return it == s.meta.end() ? std::optional<std::string>() : it->second;
   };
   for (const auto& [key, what] : named) {
     if (value_of(a, key) != value_of(b, key)) return std::string(what) + " (" + key + " differs)";
   }
-  for (const auto& [key, value] : a.image.meta) {
+  for (const auto& [key, value] : a.meta) {
     if (value_of(b, key) != value) return "another render (" + key + " differs)";
   }
-  if (a.image.meta.size() != b.image.meta.size()) return "another render (its metadata differs)";
-  std::vector<std::string> la, lb;
-  for (const auto& l : a.image.layers) la.push_back(l.first);
-  for (const auto& l : b.image.layers) lb.push_back(l.first);
-  if (la != lb) return "a render with other layers";
+  if (a.meta.size() != b.meta.size()) return "another render (its metadata differs)";
+  if (a.layers != b.layers) return "a render with other layers";
   return "";
 }
-
-}  // namespace
 
 shard_index parse_shard(const std::string& text, const std::string& what) {
   const auto slash = text.find('/');
@@ -144,13 +172,13 @@ render_image merge_render_shards(const std::vector<std::string>& paths) {
   for (const std::string& p : paths) {
     read_shard s = read_one(p);
     if (!shards.empty()) {
-      if (const std::string why = differs(shards.front(), s); !why.empty())
+      if (const std::string why = shard_mismatch(shards.front().header, s.header); !why.empty())
         throw input_error(p + ": not a shard of the render " + shards.front().path + " is a shard of: " + why);
     }
-    roll.add(p, s.place);
+    roll.add(p, s.header.place);
     shards.push_back(std::move(s));
   }
-  roll.check_complete(shards.front().place.count);
+  roll.check_complete(shards.front().header.place.count);
   const read_shard& first = shards.front();
   render_image out;
   out.meta = first.image.meta;
@@ -158,14 +186,15 @@ render_image merge_render_shards(const std::vector<std::string>& paths) {
   auto blank = [&] {
     image_rgb img;
     img.width = first.image.rgb.width;
-    img.height = first.height;
+    img.height = first.header.height;
     img.rgb.assign(std::size_t(3) * img.width * img.height, 0.0f);
     return img;
   };
   out.rgb = blank();
   for (const auto& l : first.image.layers) out.layers.emplace_back(l.first, blank());
   for (const read_shard& s : shards) {
-    const std::size_t at = std::size_t(3) * out.rgb.width * std::size_t(shard_rows(s.place, s.height).first);
+    const std::size_t at =
+        std::size_t(3) * out.rgb.width * std::size_t(shard_rows(s.header.place, s.header.height).first);
     std::copy(s.image.rgb.rgb.begin(), s.image.rgb.rgb.end(), out.rgb.rgb.begin() + std::ptrdiff_t(at));
     for (std::size_t k = 0; k < s.image.layers.size(); ++k)
       std::copy(s.image.layers[k].second.rgb.begin(), s.image.layers[k].second.rgb.end(),

@@ -2,15 +2,20 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <charconv>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
+#include <vector>
 
 #include "airr/analysis/fit_data.hpp"
 #include "airr/analysis/onnx_inputs.hpp"
 #include "airr/core/csv_table.hpp"
 #include "airr/core/error.hpp"
+#include "airr/core/files.hpp"
+#include "airr/formats/design_spec.hpp"
 #include "airr/formats/gltf_layout.hpp"
 #include "airr/formats/image.hpp"
 #include "airr/formats/mesh_gltf.hpp"
@@ -18,6 +23,8 @@
 #include "airr/formats/sheet_json.hpp"
 #include "airr/models/preset.hpp"
 #include "airr/models/shift_table.hpp"
+#include "airr/render/render_shards.hpp"
+#include "cluster/partial_file.hpp"
 
 namespace airr::fuzz {
 
@@ -140,6 +147,79 @@ bool onnx(std::string_view bytes) {
   return expecting_input_errors([&] { analysis::read_onnx_inputs(write_input("model.onnx", bytes)); });
 }
 
+bool design_spec(std::string_view bytes) {
+  static const scene kiosk = load_scene(std::string(AIRR_ASSETS_DIR) + "/scenes/two_sheet_kiosk.json");
+  return expecting_input_errors([&] { parse_design_spec(std::string(bytes), "spec.json", kiosk); });
+}
+
+bool partial(std::string_view bytes) {
+  return expecting_input_errors([&] { read_partial(write_input("part.json", bytes)); });
+}
+
+// Splits text into lines (without their ends).
+static std::vector<std::string_view> lines_of(std::string_view text) {
+  std::vector<std::string_view> out;
+  while (!text.empty()) {
+    const std::size_t end = text.find('\n');
+    out.push_back(text.substr(0, end));
+    text = end == std::string_view::npos ? std::string_view() : text.substr(end + 1);
+  }
+  return out;
+}
+
+bool render_shard(std::string_view bytes) {
+  return expecting_input_errors([&] {
+    std::vector<render_shard_header> headers;
+    shard_roll roll;
+    std::vector<std::string_view> block;
+    const auto finish_block = [&] {
+      if (block.empty()) return;
+      const std::string path = "shard" + std::to_string(headers.size()) + ".exr";
+      int width = 0, rows = 0;
+      const char* at = block[0].data();
+      const char* const end = at + block[0].size();
+      const auto w = std::from_chars(at, end, width);
+      const auto r = std::from_chars(std::min(w.ptr + 1, end), end, rows);
+      if (w.ec != std::errc() || r.ec != std::errc()) throw input_error(path + ": no pixels");
+      image_metadata meta;
+      std::vector<std::string> layers;
+      for (std::size_t k = 1; k < block.size(); ++k) {
+        const std::string_view line = block[k];
+        if (line.substr(0, 6) == "layer ") {
+          layers.emplace_back(line.substr(6));
+        } else if (const std::size_t eq = line.find('='); eq != std::string_view::npos) {
+          meta[std::string(line.substr(0, eq))] = std::string(line.substr(eq + 1));
+        }
+      }
+      render_shard_header h = check_shard_header(path, meta, width, rows, layers);
+      if (!headers.empty() && !shard_mismatch(headers.front(), h).empty())
+        throw input_error(path + ": " + shard_mismatch(headers.front(), h));
+      roll.add(path, h.place);
+      headers.push_back(std::move(h));
+      block.clear();
+    };
+    for (const std::string_view line : lines_of(bytes)) {
+      if (line.empty())
+        finish_block();
+      else
+        block.push_back(line);
+    }
+    finish_block();
+    if (headers.empty()) throw input_error("no shards");
+    roll.check_complete(headers.front().place.count);
+  });
+}
+
+bool scene_set(std::string_view bytes) {
+  static const std::string path = std::string(AIRR_ASSETS_DIR) + "/scenes/default.json";
+  static const std::string scene_text = read_text_file(path);
+  const std::size_t end = bytes.find('\n');
+  const scene_override set{std::string(bytes.substr(0, end)),
+                           end == std::string_view::npos ? std::string() : std::string(bytes.substr(end + 1))};
+  return expecting_input_errors(
+      [&] { parse_scene(scene_text, path, std::string(AIRR_ASSETS_DIR) + "/scenes", {set}); });
+}
+
 bool run(const std::string& target, std::string_view bytes) {
   if (target == "scene_json") return scene_json(bytes);
   if (target == "gltf") return gltf(bytes);
@@ -150,6 +230,10 @@ bool run(const std::string& target, std::string_view bytes) {
   if (target == "csv") return csv(bytes);
   if (target == "image") return image(bytes);
   if (target == "onnx") return onnx(bytes);
+  if (target == "design_spec") return design_spec(bytes);
+  if (target == "partial") return partial(bytes);
+  if (target == "render_shard") return render_shard(bytes);
+  if (target == "scene_set") return scene_set(bytes);
   throw std::invalid_argument("no fuzz target named " + target);
 }
 

@@ -17,10 +17,19 @@ bool fit_json(std::string_view bytes);     // a fit's fit.json beside the exampl
 bool csv(std::string_view bytes);          // measurement CSV tables
 bool image(std::string_view bytes);        // source and measurement images (PNG, EXR, TIFF, JPEG)
 bool onnx(std::string_view bytes);         // an LPIPS model's inputs, as the project reads them
+bool design_spec(std::string_view bytes);  // optimise and tolerance specs, over the two-sheet kiosk
+bool partial(std::string_view bytes);      // the partials of sweep, viewzone and tolerance shards
+// Render shard headers: blocks "WIDTH ROWS" then "key=value" and "layer NAME" lines, one block a
+// shard, blank lines between, checked and merged as airr merge checks shard files.
+bool render_shard(std::string_view bytes);
+// A Python value set on a scene (Scene.set): the key on the first line, then the value as the
+// module passes it on (strings as they are, True/False, nan/inf, numbers and lists as JSON).
+bool scene_set(std::string_view bytes);
 
 // Every target's name.
-inline constexpr const char* targets[] = {"scene_json", "gltf", "preset", "sheet_json", "shift_table",
-                                          "fit_json",   "csv",  "image",  "onnx"};
+inline constexpr const char* targets[] = {"scene_json", "gltf",         "preset",   "sheet_json", "shift_table",
+                                          "fit_json",   "csv",          "image",    "onnx",       "design_spec",
+                                          "partial",    "render_shard", "scene_set"};
 
 // Runs one target by name (one of `targets`, else std::invalid_argument): whether the loader read
 // the input.

@@ -139,3 +139,27 @@ def test_two_threads_render_what_one_after_the_other_renders(small_scene):
         t.join()
     assert np.array_equal(together[0], alone[0]) and np.array_equal(together[1], alone[1])
     assert counted > 1000
+
+
+# Every kind of Python value Scene.set may be given, at keys of each type: a sound value sets, any
+# other raises ValueError naming the key, and leaves the scene as it was.
+PYTHON_VALUES = [
+    640, 10**12, 10**400, -(2**63), 2**64, 200.5, 1e308, -0.0, float("nan"), float("inf"), True, None,
+    "12.5", "abc", "", [0, 1, 2], (0, 1, 2), [[0], [1]], [float("nan"), 1, 2], {"a": 1},
+    np.int8(5), np.uint64(2**64 - 1), np.int64(-5), np.float32(1.5), np.float64(1e-300), np.bool_(True),
+    np.array(3.0), np.array([1.0, 2.0, 3.0]), np.zeros((2, 2)), b"bytes", 1 + 2j, object(),
+]
+SET_KEYS = ["observer.width", "floating_distance_mm", "retroreflectors.0.pose.center_mm", "display.image"]
+
+
+@pytest.mark.parametrize("key", SET_KEYS)
+def test_every_python_value_sets_or_raises_value_error(key):
+    scene = airr.Scene.load(airr.default_scene_path())
+    for value in PYTHON_VALUES:
+        before = scene.to_json()
+        try:
+            scene.set(key, value)
+        except ValueError as e:
+            assert key in str(e) or "(with --set)" in str(e), (key, value, str(e))
+            assert "\n" not in str(e)
+            assert scene.to_json() == before, (key, value)

@@ -223,31 +223,22 @@ design_spec read_design_spec(const nlohmann::json& j, const std::string& path, c
   });
   if (r.has("tolerance")) {
     json_reader t = r.child("tolerance");
-    t.integer("samples", spec.tolerance.samples);
+    t.integer("samples", spec.tolerance.samples, 10, 1000000);
     t.integer("seed", spec.tolerance.seed);
-    if (spec.tolerance.samples < 10 || spec.tolerance.samples > 1000000)
-      t.fail(t.field("samples"), "must be 10 to 1000000");
     t.finish();
   }
   if (r.has("search")) {
     json_reader s = r.child("search");
     s.integer("seed", spec.search.seed);
-    s.integer("global_evaluations", spec.search.global_evaluations);
-    s.integer("local_evaluations", spec.search.local_evaluations);
-    s.integer("psf_samples", spec.search.psf_samples);
-    if (spec.search.global_evaluations < 1 || spec.search.global_evaluations > 100000)
-      s.fail(s.field("global_evaluations"), "must be 1 to 100000");
-    if (spec.search.local_evaluations < 0 || spec.search.local_evaluations > 100000)
-      s.fail(s.field("local_evaluations"), "must be 0 to 100000");
-    if (spec.search.psf_samples < 1000 || spec.search.psf_samples > 100000000)
-      s.fail(s.field("psf_samples"), "must be 1000 to 100000000");
+    s.integer("global_evaluations", spec.search.global_evaluations, 1, 100000);
+    s.integer("local_evaluations", spec.search.local_evaluations, 0, 100000);
+    s.integer("psf_samples", spec.search.psf_samples, std::uint64_t(1000), std::uint64_t(100000000));
     s.finish();
   }
   if (r.has("pareto")) {
     json_reader f = r.child("pareto");
     f.require("points");
-    f.integer("points", spec.front.points);
-    if (spec.front.points < 3 || spec.front.points > 101) f.fail(f.field("points"), "must be 3 to 101");
+    f.integer("points", spec.front.points, 3, 101);
     if (spec.objectives.size() != 2) f.fail(f.field("points"), "a Pareto front needs exactly two objectives");
     f.finish();
   }

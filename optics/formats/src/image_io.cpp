@@ -206,33 +206,24 @@ void write_image(const std::string& path, const image_rgb& img, const image_meta
       std::copy_n(layers[l].image->rgb.data() + 3 * px, 3, o + 3 * (l + 1));
   }
 
-  const fs::path tmp = p.parent_path() / (".tmp." + std::to_string(::getpid()) + "." + p.stem().string() + ext);
-  std::error_code ec;
-  auto o = ImageOutput::create(tmp.string());
-  if (!o || !o->open(tmp.string(), spec)) {
-    const std::string library = one_line(geterror());
-    fs::remove(tmp, ec);
-    // The system's reason (a missing or unwritable folder) first: the library's may not say it.
-    const std::string os = reason_cannot_create(tmp.string());
-    throw input_error(path + ": cannot write image: " +
-                      (!os.empty()        ? os
-                       : !library.empty() ? library
-                                          : std::string("the writer refused the file")));
-  }
-  // Closing flushes: a full disk may only show there.
-  const bool ok = o->write_image(TypeDesc::FLOAT, out.data()) && o->close();
+  // A folder that is missing or not writable is said before anything is encoded.
+  const fs::path probe = p.parent_path() / (".tmp." + std::to_string(::getpid()) + "." + p.stem().string() + ext);
+  if (const std::string os = reason_cannot_create(probe.string()); !os.empty())
+    throw input_error(path + ": cannot write image: " + os);
+  // Encoded in memory, then written as every file is (write_file_atomic): a write that fails (a
+  // full disk, a file too large) says the system's reason and leaves the old file, where the PNG
+  // writer would leave a truncated file and report success.
+  std::vector<unsigned char> bytes;
+  Filesystem::IOVecOutput proxy(bytes);
+  auto o = ImageOutput::create(exr ? "exr" : "png", &proxy);
+  const bool ok = o && o->supports("ioproxy") && o->open(p.filename().string(), spec) &&
+                  o->write_image(TypeDesc::FLOAT, out.data()) && o->close();
   if (!ok) {
-    const std::string err = one_line(o->geterror());
-    o.reset();
-    fs::remove(tmp, ec);
-    throw input_error(path + ": cannot write image: " + (err.empty() ? "write failed" : err));
+    const std::string why = one_line(o ? o->geterror() : geterror());
+    throw input_error(path + ": cannot write image: " + (why.empty() ? "the writer refused the image" : why));
   }
-  fs::rename(tmp, p, ec);
-  if (ec) {
-    const std::string why = ec.message();
-    fs::remove(tmp, ec);
-    throw input_error(path + ": cannot replace file: " + why);
-  }
+  o.reset();
+  write_file_atomic(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 std::string encode_png(const image_rgb& img, bool sixteen_bit, const std::string& what) {

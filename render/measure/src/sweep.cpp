@@ -10,6 +10,7 @@
 #include <memory>
 #include <mutex>
 #include <stdexcept>
+#include <thread>
 
 #include <tbb/parallel_for.h>
 
@@ -20,6 +21,7 @@
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/measure/mtf_routes.hpp"
+#include "airr/render/memory_need.hpp"
 #include "airr/render/render_session.hpp"
 
 namespace airr {
@@ -134,6 +136,25 @@ sweep_axis parse_sweep_axis(const std::string& text) {
 
 std::vector<double> sweep_values(const sweep_axis& a) { return range_values(a.range); }
 
+// Refuses, before anything is measured, a sweep whose points at once would not fit: the PSF route
+// measures up to 8 points side by side (one a thread), the edge route one point's PSF and render.
+static void check_sweep_memory(const sweep_result& r, const std::vector<scene>& scenes, const sweep_params& p) {
+  const std::size_t threads =
+      p.threads > 0 ? std::size_t(p.threads) : std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t at_once = p.psf_route ? std::min<std::size_t>({scenes.size(), 8, threads}) : 1;
+  constexpr std::uint64_t process_bytes = 150'000'000;  // the program before it measures (measured)
+  std::uint64_t need = process_bytes + at_once * psf_memory_need(p.psf_samples);
+  for (std::size_t i = 0; i < scenes.size() && !p.psf_route; ++i) {
+    if (r.points[i].valid()) {
+      need += render_memory_need(scenes[i], session_params{});
+      break;
+    }
+  }
+  check_memory_need("sweep: " + std::to_string(at_once) + (at_once == 1 ? " point" : " points") + " at once of " +
+                        std::to_string(p.psf_samples) + " PSF samples" + (p.psf_route ? "" : " and an edge render"),
+                    need);
+}
+
 sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_progress& progress,
                        const item_share& share) {
   if (p.axes.empty()) throw input_error("--vary: give floating_distance=start:end:step and/or tilt=start:end:step");
@@ -176,6 +197,7 @@ sweep_result run_sweep(const scene& base, const sweep_params& p, const sweep_pro
   }
 
   check_some_point_valid(r);  // before anything is measured, when the checks already tell
+  check_sweep_memory(r, scenes, p);
   r.mm_per_pixel = make_camera(base).mm_per_pixel;
   const double n = double(scenes.size());
   std::unique_ptr<render_session> session;

@@ -1,16 +1,19 @@
 #include "airr/measure/viewing_zone_full.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <thread>
 
 #include "airr/core/color.hpp"
 #include "airr/core/error.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/layout/sheet_models.hpp"
 #include "airr/measure/mtf_routes.hpp"
+#include "airr/render/memory_need.hpp"
 #include "airr/render/parallel_rows.hpp"
 #include "airr/render/prop_hits.hpp"
 #include "airr/render/tracer.hpp"
@@ -133,6 +136,18 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
     throw input_error("viewing zone: full-pass parameters out of range");
   }
   if (s.retroreflectors.empty()) throw input_error("viewing zone: no retroreflector, no aerial image");
+  {
+    // Each worker renders one eye and takes its PSF at a time; the maps hold five numbers an eye
+    // (twice when shared).
+    const std::uint64_t workers = std::max(1u, std::thread::hardware_concurrency());
+    const std::uint64_t eyes = std::uint64_t(g.nx) * std::uint64_t(g.ny), side = std::uint64_t(p.render_size);
+    const std::uint64_t need =
+        150'000'000 + eyes * 80 +
+        workers * (traced_pixels_memory_need(side * side, true) + psf_memory_need(p.psf_samples));
+    check_memory_need("viewing zone: " + std::to_string(eyes) + " eyes of " + std::to_string(p.psf_samples) +
+                          " PSF samples and a " + std::to_string(side) + " x " + std::to_string(side) + " render each",
+                      need);
+  }
   const auto t0 = std::chrono::steady_clock::now();
   full_zone_map out;
   out.grid = g;

@@ -6,6 +6,7 @@
 
 #include "airr/core/assets.hpp"
 #include "airr/formats/scene_json.hpp"
+#include "airr/render/memory_need.hpp"
 
 namespace airr::ui {
 
@@ -79,6 +80,7 @@ void studio_apply_edits(studio& st, double now) {
   try {
     // The models are built once per accepted edit and shared by the tracer and the plots.
     const retro_model_list models = check_scene(st.doc, "layout");
+    check_render_memory(st.doc, st.session_options);  // e.g. an observer of 8192 x 4096: the last image stays
     keep_prop_meshes(st, st.doc);
     st.doc_error.clear();
     st.generation = st.session->edit(st.doc, models);

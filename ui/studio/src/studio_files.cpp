@@ -9,6 +9,7 @@
 #include "airr/formats/image.hpp"
 #include "airr/formats/mesh_gltf.hpp"
 #include "airr/formats/scene_json.hpp"
+#include "airr/render/memory_need.hpp"
 #include "airr/render/render_metadata.hpp"
 #include "airr/ui/platform/recovery_copy.hpp"
 #include "airr/ui/studio/studio.hpp"
@@ -21,6 +22,7 @@ void studio_open(studio& st, const std::string& path) {
   try {
     std::vector<std::string> notes;  // a glTF layout's: which observer, a doubtful scale
     const scene s = load_scene(path, {}, notes);
+    check_render_memory(s, st.session_options);  // the scene open now stays
     studio_start(st, s, path);
     st.settings.last_dir = fs::path(path).parent_path().string();
     st.status = "opened " + path;

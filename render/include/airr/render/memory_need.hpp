@@ -21,9 +21,23 @@ memory_allowance process_memory_allowance();
 // The peak a render of `s` with `p` holds (accumulators, their even/odd halves and components,
 // the model image, the shown mix), from measured per-pixel costs (docs/architecture.md).
 std::uint64_t render_memory_need(const scene& s, const session_params& p);
+// The part of that the pixels hold: `pixels` traced with or without components.
+std::uint64_t traced_pixels_memory_need(std::uint64_t pixels, bool components);
 
 // Throws input_error "render: W x H ... needs about N GB of memory; this process may take M GB
 // more (source)" when the need exceeds the allowance.
 void check_render_memory(const scene& s, const session_params& p);
+
+// What one model PSF of `samples` samples holds at its peak (its samples as they grow, and the
+// sheets' shares), measured on the default scene (docs/architecture.md).
+std::uint64_t psf_memory_need(std::uint64_t samples);
+
+// Throws input_error "<what> needs about N GB of memory; this process may take M GB more
+// (source)" when `need` bytes exceed the allowance.
+void check_memory_need(const std::string& what, std::uint64_t need);
+
+// One line for an allocation that failed after the checks let a job start: what ran out, and what
+// the process may still take.
+std::string out_of_memory_message(const std::string& what);
 
 }  // namespace airr

@@ -4,6 +4,7 @@
 // uninstrumented TBB library and would report its hand-overs as races.
 #include <algorithm>
 #include <atomic>
+#include <exception>
 #include <thread>
 #include <vector>
 
@@ -20,13 +21,20 @@ void parallel_rows(int rows, int threads, const Body& body) {
 #ifdef AIRR_PLAIN_THREADS
   const int n = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
   std::atomic<int> next{0};
+  std::exception_ptr failure;  // the first body's exception, thrown here as TBB would
+  std::atomic<bool> failed{false};
   std::vector<std::thread> workers;
   for (int t = 0; t < n; ++t) {
     workers.emplace_back([&] {
-      for (int y; (y = next.fetch_add(1)) < rows;) body(y, y + 1);
+      try {
+        for (int y; !failed && (y = next.fetch_add(1)) < rows;) body(y, y + 1);
+      } catch (...) {
+        if (!failed.exchange(true)) failure = std::current_exception();
+      }
     });
   }
   for (auto& w : workers) w.join();
+  if (failure) std::rethrow_exception(failure);
 #else
   // Isolated: while it waits, the calling thread runs only this loop's rows, never a long task of
   // other work sharing the pool (the tracer's waves beside the model image's bins).

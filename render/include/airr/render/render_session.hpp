@@ -137,7 +137,8 @@ class render_session {
     std::vector<double> sums, odd_sums, component_sums;
     prediction_sums predictions;
   };
-  void run();
+  void run();  // run_loop, and what it throws said in the snapshot
+  void run_loop();
   // body(y0, y1) over the rows the session traces, in parallel.
   template <class Body>
   void traced_rows(const Body& body) const;

@@ -48,6 +48,24 @@ struct render_image {
 void write_render_shard(const std::string& path, const render_image& whole, const shard_index& s,
                         const std::string& version);
 
+// A shard as its header tells: its place, the whole image's height, its own pixels' size, the
+// render's metadata (without the shard's own keys) and its layers' names.
+struct render_shard_header {
+  shard_index place;
+  int height = 0;
+  int width = 0, rows = 0;
+  image_metadata meta;
+  std::vector<std::string> layers;
+};
+
+// Checks what a shard file holds: its shard keys, the whole image's height (within the render's
+// size limits), and that its `rows` are its place's. Throws input_error "<path>: <key>: <problem>".
+render_shard_header check_shard_header(const std::string& path, image_metadata meta, int width, int rows,
+                                       std::vector<std::string> layers);
+
+// Why shard b is not of the render shard a is of (empty when it is).
+std::string shard_mismatch(const render_shard_header& a, const render_shard_header& b);
+
 // The whole render from its shards (paths in any order), with the metadata one process would
 // have written. Throws input_error "<file>: <problem>" for a file that is no shard, a shard of
 // another render (another scene, seed, samples, size, layers or version) or one given twice, and

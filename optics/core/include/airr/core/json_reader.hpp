@@ -9,6 +9,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -45,6 +46,11 @@ class json_reader {
   bool has(const std::string& key) {
     seen_.insert(key);
     return j_.contains(key);
+  }
+  // A value as given, for messages: its JSON, cut short after 40 characters.
+  static std::string given(const nlohmann::json& v) {
+    const std::string text = v.dump();
+    return text.size() <= 40 ? text : text.substr(0, 40) + "...";
   }
   // Fails with "missing" unless the key is present.
   void require(const std::string& key) {
@@ -89,7 +95,7 @@ class json_reader {
   void number(const std::string& key, double& out) {
     if (!has(key)) return;
     const auto& v = j_.at(key);
-    if (!v.is_number()) fail(field(key), "must be a number");
+    if (!v.is_number()) fail(field(key), "must be a number (is " + given(v) + ")");
     out = v.get<double>();
     if (!std::isfinite(out)) fail(field(key), "must be finite");
   }
@@ -107,25 +113,24 @@ class json_reader {
   // An integer that fits Int; a larger one is reported as given, never narrowed.
   template <class Int>
   void integer(const std::string& key, Int& out) {
+    integer(key, out, std::numeric_limits<Int>::min(), std::numeric_limits<Int>::max());
+  }
+  // An integer in [lo, hi]; one outside is reported as given, with the field's range.
+  template <class Int>
+  void integer(const std::string& key, Int& out, Int lo, Int hi) {
     if (!has(key)) return;
     const auto& v = j_.at(key);
-    if (!v.is_number_integer()) fail(field(key), "must be an integer");
-    using limits = std::numeric_limits<Int>;
-    const auto out_of_range = [&](const std::string& given) {
-      fail(field(key),
-           "must be " + std::to_string(limits::min()) + " to " + std::to_string(limits::max()) + " (is " + given + ")");
+    if (!v.is_number_integer()) fail(field(key), "must be an integer (is " + given(v) + ")");
+    const auto check = [&](auto given) {
+      if (std::cmp_less(given, lo) || std::cmp_greater(given, hi))
+        fail(field(key),
+             "must be " + std::to_string(lo) + " to " + std::to_string(hi) + " (is " + std::to_string(given) + ")");
+      out = static_cast<Int>(given);
     };
-    if (v.is_number_unsigned()) {
-      const std::uint64_t u = v.get<std::uint64_t>();
-      if (u > static_cast<std::uint64_t>(limits::max())) out_of_range(std::to_string(u));
-      out = static_cast<Int>(u);
-    } else {
-      const std::int64_t s = v.get<std::int64_t>();
-      if (s < static_cast<std::int64_t>(limits::min()) ||
-          (s > 0 && static_cast<std::uint64_t>(s) > static_cast<std::uint64_t>(limits::max())))
-        out_of_range(std::to_string(s));
-      out = static_cast<Int>(s);
-    }
+    if (v.is_number_unsigned())
+      check(v.get<std::uint64_t>());
+    else
+      check(v.get<std::int64_t>());
   }
   void string(const std::string& key, std::string& out) {
     if (!has(key)) return;
