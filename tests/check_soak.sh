@@ -29,6 +29,9 @@ for key, bound in bounds.items():
           f"most {worst[key]:g} (at {worst['seconds']:g} s), bound {bound:g}")
     if worst[key] > bound:
         failed = True
-print(f"{len(rows)} cycles in {rows[-1]['seconds']:g} s")
+print(f"{len(rows)} cycles in {rows[-1]['seconds']:g} s; the curve (seconds: resident MB, descriptors, threads):")
+step = max(1, len(rows) // 10)
+print("  " + "; ".join(f"{r['seconds']:.0f}: {r['resident_mb']:.0f}, {r['descriptors']:g}, {r['threads']:g}"
+                       for r in rows[::step] + ([rows[-1]] if (len(rows) - 1) % step else [])))
 sys.exit(1 if failed else 0)
 PY

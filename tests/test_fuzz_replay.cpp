@@ -10,9 +10,11 @@
 #include <vector>
 
 #include "airr/analysis/fit_data.hpp"
+#include "airr/core/assets.hpp"
 #include "airr/core/error.hpp"
 #include "airr/core/files.hpp"
 #include "airr/formats/image.hpp"
+#include "airr/formats/scene_json.hpp"
 #include "fuzz/fuzz_targets.hpp"
 #include "test_helpers.hpp"
 
@@ -177,4 +179,16 @@ TEST(FuzzFindings, FitDataFileNameTooLongIsNotFound) {
   const std::string error = error_of([&] { airr::analysis::load_fit_data(dir.path.string()); });
   EXPECT_NE(error.find("scene: file 'xxxx"), std::string::npos) << error;
   EXPECT_NE(error.find("not found"), std::string::npos) << error;
+}
+
+// Found by the scene_set target: a value of bytes that are not UTF-8 (`--set tilt_deg=12.3` and
+// three 0xec bytes) made the message that shows the value as given throw the JSON library's
+// type_error instead of the scene's error. The bytes are shown replaced.
+TEST(FuzzFindings, AValueThatIsNotUtf8IsShownInItsError) {
+  const std::string scene = airr::read_text_file(airr::default_scene_path());
+  const std::string error = error_of([&] {
+    airr::parse_scene(scene, "scene.json", "", {{"tilt_deg", "12.3\xec\xec\xec"}});
+  });
+  EXPECT_NE(error.find("must be a number (is \"12.3\xef\xbf\xbd"), std::string::npos) << error;
+  EXPECT_NE(error.find("scene.json (with --set)"), std::string::npos) << error;
 }

@@ -49,7 +49,8 @@ class json_reader {
   }
   // A value as given, for messages: its JSON, cut short after 40 characters.
   static std::string given(const nlohmann::json& v) {
-    const std::string text = v.dump();
+    // Bytes that are not UTF-8 (a user's text) shown replaced, not thrown over.
+    const std::string text = v.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     return text.size() <= 40 ? text : text.substr(0, 40) + "...";
   }
   // Fails with "missing" unless the key is present.
