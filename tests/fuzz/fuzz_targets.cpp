@@ -179,7 +179,7 @@ bool render_shard(std::string_view bytes) {
       const char* at = block[0].data();
       const char* const end = at + block[0].size();
       const auto w = std::from_chars(at, end, width);
-      const auto r = std::from_chars(std::min(w.ptr + 1, end), end, rows);
+      const auto r = std::from_chars(w.ptr < end ? w.ptr + 1 : end, end, rows);
       if (w.ec != std::errc() || r.ec != std::errc()) throw input_error(path + ": no pixels");
       image_metadata meta;
       std::vector<std::string> layers;
@@ -192,8 +192,10 @@ bool render_shard(std::string_view bytes) {
         }
       }
       render_shard_header h = check_shard_header(path, meta, width, rows, layers);
-      if (!headers.empty() && !shard_mismatch(headers.front(), h).empty())
-        throw input_error(path + ": " + shard_mismatch(headers.front(), h));
+      if (!headers.empty()) {
+        if (const std::string differs = shard_mismatch(headers.front(), h); !differs.empty())
+          throw input_error(path + ": " + differs);
+      }
       roll.add(path, h.place);
       headers.push_back(std::move(h));
       block.clear();

@@ -142,8 +142,7 @@ static void check_sweep_memory(const sweep_result& r, const std::vector<scene>& 
   const std::size_t threads =
       p.threads > 0 ? std::size_t(p.threads) : std::max(1u, std::thread::hardware_concurrency());
   const std::size_t at_once = p.psf_route ? std::min<std::size_t>({scenes.size(), 8, threads}) : 1;
-  constexpr std::uint64_t process_bytes = 150'000'000;  // the program before it measures (measured)
-  std::uint64_t need = process_bytes + at_once * psf_memory_need(p.psf_samples);
+  std::uint64_t need = measuring_process_bytes + at_once * psf_memory_need(p.psf_samples);
   for (std::size_t i = 0; i < scenes.size() && !p.psf_route; ++i) {
     if (r.points[i].valid()) {
       need += render_memory_need(scenes[i], session_params{});

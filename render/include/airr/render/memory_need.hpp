@@ -28,6 +28,10 @@ std::uint64_t traced_pixels_memory_need(std::uint64_t pixels, bool components);
 // more (source)" when the need exceeds the allowance.
 void check_render_memory(const scene& s, const session_params& p);
 
+// What a measuring command (sweep, zone pass) holds before it measures, measured on the default
+// scene.
+inline constexpr std::uint64_t measuring_process_bytes = 150'000'000;
+
 // What one model PSF of `samples` samples holds at its peak (its samples as they grow, and the
 // sheets' shares), measured on the default scene (docs/architecture.md).
 std::uint64_t psf_memory_need(std::uint64_t samples);
