@@ -6,6 +6,8 @@
 #include <map>
 #include <utility>
 
+#include "airr/models/dielectric.hpp"
+
 namespace airr {
 
 triangle_mesh make_corner_cube() {
@@ -50,6 +52,17 @@ triangle_mesh make_corner_cube_tile(double pitch_mm) {
     for (std::size_t k = 0; k < 3; ++k) m.indices.insert(m.indices.end(), {apex, v[(k + 1) % 3], v[k]});
   }
   return m;
+}
+
+polarized_step cube_corner_polarized(const polarization_frame& in, const std::array<glm::dvec3, 3>& faces,
+                                     std::complex<double> eta) {
+  polarized_step path{mueller::identity(), in};
+  for (const glm::dvec3& n : faces) {
+    const fresnel_coefficients f = fresnel_amplitudes(std::abs(glm::dot(path.out.k, n)), eta);
+    const polarized_step face = reflect_polarized(path.out, n, f.rs, f.rp);
+    path = {face.m * path.m, face.out};
+  }
+  return path;
 }
 
 }  // namespace airr

@@ -15,6 +15,22 @@ double fresnel_dielectric(double cos_i, double eta) {
   return 0.5 * (rs * rs + rp * rp);
 }
 
+fresnel_coefficients fresnel_amplitudes(double cos_i, std::complex<double> eta) {
+  using complex = std::complex<double>;
+  cos_i = std::clamp(cos_i, 0.0, 1.0);
+  fresnel_coefficients f;
+  const complex sin2_t = complex(1 - cos_i * cos_i) / (eta * eta);
+  f.cos_t = std::sqrt(complex(1.0) - sin2_t);
+  if (f.cos_t.imag() < 0) f.cos_t = -f.cos_t;
+  f.total = eta.imag() == 0 && sin2_t.real() > 1;
+  const complex ci(cos_i);
+  f.rs = (ci - eta * f.cos_t) / (ci + eta * f.cos_t);
+  f.rp = (eta * ci - f.cos_t) / (eta * ci + f.cos_t);
+  f.ts = 2.0 * ci / (ci + eta * f.cos_t);
+  f.tp = 2.0 * ci / (eta * ci + f.cos_t);
+  return f;
+}
+
 std::optional<glm::dvec3> refract(const glm::dvec3& d, const glm::dvec3& m, double ratio) {
   const double cos_i = -glm::dot(d, m);
   const double sin2_t = ratio * ratio * std::max(0.0, 1 - cos_i * cos_i);

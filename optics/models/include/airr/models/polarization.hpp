@@ -1,0 +1,93 @@
+#pragma once
+// Polarized light as Stokes vectors, what parts do to it as Mueller matrices, and the frames both
+// are written in. docs/polarization.md states the conventions (frames, handedness, the sign of
+// circular light, retarders' fast axes) and the tests that pin them.
+#include <array>
+#include <complex>
+
+#include <glm/glm.hpp>
+
+namespace airr {
+
+using complex = std::complex<double>;
+
+// (S0, S1, S2, S3) in a frame (x, y, k): S1 = I_x - I_y, S2 = I_+45 - I_-45, S3 = 2 Im(Ex* Ey)
+// (positive when the field turns from x towards y).
+using stokes = glm::dvec4;
+
+inline stokes unpolarized(double intensity = 1) { return {intensity, 0, 0, 0}; }
+// Linear light at `angle_rad` from the frame's x towards its y.
+stokes linear_light(double angle_rad, double intensity = 1);
+// Circular light, S3 = +intensity (`positive`) or -intensity.
+stokes circular_light(bool positive, double intensity = 1);
+// sqrt(S1^2 + S2^2 + S3^2) / S0 (0 for no light).
+double degree_of_polarization(const stokes& s);
+
+// A Jones matrix: the complex amplitudes (Ex, Ey) out of a part from those in, m[row][col].
+struct jones {
+  std::array<std::array<complex, 2>, 2> m{{{1.0, 0.0}, {0.0, 1.0}}};
+};
+jones operator*(const jones& a, const jones& b);
+
+// A Mueller matrix, m[row][col].
+struct mueller {
+  std::array<std::array<double, 4>, 4> m{};
+  static mueller identity();
+  static mueller scale(double factor);  // a neutral attenuator (or gain)
+};
+mueller operator*(const mueller& a, const mueller& b);
+stokes operator*(const mueller& a, const stokes& s);
+mueller operator+(const mueller& a, const mueller& b);
+
+// The Mueller matrix of a Jones matrix (both in the same frames): M_ij = tr(s_i J s_j J^H) / 2 with
+// the Pauli matrices of the Stokes definition above.
+mueller mueller_of(const jones& j);
+
+// Stokes vectors of a frame turned by `angle_rad` (its new x at that angle from the old, towards
+// the old y) from those of the old frame.
+mueller rotator(double angle_rad);
+
+// Parts in the frame their angles are measured in: a linear polarizer (diattenuator) whose pass
+// axis lies at `axis_rad` from x towards y, passing `t_pass` and `t_block` of the intensity along
+// and across it; a linear retarder whose fast axis lies at `axis_rad`, delaying the slow axis by
+// `retardance_rad`.
+mueller linear_polarizer(double axis_rad, double t_pass = 1, double t_block = 0);
+mueller linear_retarder(double axis_rad, double retardance_rad);
+
+// An interface (or any part) that keeps s and p apart, with amplitude ratios rs and rp, in the s/p
+// frames of the light in and out (polarization_frame::at_surface).
+mueller interface_mueller(complex rs, complex rp);
+
+// The frame a Stokes vector is written in: x and y across the unit propagation direction k, with
+// x cross y = k.
+struct polarization_frame {
+  glm::dvec3 x{1, 0, 0}, y{0, 1, 0}, k{0, 0, 1};
+  // Any frame about k (continuous except at k.z = -1).
+  static polarization_frame about(const glm::dvec3& k);
+  // The frame about k whose x is `x` made perpendicular to k (x not along k).
+  static polarization_frame with_x(const glm::dvec3& k, const glm::dvec3& x);
+  // The s/p frame of light travelling along k at a surface of unit normal n (either side):
+  // x = s = k x n normalised, y = p = k x s. At normal incidence s is any direction across k.
+  static polarization_frame at_surface(const glm::dvec3& k, const glm::dvec3& n);
+};
+
+// The angle of a world axis (a polarizer's or a film's) seen along the frame's k: from x towards y.
+double angle_in(const polarization_frame& f, const glm::dvec3& axis);
+
+// The rotator that rewrites a Stokes vector of frame `from` in frame `to` (same k).
+mueller reframe(const polarization_frame& from, const polarization_frame& to);
+
+// One interaction at a surface of unit normal n: its Mueller matrix from the light's frame `in`
+// to `out`, the s/p frame of the light leaving (its k the new direction).
+struct polarized_step {
+  mueller m;
+  polarization_frame out;
+};
+// Reflection with amplitude ratios rs and rp (dielectric.hpp's for an interface).
+polarized_step reflect_polarized(const polarization_frame& in, const glm::dvec3& n, complex rs, complex rp);
+// Transmission into the unit direction k_out with amplitude ratios ts and tp; `energy` turns
+// squared amplitudes into the intensity passed (Re(eta cos_t) / cos_i for an interface).
+polarized_step transmit_polarized(const polarization_frame& in, const glm::dvec3& n, const glm::dvec3& k_out,
+                                  complex ts, complex tp, double energy);
+
+}  // namespace airr

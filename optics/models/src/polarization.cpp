@@ -1,0 +1,168 @@
+#include "airr/models/polarization.hpp"
+
+#include <cmath>
+
+#include "airr/core/geometry.hpp"
+
+namespace airr {
+
+namespace {
+
+// The Pauli matrices in the order of the Stokes parameters: S_i = tr(sigma_i E E^H).
+const std::array<jones, 4>& stokes_pauli() {
+  static const std::array<jones, 4> sigma = [] {
+    std::array<jones, 4> s;
+    s[0].m = {{{1.0, 0.0}, {0.0, 1.0}}};
+    s[1].m = {{{1.0, 0.0}, {0.0, -1.0}}};
+    s[2].m = {{{0.0, 1.0}, {1.0, 0.0}}};
+    s[3].m = {{{0.0, complex(0, -1)}, {complex(0, 1), 0.0}}};
+    return s;
+  }();
+  return sigma;
+}
+
+jones adjoint(const jones& j) {
+  jones a;
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 2; ++c) a.m[r][c] = std::conj(j.m[c][r]);
+  return a;
+}
+
+// The Jones matrix that rewrites amplitudes of a frame in one turned by `angle` (see rotator).
+jones frame_turn(double angle) {
+  const double c = std::cos(angle), s = std::sin(angle);
+  jones j;
+  j.m = {{{c, s}, {-s, c}}};
+  return j;
+}
+
+// A part with amplitude factors `along` and `across` its axis at `axis` from x towards y.
+mueller axial_part(double axis, complex along, complex across) {
+  jones d;
+  d.m = {{{along, 0.0}, {0.0, across}}};
+  return mueller_of(frame_turn(-axis) * d * frame_turn(axis));
+}
+
+}  // namespace
+
+stokes linear_light(double angle_rad, double intensity) {
+  return {intensity, intensity * std::cos(2 * angle_rad), intensity * std::sin(2 * angle_rad), 0};
+}
+
+stokes circular_light(bool positive, double intensity) { return {intensity, 0, 0, positive ? intensity : -intensity}; }
+
+double degree_of_polarization(const stokes& s) {
+  if (!(s[0] > 0)) return 0;
+  return std::sqrt(s[1] * s[1] + s[2] * s[2] + s[3] * s[3]) / s[0];
+}
+
+jones operator*(const jones& a, const jones& b) {
+  jones p;
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < 2; ++c) p.m[r][c] = a.m[r][0] * b.m[0][c] + a.m[r][1] * b.m[1][c];
+  return p;
+}
+
+mueller mueller::identity() { return scale(1); }
+
+mueller mueller::scale(double factor) {
+  mueller a;
+  for (int i = 0; i < 4; ++i) a.m[i][i] = factor;
+  return a;
+}
+
+mueller operator*(const mueller& a, const mueller& b) {
+  mueller p;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c)
+      p.m[r][c] = a.m[r][0] * b.m[0][c] + a.m[r][1] * b.m[1][c] + a.m[r][2] * b.m[2][c] + a.m[r][3] * b.m[3][c];
+  return p;
+}
+
+stokes operator*(const mueller& a, const stokes& s) {
+  stokes out;
+  for (int r = 0; r < 4; ++r) out[r] = a.m[r][0] * s[0] + a.m[r][1] * s[1] + a.m[r][2] * s[2] + a.m[r][3] * s[3];
+  return out;
+}
+
+mueller operator+(const mueller& a, const mueller& b) {
+  mueller sum;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) sum.m[r][c] = a.m[r][c] + b.m[r][c];
+  return sum;
+}
+
+mueller mueller_of(const jones& j) {
+  const auto& sigma = stokes_pauli();
+  const jones jh = adjoint(j);
+  mueller out;
+  for (int i = 0; i < 4; ++i) {
+    for (int k = 0; k < 4; ++k) {
+      const jones p = sigma[i] * j * sigma[k] * jh;
+      out.m[i][k] = 0.5 * (p.m[0][0] + p.m[1][1]).real();
+    }
+  }
+  return out;
+}
+
+mueller rotator(double angle_rad) {
+  const double c = std::cos(2 * angle_rad), s = std::sin(2 * angle_rad);
+  mueller r = mueller::identity();
+  r.m[1][1] = c;
+  r.m[1][2] = s;
+  r.m[2][1] = -s;
+  r.m[2][2] = c;
+  return r;
+}
+
+mueller linear_polarizer(double axis_rad, double t_pass, double t_block) {
+  return axial_part(axis_rad, std::sqrt(t_pass), std::sqrt(t_block));
+}
+
+mueller linear_retarder(double axis_rad, double retardance_rad) {
+  return axial_part(axis_rad, 1.0, std::polar(1.0, retardance_rad));
+}
+
+mueller interface_mueller(complex rs, complex rp) {
+  jones d;
+  d.m = {{{rs, 0.0}, {0.0, rp}}};
+  return mueller_of(d);
+}
+
+polarization_frame polarization_frame::about(const glm::dvec3& k) {
+  const basis b = make_basis(k);
+  return {b.t, b.b, k};
+}
+
+polarization_frame polarization_frame::with_x(const glm::dvec3& k, const glm::dvec3& x) {
+  const glm::dvec3 across = glm::normalize(x - glm::dot(x, k) * k);
+  return {across, glm::cross(k, across), k};
+}
+
+polarization_frame polarization_frame::at_surface(const glm::dvec3& k, const glm::dvec3& n) {
+  const glm::dvec3 s = glm::cross(k, n);
+  // Within 1e-9 rad of normal incidence every direction across k is an s direction.
+  if (glm::dot(s, s) < 1e-18) return about(k);
+  return with_x(k, s);
+}
+
+double angle_in(const polarization_frame& f, const glm::dvec3& axis) {
+  return std::atan2(glm::dot(axis, f.y), glm::dot(axis, f.x));
+}
+
+mueller reframe(const polarization_frame& from, const polarization_frame& to) { return rotator(angle_in(from, to.x)); }
+
+polarized_step reflect_polarized(const polarization_frame& in, const glm::dvec3& n, complex rs, complex rp) {
+  const polarization_frame sp = polarization_frame::at_surface(in.k, n);
+  // s is across the plane of incidence, so the light leaving shares it.
+  return {interface_mueller(rs, rp) * reframe(in, sp), polarization_frame::with_x(reflect(in.k, n), sp.x)};
+}
+
+polarized_step transmit_polarized(const polarization_frame& in, const glm::dvec3& n, const glm::dvec3& k_out,
+                                  complex ts, complex tp, double energy) {
+  const polarization_frame sp = polarization_frame::at_surface(in.k, n);
+  return {mueller::scale(energy) * interface_mueller(ts, tp) * reframe(in, sp),
+          polarization_frame::with_x(k_out, sp.x)};
+}
+
+}  // namespace airr
