@@ -4,11 +4,13 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <type_traits>
 
 #include "airr/core/error.hpp"
 #include "airr/core/low_discrepancy.hpp"
 #include "airr/core/random.hpp"
 #include "airr/formats/scene_json.hpp"
+#include "path_polarization.hpp"
 
 namespace airr {
 
@@ -58,6 +60,8 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   ts.emission = std::move(emission);
   ts.retro = std::move(models);
   ts.layout = s;
+  derive_half_mirror_light(ts.layout.half_mirror);
+  ts.polarized = scene_polarizes(s) || ts.force_polarized;
   ts.frames = {source_panel_frame(s), half_mirror_frame(s)};
   for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) ts.frames.push_back(retroreflector_frame(s, i));
   ts.props = std::move(props);
@@ -114,6 +118,10 @@ static glm::vec3 source_radiance(const tracer_scene& ts, const glm::dvec2& local
 static constexpr int max_half_mirror_splits = 3;
 
 namespace {
+struct no_polarization {};
+
+// `Polarization`: path_polarization when the scene polarizes, else nothing (the path as it was).
+template <class Polarization>
 struct path_state {
   glm::dvec3 origin;
   glm::dvec3 dir;
@@ -126,9 +134,11 @@ struct path_state {
   // Each branch split off before any retroreflection takes the sample's first-retroreflection
   // numbers at its first sheet, as the control variate predicts every sheet with them.
   bool first_retro_used = false;
+  [[no_unique_address]] Polarization pol;
 };
 
-image_component component_of(const path_state& p) {
+template <class Polarization>
+image_component component_of(const path_state<Polarization>& p) {
   if (p.retroreflections > 0) return component_aerial;
   if (p.prop_scatterings > 0 || p.sheet_scatterings > 0) return component_rest;
   if (p.mirror_reflections == 0) return component_direct;
@@ -213,9 +223,33 @@ static camera_ray first_ray(const tracer_scene& ts, int px, int py, const sample
   return make_camera_ray(ts.camera, px + n.jitter.x, py + n.jitter.y, n.lens);
 }
 
+template <class Polarization>
+inline constexpr bool polarized = std::is_same_v<Polarization, path_polarization>;
+
+// The half mirror's films and the mirror itself for a path (traced back) that the half mirror
+// reflected into `reflected` (its direction back) or passed.
+static void reflect_at_half_mirror(const tracer_scene& ts, const part_frame& f, path_polarization& pol,
+                                   const glm::dvec3& reflected) {
+  const auto& hm = ts.layout.half_mirror;
+  const part_face side = glm::dot(pol.frame.k, f.n) > 0 ? part_face::front : part_face::back;
+  pol.films(hm.films, side, f, true);
+  pol.half_mirror_reflection(hm, f, -reflected);
+  pol.films(hm.films, side, f, false);
+}
+
+static void pass_half_mirror(const tracer_scene& ts, const part_frame& f, path_polarization& pol) {
+  const auto& hm = ts.layout.half_mirror;
+  const bool to_front = glm::dot(pol.frame.k, f.n) > 0;
+  pol.films(hm.films, to_front ? part_face::front : part_face::back, f, true);
+  pol.half_mirror_transmission(hm, f);
+  pol.films(hm.films, to_front ? part_face::back : part_face::front, f, false);
+}
+
 // Scatters the path at a prop (a mirror reflection, or a Lambertian bounce drawn from the path's
 // generator), both sides alike; false when the prop absorbs it.
-static bool scatter_at_prop(const tracer_scene::prop& prop, const RTCRayHit& rh, path_state& p, pcg32& rng) {
+template <class Polarization>
+static bool scatter_at_prop(const tracer_scene::prop& prop, const RTCRayHit& rh, path_state<Polarization>& p,
+                            pcg32& rng) {
   const surface_response s = prop_surface_of(prop.params, *prop.mesh, rh.hit.primID);
   if (s.kind == prop_surface::absorber) return false;
   // Embree gives the normal in the mesh's frame; the prop's scale is uniform.
@@ -224,28 +258,33 @@ static bool scatter_at_prop(const tracer_scene::prop& prop, const RTCRayHit& rh,
   p.origin += p.dir * double(rh.ray.tfar);
   if (s.kind == prop_surface::mirror) {
     p.dir = reflect(p.dir, n);
+    if constexpr (polarized<Polarization>) p.pol.mirror(-p.dir);
   } else {
     const double u1 = rng.next_double(), u2 = rng.next_double();
     p.dir = glm::normalize(make_basis(n).to_world(cosine_hemisphere({u1, u2})));
+    if constexpr (polarized<Polarization>) p.pol.depolarize(-p.dir);
   }
   p.throughput *= s.reflectance;
   ++p.prop_scatterings;
   return true;
 }
 
-static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, const camera_ray& first,
-                                     const RTCRayHit* first_hit, std::uint64_t& rays) {
+template <class Polarization>
+static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n, const camera_ray& first,
+                                        const RTCRayHit* first_hit, std::uint64_t& rays) {
+  constexpr bool with_polarization = polarized<Polarization>;
   pcg32& rng = n.rng;
   const auto& hm = ts.layout.half_mirror;
   const double hm_total = hm.reflectance + hm.transmittance;
 
-  path_state stack[max_half_mirror_splits + 1];
+  path_state<Polarization> stack[max_half_mirror_splits + 1];
   int pending = 0, splits_left = max_half_mirror_splits;
   stack[pending++] = {first.origin, first.dir, glm::vec3(1.0f), 0};
+  if constexpr (with_polarization) stack[0].pol = path_polarization::at_observer(ts.layout, ts.camera, first.dir);
   component_radiance radiance{};
 
   while (pending > 0) {
-    path_state p = stack[--pending];
+    path_state<Polarization> p = stack[--pending];
     for (; p.depth < ts.layout.render.max_depth; ++p.depth) {
       RTCRayHit rh;
       if (p.depth == 0 && first_hit) {
@@ -269,7 +308,12 @@ static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, c
       if (part == part_source) {
         if (cos_n < 0) {
           const float profile = ts.emission ? float(ts.emission->at(degrees(std::acos(std::min(1.0, -cos_n))))) : 1.0f;
-          radiance[component_of(p)] += p.throughput * profile * source_radiance(ts, part_local(f, hit));
+          if constexpr (with_polarization) {
+            radiance[component_of(p)] +=
+                p.throughput * profile * source_radiance(ts, part_local(f, hit)) * p.pol.emitted(ts.layout.source, f);
+          } else {
+            radiance[component_of(p)] += p.throughput * profile * source_radiance(ts, part_local(f, hit));
+          }
         }
         break;  // the display absorbs what it does not emit; its back emits nothing
       }
@@ -279,17 +323,22 @@ static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, c
         p.origin = hit;
         if (splits_left > 0) {
           --splits_left;
-          path_state r = p;
+          path_state<Polarization> r = p;
           r.dir = reflected;
           r.throughput *= float(hm.reflectance);
           ++r.depth;
           ++r.mirror_reflections;
+          if constexpr (with_polarization) reflect_at_half_mirror(ts, f, r.pol, reflected);
           stack[pending++] = r;
           p.throughput *= float(hm.transmittance);
+          if constexpr (with_polarization) pass_half_mirror(ts, f, p.pol);
         } else {
           if (rng.next_double() * hm_total < hm.reflectance) {
             p.dir = reflected;
             ++p.mirror_reflections;
+            if constexpr (with_polarization) reflect_at_half_mirror(ts, f, p.pol, reflected);
+          } else if constexpr (with_polarization) {
+            pass_half_mirror(ts, f, p.pol);
           }
           p.throughput *= float(hm_total);
         }
@@ -306,9 +355,22 @@ static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, c
         u.shift = {rng.next_double(), rng.next_double()};
         u.more = rng.split();
       }
-      const retro_sample rs = ts.retro[part - part_first_sheet]->sample(wi, u);
+      const retro_model& sheet = *ts.retro[part - part_first_sheet];
+      const retro_sample rs = with_polarization ? sheet.sample_polarized(wi, u) : sheet.sample(wi, u);
       if (!(rs.weight > 0)) break;
       p.dir = glm::normalize(to_world(f, rs.wo));
+      if constexpr (with_polarization) {
+        // Out through the sheet's films, off the sheet, and in through them (tracing back).
+        const auto& films = ts.layout.retroreflectors[part - part_first_sheet].films;
+        p.pol.films(films, part_face::front, f, true);
+        if (rs.polarization) {
+          const sheet_light_frames local = light_frames_of(wi, rs.wo);
+          p.pol.through(*rs.polarization, world_frame(f, local.in), world_frame(f, local.out));
+        } else {
+          p.pol.mirror(-p.dir);
+        }
+        p.pol.films(films, part_face::front, f, false);
+      }
       p.origin = hit + rs.shift_mm.x * f.u + rs.shift_mm.y * f.v;
       p.throughput *= glm::vec3(rs.channels) * float(rs.weight);
       if (rs.retroreflected) {
@@ -319,6 +381,12 @@ static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, c
     }
   }
   return radiance;
+}
+
+static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, const camera_ray& first,
+                                     const RTCRayHit* first_hit, std::uint64_t& rays) {
+  return ts.polarized ? trace_path_as<path_polarization>(ts, n, first, first_hit, rays)
+                      : trace_path_as<no_polarization>(ts, n, first, first_hit, rays);
 }
 
 static void add_prediction(const tracer_scene& ts, int x, int y, std::uint64_t i, const sample_numbers& n,

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <utility>
 
 #include "airr/core/error.hpp"
 #include "airr/formats/mesh_gltf.hpp"
@@ -44,6 +45,36 @@ struct checker {
     range(field + ".width_mm", p.width_mm, min_part_size_mm, max_distance_mm);
     range(field + ".height_mm", p.height_mm, min_part_size_mm, max_distance_mm);
     pose(field + ".pose", p.pose);
+    if (p.films.size() > std::size_t(max_films_per_part)) {
+      fail(field + ".films", "at most " + std::to_string(max_films_per_part) + " films");
+    }
+    for (std::size_t i = 0; i < p.films.size(); ++i) film(field + ".films[" + std::to_string(i) + "]", p.films[i]);
+  }
+  void film(const std::string& field, const film_params& f) const {
+    range(field + ".axis_deg", f.axis_deg, -360, 360);
+    range(field + ".retardance_waves", f.retardance_waves, 0, 100);
+    range(field + ".wavelength_nm", f.wavelength_nm, 200, 3000);
+    range(field + ".pass_transmittance", f.pass_transmittance, 0, 1);
+    range(field + ".block_transmittance", f.block_transmittance, 0, 1);
+    if (f.block_transmittance > f.pass_transmittance) {
+      fail(field + ".block_transmittance",
+           "must not exceed pass_transmittance (" + number_text(f.pass_transmittance) + "): the pass axis passes more");
+    }
+  }
+  void reflective_polarizer(const std::string& field, const reflective_polarizer_params& p) const {
+    range(field + ".axis_deg", p.axis_deg, -360, 360);
+    for (const auto& [key, v] : {std::pair{".pass_transmittance", p.pass_transmittance},
+                                 {".pass_reflectance", p.pass_reflectance},
+                                 {".block_reflectance", p.block_reflectance},
+                                 {".block_transmittance", p.block_transmittance}}) {
+      range(field + key, v, 0, 1);
+    }
+    if (p.pass_transmittance + p.pass_reflectance > 1 + 1e-12) {
+      fail(field + ".pass_reflectance", "pass_transmittance + pass_reflectance must not exceed 1");
+    }
+    if (p.block_transmittance + p.block_reflectance > 1 + 1e-12) {
+      fail(field + ".block_reflectance", "block_transmittance + block_reflectance must not exceed 1");
+    }
   }
   void pose(const std::string& field, const airr::pose& p) const {
     position(field + ".center_mm", p.center_mm);
@@ -59,7 +90,9 @@ void validate_scene(const scene& s, const std::string& origin) {
   c.part("source", s.source);
   c.range("source.intensity", s.source.intensity, 0, 1e9);
   c.range("source.bezel_mm", s.source.bezel_mm, 0, 1e4);
+  c.range("source.polarization.angle_deg", s.source.polarization.angle_deg, -360, 360);
   c.part("half_mirror", s.half_mirror);
+  c.reflective_polarizer("half_mirror.polarizer", s.half_mirror.polarizer);
   c.range("half_mirror.reflectance", s.half_mirror.reflectance, 0, 1);
   c.range("half_mirror.transmittance", s.half_mirror.transmittance, 0, 1);
   if (s.half_mirror.reflectance + s.half_mirror.transmittance > 1 + 1e-12) {
@@ -106,6 +139,7 @@ void validate_scene(const scene& s, const std::string& origin) {
     c.fail("observer.width", "resolution " + std::to_string(o.width) + "x" + std::to_string(o.height) +
                                  " exceeds the cap of " + std::to_string(max_resolution_pixels) + " pixels");
   }
+  if (o.analyzer_deg) c.range("observer.analyzer_deg", *o.analyzer_deg, -360, 360);
   c.range("render.max_depth", s.render.max_depth, 1, 64);
 }
 

@@ -14,6 +14,8 @@
 #include "airr/models/emission_profile.hpp"
 #include "airr/models/preset.hpp"
 #include "airr/models/retro_model.hpp"
+#include "json_enum.hpp"
+#include "scene_json_polarization.hpp"
 
 namespace airr {
 
@@ -54,8 +56,11 @@ static json pose_to_json(const pose& p) {
   return {{"center_mm", p.center_mm}, {"yaw_deg", p.yaw_deg}, {"pitch_deg", p.pitch_deg}, {"roll_deg", p.roll_deg}};
 }
 
-static json part_to_json(const part_params& p) {
-  return {{"mesh", p.mesh}, {"width_mm", p.width_mm}, {"height_mm", p.height_mm}, {"pose", pose_to_json(p.pose)}};
+static json part_json(const part_params& p, json_form form) {
+  json j = {{"mesh", p.mesh}, {"width_mm", p.width_mm}, {"height_mm", p.height_mm}, {"pose", pose_to_json(p.pose)}};
+  // Saved only when there are any, as props are.
+  if (form == json_form::complete || !p.films.empty()) j["films"] = films_to_json(p.films);
+  return j;
 }
 
 static json prop_to_json(const prop_params& p) {
@@ -72,15 +77,22 @@ static json prop_to_json(const prop_params& p) {
 static const char* placement_name(observer_placement p) { return p == observer_placement::orbit ? "orbit" : "look_at"; }
 static const char* lens_name(observer_lens l) { return l == observer_lens::pinhole ? "pinhole" : "thin_lens"; }
 
-json scene_to_json(const scene& s) {
+json scene_to_json(const scene& s, json_form form) {
+  const auto part_to_json = [&](const part_params& p) { return part_json(p, form); };
   json src = part_to_json(s.source);
   src["image"] = s.source.image;
   src["intensity"] = s.source.intensity;
   src["emission_profile"] = s.source.emission_profile;
   src["bezel_mm"] = s.source.bezel_mm;
+  if (form == json_form::complete || s.source.polarization != source_polarization{})
+    src["polarization"] = polarization_to_json(s.source.polarization);
   json hm = part_to_json(s.half_mirror);
   hm["reflectance"] = s.half_mirror.reflectance;
   hm["transmittance"] = s.half_mirror.transmittance;
+  if (form == json_form::complete || s.half_mirror.kind == half_mirror_kind::reflective_polarizer) {
+    hm["kind"] = s.half_mirror.kind == half_mirror_kind::reflective_polarizer ? "reflective_polarizer" : "half_mirror";
+    hm["polarizer"] = reflective_polarizer_to_json(s.half_mirror.polarizer);
+  }
   json sheets = json::array();
   for (const auto& r : s.retroreflectors) {
     json j = part_to_json(r);
@@ -111,6 +123,7 @@ json scene_to_json(const scene& s) {
         {"height", o.height}}},
       {"render", {{"max_depth", s.render.max_depth}}},
   };
+  if (form == json_form::complete || o.analyzer_deg) out["observer"]["analyzer_deg"] = optional_number(o.analyzer_deg);
   // Written only when there are any, so layouts without props keep their form.
   if (!s.props.empty()) {
     json props = json::array();
@@ -136,6 +149,7 @@ static void read_part(json_reader& r, part_params& p) {
   r.number("width_mm", p.width_mm);
   r.number("height_mm", p.height_mm);
   if (r.has("pose")) read_pose(r.child("pose"), p.pose);
+  read_films(r, p.films);
 }
 
 void read_model(json_reader r, const json& j, const std::string& where, retro_model_params& m) {
@@ -155,22 +169,6 @@ void read_model(json_reader r, const json& j, const std::string& where, retro_mo
     r.raw(key);
   }
   r.finish();
-}
-
-template <class Enum, std::size_t N>
-static void read_enum(json_reader& r, const std::string& key, Enum& out, const std::array<const char*, N>& names) {
-  if (!r.has(key)) return;
-  std::string v;
-  r.string(key, v);
-  std::string list;
-  for (std::size_t i = 0; i < N; ++i) {
-    if (v == names[i]) {
-      out = static_cast<Enum>(i);
-      return;
-    }
-    list += (i ? ", " : "") + std::string(names[i]);
-  }
-  r.fail(r.field(key), "unknown value '" + v + "' (" + list + ")");
 }
 
 static void read_prop(json_reader r, prop_params& p) {
@@ -199,6 +197,7 @@ static void read_observer(json_reader r, observer_params& o) {
   r.number("fov_deg", o.fov_deg);
   r.integer("width", o.width);
   r.integer("height", o.height);
+  r.nullable_number("analyzer_deg", o.analyzer_deg);
   r.finish();
 }
 
@@ -218,6 +217,7 @@ static scene scene_from_json_v2(json_reader& r) {
     c.number("intensity", s.source.intensity);
     c.string("emission_profile", s.source.emission_profile);
     c.number("bezel_mm", s.source.bezel_mm);
+    if (c.has("polarization")) read_polarization(c.child("polarization"), s.source.polarization);
     c.finish();
   }
   if (r.has("half_mirror")) {
@@ -225,6 +225,10 @@ static scene scene_from_json_v2(json_reader& r) {
     read_part(c, s.half_mirror);
     c.number("reflectance", s.half_mirror.reflectance);
     c.number("transmittance", s.half_mirror.transmittance);
+    read_enum(c, "kind", s.half_mirror.kind, std::array{"half_mirror", "reflective_polarizer"});
+    if (s.half_mirror.kind == half_mirror_kind::reflective_polarizer) c.require("polarizer");
+    if (c.has("polarizer")) read_reflective_polarizer(c.child("polarizer"), s.half_mirror.polarizer);
+    derive_half_mirror_light(s.half_mirror);
     c.finish();
   }
   if (r.has("retroreflectors")) {

@@ -128,7 +128,7 @@ scene with_overrides(scene s, const std::vector<scene_override>& overrides, cons
   }
   if (!fields.empty()) {
     // Overrides act on the complete form, so they may name fields the file leaves at default.
-    json full = scene_to_json(s);
+    json full = scene_to_json(s, json_form::complete);
     apply_overrides(full, fields);
     const std::string base_dir = s.base_dir;
     s = scene_from_json(full, origin);
@@ -148,7 +148,7 @@ scene with_overrides(scene s, const std::vector<scene_override>& overrides, cons
 
 double scene_number(const scene& s, const std::string& key) {
   if (key == floating_distance_key) return floating_distance(s);
-  json full = scene_to_json(s);
+  json full = scene_to_json(s, json_form::complete);
   const key_node found = find_key(full, key == tilt_key ? "retroreflectors.0.pose.pitch_deg" : key);
   if (!found.node->is_number()) throw input_error("--set " + key + ": not a number in the scene");
   return found.node->get<double>();

@@ -22,4 +22,20 @@ bool differ_in_placement_alone(const scene& a, const scene& b) {
   return moved == a;
 }
 
+void derive_half_mirror_light(half_mirror_params& hm) {
+  if (hm.kind != half_mirror_kind::reflective_polarizer) return;
+  const reflective_polarizer_params& p = hm.polarizer;
+  hm.reflectance = 0.5 * (p.pass_reflectance + p.block_reflectance);
+  hm.transmittance = 0.5 * (p.pass_transmittance + p.block_transmittance);
+}
+
+bool scene_polarizes(const scene& s) {
+  if (s.source.polarization.state != light_state::unpolarized) return true;
+  if (s.half_mirror.kind != half_mirror_kind::half_mirror || s.observer.analyzer_deg) return true;
+  if (!s.source.films.empty() || !s.half_mirror.films.empty()) return true;
+  for (const auto& r : s.retroreflectors)
+    if (!r.films.empty()) return true;
+  return false;
+}
+
 }  // namespace airr

@@ -9,8 +9,37 @@ namespace {
 constexpr int max_events = 256;
 }
 
+polarized_walk polarized_walk::arriving(const glm::dvec3& wi) {
+  return {mueller::identity(), polarization_frame::about(-wi)};
+}
+
+mueller polarized_walk::leaving(const glm::dvec3& wo) const {
+  // A direction spread by diffraction after the last event differs a little from frame.k: its
+  // frame is the one about wo turned to face frame.x as nearly as it can.
+  return reframe(frame, polarization_frame::about(wo)) * m;
+}
+
+void polarized_walk::reflect(const glm::dvec3& n, double cos_i, std::complex<double> eta) {
+  const fresnel_coefficients f = fresnel_amplitudes(cos_i, eta);
+  const double r = 0.5 * (std::norm(f.rs) + std::norm(f.rp));
+  if (!(r > 0)) return;
+  const polarized_step step = reflect_polarized(frame, n, f.rs, f.rp);
+  m = mueller::scale(1 / r) * step.m * m;
+  frame = step.out;
+}
+
+void polarized_walk::refract(const glm::dvec3& n, double cos_i, std::complex<double> eta, const glm::dvec3& k_out) {
+  const fresnel_coefficients f = fresnel_amplitudes(cos_i, eta);
+  const double energy = (eta * f.cos_t).real() / cos_i;
+  const double t = energy * 0.5 * (std::norm(f.ts) + std::norm(f.tp));
+  if (!(t > 0)) return;
+  const polarized_step step = transmit_polarized(frame, n, k_out, f.ts, f.tp, energy / t);
+  m = step.m * m;
+  frame = step.out;
+}
+
 prism_path walk_plate(const plate_optics& o, const follow_back& follow, const glm::dvec3& wi, const glm::dvec2& entry,
-                      double u_front, pcg32& rng, plate_walk_record& record) {
+                      double u_front, pcg32& rng, plate_walk_record& record, polarized_walk* light) {
   prism_path out;
   if (!(wi.z > 0)) return out;
   const glm::dvec3 front_normal(0, 0, 1);
@@ -18,9 +47,11 @@ prism_path walk_plate(const plate_optics& o, const follow_back& follow, const gl
     out.fate = prism_fate::front_reflection;
     out.wo = glm::dvec3(-wi.x, -wi.y, wi.z);
     out.weight = 1;
+    if (light) light->reflect(front_normal, wi.z, o.index);
     return out;
   }
   glm::dvec3 d = *refract(-wi, front_normal, 1 / o.index);
+  if (light) light->refract(front_normal, wi.z, o.index, d);
   record.inside = d;
   glm::dvec3 p(entry, 0.0);
   bool in_plate = true;
@@ -31,11 +62,13 @@ prism_path walk_plate(const plate_optics& o, const follow_back& follow, const gl
       // Up through the plate to the front surface.
       p += ((0 - p.z) / d.z) * d;
       if (rng.next_double() < fresnel_dielectric(d.z, 1 / o.index)) {
+        if (light) light->reflect(front_normal, d.z, 1 / o.index);
         d.z = -d.z;
         ++out.front_reflections;
         continue;
       }
       out.wo = glm::normalize(*refract(d, -front_normal, o.index));
+      if (light) light->refract(front_normal, d.z, 1 / o.index, out.wo);
       out.shift_mm = glm::dvec2(p) - entry;
       out.weight = weight;
       out.fate = glm::length(out.wo - wi) < o.retro_tolerance ? prism_fate::retroreflected : prism_fate::stray;
@@ -61,26 +94,34 @@ prism_path walk_plate(const plate_optics& o, const follow_back& follow, const gl
       ++out.face_reflections;
       if (end.metal_reflectance) {
         weight *= *end.metal_reflectance;
+        if (light) light->reflect(n, -glm::dot(d, n), metal_coat_index / o.index);
         d = reflect(d, n);
         continue;
       }
       if (rng.next_double() < fresnel_dielectric(-glm::dot(d, n), 1 / o.index)) {
+        if (light) light->reflect(n, -glm::dot(d, n), 1 / o.index);
         d = reflect(d, n);
       } else {
-        d = glm::normalize(*refract(d, n, o.index));
+        const glm::dvec3 out_of_plate = glm::normalize(*refract(d, n, o.index));
+        if (light) light->refract(n, -glm::dot(d, n), 1 / o.index, out_of_plate);
+        d = out_of_plate;
         in_plate = false;
         ++record.crossings;
       }
     } else {
       if (end.metal_reflectance) {  // the coat's back, from the air under the sheet
         weight *= *end.metal_reflectance;
+        if (light) light->reflect(n, glm::dot(d, n), metal_coat_index);
         d = reflect(d, n);
         continue;
       }
       if (rng.next_double() < fresnel_dielectric(glm::dot(d, n), o.index)) {
+        if (light) light->reflect(n, glm::dot(d, n), o.index);
         d = reflect(d, n);
       } else {
-        d = glm::normalize(*refract(d, -n, 1 / o.index));
+        const glm::dvec3 into_plate = glm::normalize(*refract(d, -n, 1 / o.index));
+        if (light) light->refract(n, glm::dot(d, n), o.index, into_plate);
+        d = into_plate;
         in_plate = true;
         ++record.crossings;
       }

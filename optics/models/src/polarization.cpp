@@ -152,6 +152,16 @@ double angle_in(const polarization_frame& f, const glm::dvec3& axis) {
 
 mueller reframe(const polarization_frame& from, const polarization_frame& to) { return rotator(angle_in(from, to.x)); }
 
+polarization_frame reversed(const polarization_frame& f) { return {f.x, -f.y, -f.k}; }
+
+mueller reversed_path(const mueller& m) {
+  static constexpr std::array<double, 4> g{1, 1, -1, 1};
+  mueller r;
+  for (int i = 0; i < 4; ++i)
+    for (int j = 0; j < 4; ++j) r.m[i][j] = g[i] * m.m[j][i] * g[j];
+  return r;
+}
+
 polarized_step reflect_polarized(const polarization_frame& in, const glm::dvec3& n, complex rs, complex rp) {
   const polarization_frame sp = polarization_frame::at_surface(in.k, n);
   // s is across the plane of incidence, so the light leaving shares it.

@@ -199,7 +199,7 @@ glm::dvec2 prism_cell_point(const prism_sheet_geometry& g, const glm::dvec2& u) 
 }
 
 prism_path trace_prism_sheet(const prism_sheet_geometry& g, const glm::dvec3& wi, const glm::dvec2& entry,
-                             double u_front, pcg32& rng) {
+                             double u_front, pcg32& rng, std::optional<mueller>* polarized) {
   const auto e = groove_normals(g);
   const follow_back back = [&](const glm::dvec3& p, const glm::dvec3& d, bool in_plate) {
     stretch_end end = g.full_cubes ? follow_full_cubes(g, p, d, in_plate) : follow(g, e, p, d, in_plate);
@@ -207,7 +207,11 @@ prism_path trace_prism_sheet(const prism_sheet_geometry& g, const glm::dvec3& wi
     return end;
   };
   plate_walk_record record;
-  prism_path out = walk_plate({g.index, g.plate_mm, g.pitch_mm}, back, wi, entry, u_front, rng, record);
+  std::optional<polarized_walk> light;
+  if (polarized) light = polarized_walk::arriving(wi);
+  prism_path out =
+      walk_plate({g.index, g.plate_mm, g.pitch_mm}, back, wi, entry, u_front, rng, record, light ? &*light : nullptr);
+  if (light) *polarized = light->leaving(out.wo);
   const bool out_of_front = out.fate == prism_fate::retroreflected || out.fate == prism_fate::stray;
   if (!out_of_front || out.face_reflections == 0 || g.wavelength_nm <= 0) return out;
   // One cube corner's three faces: the beam leaves through the part of its aperture that
@@ -243,6 +247,14 @@ prism_sheet_retro::prism_sheet_retro(const prism_sheet_geometry& g) : g_(g) {
 retro_sample prism_sheet_retro::sample(const glm::dvec3& wi, retro_samples u) const {
   const prism_path path = trace_prism_sheet(g_, wi, prism_cell_point(g_, u.lobe), u.shift.x, u.more);
   return {path.wo, path.shift_mm, path.weight, path.fate == prism_fate::retroreflected, path.channels};
+}
+
+retro_sample prism_sheet_retro::sample_polarized(const glm::dvec3& wi, retro_samples u) const {
+  std::optional<mueller> m;
+  const prism_path path = trace_prism_sheet(g_, wi, prism_cell_point(g_, u.lobe), u.shift.x, u.more, &m);
+  // The walk went the sample's way, from the observer's side: the light goes the other.
+  if (m) m = reversed_path(*m);
+  return {path.wo, path.shift_mm, path.weight, path.fate == prism_fate::retroreflected, path.channels, m};
 }
 
 const retro_model_kind& prism_sheet_retro_kind() {

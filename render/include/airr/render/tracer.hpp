@@ -42,6 +42,10 @@ struct tracer_scene {
   // estimator); see update_model_image.
   bool use_model_image = true;
   std::shared_ptr<const layout_model_image> model;
+  // Paths carry their polarization when the scene polarizes (scene_polarizes), or always when
+  // forced (a test of the polarized tracer on scenes that do not).
+  bool polarized = false;
+  bool force_polarized = false;
 };
 
 // Builds (or, given the previous state, updates in place: meshes and textures are reused when

@@ -29,8 +29,10 @@ struct scene_override {
 };
 scene_override parse_override(const std::string& text);
 
-// The current version's form (version 2).
-nlohmann::json scene_to_json(const scene& s);
+// The current version's form (version 2): as files are saved (fields at their defaults that older
+// files lack left out: props, films, polarization), or complete, as --set acts on it.
+enum class json_form { saved, complete };
+nlohmann::json scene_to_json(const scene& s, json_form form = json_form::saved);
 // Reads version 2, or version 1 through migrate_scene_v1. `origin` names the file (or "--set") in
 // error messages.
 scene scene_from_json(const nlohmann::json& j, const std::string& origin);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "airr/layout/polarizing_parts.hpp"
 #include "airr/models/model_params.hpp"
 
 namespace airr {
@@ -47,6 +48,7 @@ struct part_params {
   double width_mm = 300.0;
   double height_mm = 300.0;
   airr::pose pose;
+  std::vector<film_params> films;  // laid on its faces (polarizing_parts.hpp)
 
   bool operator==(const part_params&) const = default;
 };
@@ -57,6 +59,7 @@ struct source_params : part_params {
   double intensity = 10.0;       // radiance = image value x intensity
   std::string emission_profile;  // CSV of angle (deg) -> relative luminance; empty: Lambertian
   double bezel_mm = 0.0;
+  source_polarization polarization;
 
   source_params() {
     width_mm = height_mm = 50.0;
@@ -66,7 +69,11 @@ struct source_params : part_params {
   bool operator==(const source_params&) const = default;
 };
 
+enum class half_mirror_kind { half_mirror, reflective_polarizer };
+
 struct half_mirror_params : part_params {
+  half_mirror_kind kind = half_mirror_kind::half_mirror;
+  reflective_polarizer_params polarizer;  // kind reflective_polarizer; reflectance and transmittance follow from it
   double reflectance = 0.5;
   double transmittance = 0.5;
 
@@ -126,6 +133,8 @@ struct observer_params {
   double fov_deg = 14.0;                    // vertical field of view
   int width = 256;
   int height = 256;
+  // A linear polarizer before the observer: its pass axis from the image's right towards its up.
+  std::optional<double> analyzer_deg;
 
   bool operator==(const observer_params&) const = default;
 };
@@ -153,6 +162,15 @@ struct scene {
   retroreflector_params& sheet() { return retroreflectors.front(); }
   const retroreflector_params& sheet() const { return retroreflectors.front(); }
 };
+
+// A reflective polarizer's reflectance and transmittance for unpolarized light (the means of its
+// pass and block values) set as the half mirror's; a plain half mirror is left as it is.
+void derive_half_mirror_light(half_mirror_params& hm);
+
+// True when something in the scene polarizes light or looks at its polarization: the display's
+// light, a film, a reflective polarizer or the observer's polarizer. Scenes that do not are
+// traced without polarization, as before there was any.
+bool scene_polarizes(const scene& s);
 
 // Resolves a path from the scene file against the scene's directory.
 std::string resolve_scene_path(const scene& s, const std::string& path);

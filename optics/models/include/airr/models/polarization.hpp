@@ -77,6 +77,13 @@ double angle_in(const polarization_frame& f, const glm::dvec3& axis);
 // The rotator that rewrites a Stokes vector of frame `from` in frame `to` (same k).
 mueller reframe(const polarization_frame& from, const polarization_frame& to);
 
+// Reciprocity: a part met the other way. The light reversed is written in reversed(frame),
+// (x, -y, -k); a path's Mueller matrix from `in` to `out` becomes, from reversed(out) to
+// reversed(in), G M^T G with G = diag(1, 1, -1, 1) (the Jones matrix's transpose in the
+// reversed frames; sums of such matrices alike).
+polarization_frame reversed(const polarization_frame& f);
+mueller reversed_path(const mueller& m);
+
 // One interaction at a surface of unit normal n: its Mueller matrix from the light's frame `in`
 // to `out`, the s/p frame of the light leaving (its k the new direction).
 struct polarized_step {

@@ -64,8 +64,9 @@ struct prism_path {
 // Light arriving against wi (sheet-local, wi.z > 0) at `entry` (mm) on the front surface. The
 // front surface's choice between reflection and refraction takes u_front; every later Fresnel
 // choice draws from rng.
+// With `polarized`, the path's Mueller matrix is followed too (retro_sample::polarization).
 prism_path trace_prism_sheet(const prism_sheet_geometry& g, const glm::dvec3& wi, const glm::dvec2& entry,
-                             double u_front, pcg32& rng);
+                             double u_front, pcg32& rng, std::optional<mueller>* polarized = nullptr);
 
 // A cube corner's aperture triangle in the sheet plane about its centroid (mm); `pointing` as
 // below.
@@ -107,6 +108,7 @@ class prism_sheet_retro final : public retro_model {
  public:
   explicit prism_sheet_retro(const prism_sheet_geometry& g);  // throws input_error out of range
   retro_sample sample(const glm::dvec3& wi, retro_samples u) const override;
+  retro_sample sample_polarized(const glm::dvec3& wi, retro_samples u) const override;
   const prism_sheet_geometry& geometry() const { return g_; }
 
  private:

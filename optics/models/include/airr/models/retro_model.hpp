@@ -12,6 +12,7 @@
 #include "airr/core/random.hpp"
 #include "airr/models/model_fields.hpp"
 #include "airr/models/model_params.hpp"
+#include "airr/models/polarization.hpp"
 
 namespace airr {
 
@@ -36,7 +37,22 @@ struct retro_sample {
   // What it carries of the tracer's R, G, B channels (1 each but for light drawn at one primary's
   // wavelength, diffraction.hpp); the model PSF and the model image take the mean, white.
   glm::dvec3 channels{1.0};
+  // From sample_polarized, for models that follow polarization: the Mueller matrix of the light's
+  // own path, which runs against the sample's (from the display's side in along -wo, out along wi
+  // to the observer), between the frames sheet_light_frames gives, divided by its unpolarized
+  // throughput, which `weight` carries. Empty: the sheet keeps the field as a perfect mirror
+  // facing the light would (docs/polarization.md).
+  std::optional<mueller> polarization;
 };
+
+// The sheet-local frames retro_sample::polarization is written in: of the light arriving against
+// wo, reversed(about(wo)), and of the light leaving along wi, reversed(about(-wi)).
+struct sheet_light_frames {
+  polarization_frame in, out;
+};
+inline sheet_light_frames light_frames_of(const glm::dvec3& wi, const glm::dvec3& wo) {
+  return {reversed(polarization_frame::about(wo)), reversed(polarization_frame::about(-wi))};
+}
 
 // A model at one fixed incidence, for many samples there: sample(u) is the model's sample(wi, u)
 // for that wi, with what depends on wi alone worked out once.
@@ -50,6 +66,9 @@ class retro_model {
  public:
   virtual ~retro_model() = default;
   virtual retro_sample sample(const glm::dvec3& wi, retro_samples u) const = 0;
+  // sample with the polarization of its path, for the models that follow it; the others' (the
+  // default) leave retro_sample::polarization empty.
+  virtual retro_sample sample_polarized(const glm::dvec3& wi, retro_samples u) const { return sample(wi, u); }
   // The model prepared for incidence wi; the default calls sample(wi, u) each time. The model
   // outlives what this returns.
   virtual std::unique_ptr<const retro_at_incidence> at_incidence(const glm::dvec3& wi) const;

@@ -1,0 +1,126 @@
+#include "path_polarization.hpp"
+
+#include <cmath>
+
+#include "airr/layout/layout.hpp"
+#include "airr/models/diffraction.hpp"
+
+namespace airr {
+
+namespace {
+
+// The index a film's light is refracted into (its retardance grows with the path in it).
+constexpr double film_index = 1.5;
+
+glm::dvec4 row_times(const glm::dvec4& r, const mueller& m) {
+  glm::dvec4 out;
+  for (int c = 0; c < 4; ++c) out[c] = r[0] * m.m[0][c] + r[1] * m.m[1][c] + r[2] * m.m[2][c] + r[3] * m.m[3][c];
+  return out;
+}
+
+glm::dvec3 axis_on(const part_frame& f, double angle_deg) {
+  return std::cos(radians(angle_deg)) * f.u + std::sin(radians(angle_deg)) * f.v;
+}
+
+}  // namespace
+
+path_polarization path_polarization::at_observer(const scene& s, const pinhole_camera& c, const glm::dvec3& dir) {
+  path_polarization p;
+  p.frame = polarization_frame::with_x(-dir, c.right);
+  glm::dvec4 row{1, 0, 0, 0};
+  if (s.observer.analyzer_deg) {
+    const double a = radians(*s.observer.analyzer_deg);
+    const glm::dvec3 axis = std::cos(a) * c.right + std::sin(a) * c.up;
+    row = row_times(row, linear_polarizer(angle_in(p.frame, axis)));
+  }
+  p.rows = {row, row, row};
+  return p;
+}
+
+void path_polarization::apply(const mueller& m, const polarization_frame& in, const polarization_frame& out) {
+  const mueller to_current = reframe(out, frame) * m;
+  for (glm::dvec4& r : rows) r = row_times(r, to_current);
+  frame = in;
+}
+
+void path_polarization::apply_here(const std::array<mueller, 3>& m) {
+  for (std::size_t c = 0; c < 3; ++c) rows[c] = row_times(rows[c], m[c]);
+}
+
+void path_polarization::films(const std::vector<film_params>& films, part_face face, const part_frame& f,
+                              bool leaving) {
+  const double cos_i = std::min(1.0, std::abs(glm::dot(frame.k, f.n)));
+  const double sin_t = std::sqrt(1 - cos_i * cos_i) / film_index;
+  const double path = 1 / std::sqrt(1 - sin_t * sin_t);  // the film's thickness crossed at an angle
+  const auto one = [&](const film_params& film) {
+    if (film.face != face) return;
+    const double axis = angle_in(frame, axis_on(f, film.axis_deg));
+    std::array<mueller, 3> m;
+    for (std::size_t c = 0; c < 3; ++c) {
+      m[c] = film.kind == film_kind::polarizer
+                 ? linear_polarizer(axis, film.pass_transmittance, film.block_transmittance)
+                 : linear_retarder(
+                       axis, 2 * pi * film.retardance_waves * path * film.wavelength_nm / display_primaries_nm[c]);
+    }
+    apply_here(m);
+  };
+  // Going back, light leaving a face meets its outermost film first.
+  if (leaving) {
+    for (auto it = films.rbegin(); it != films.rend(); ++it) one(*it);
+  } else {
+    for (const film_params& film : films) one(film);
+  }
+}
+
+void path_polarization::half_mirror_reflection(const half_mirror_params& hm, const part_frame& f,
+                                               const glm::dvec3& k_in) {
+  const polarization_frame in = polarization_frame::about(k_in);
+  const polarized_step step = reflect_polarized(in, f.n, -1.0, 1.0);
+  if (hm.kind == half_mirror_kind::half_mirror) return apply(step.m, in, step.out);
+  const reflective_polarizer_params& p = hm.polarizer;
+  const double pass = angle_in(in, axis_on(f, p.axis_deg));
+  const mueller m = mueller::scale(hm.reflectance > 0 ? 1 / hm.reflectance : 0) * step.m *
+                    linear_polarizer(pass, p.pass_reflectance, p.block_reflectance);
+  apply(m, in, step.out);
+}
+
+void path_polarization::half_mirror_transmission(const half_mirror_params& hm, const part_frame& f) {
+  if (hm.kind == half_mirror_kind::half_mirror) return;
+  const reflective_polarizer_params& p = hm.polarizer;
+  const mueller m =
+      mueller::scale(hm.transmittance > 0 ? 1 / hm.transmittance : 0) *
+      linear_polarizer(angle_in(frame, axis_on(f, p.axis_deg)), p.pass_transmittance, p.block_transmittance);
+  apply_here({m, m, m});
+}
+
+void path_polarization::mirror(const glm::dvec3& k_in) {
+  const glm::dvec3 bisector = frame.k - k_in;
+  if (glm::dot(bisector, bisector) < 1e-24) return;  // light passing straight on is not reflected
+  const polarization_frame in = polarization_frame::about(k_in);
+  const polarized_step step = reflect_polarized(in, glm::normalize(bisector), -1.0, 1.0);
+  apply(step.m, in, step.out);
+}
+
+void path_polarization::depolarize(const glm::dvec3& k_in) {
+  for (glm::dvec4& r : rows) r = {r[0], 0, 0, 0};
+  frame = polarization_frame::about(k_in);
+}
+
+glm::vec3 path_polarization::emitted(const source_params& display, const part_frame& f) const {
+  path_polarization p = *this;
+  p.films(display.films, part_face::front, f, true);
+  stokes light = unpolarized();
+  const source_polarization& state = display.polarization;
+  if (state.state == light_state::linear) {
+    const glm::dvec3 axis = axis_on(f, state.angle_deg);
+    const glm::dvec3 across = axis - glm::dot(axis, p.frame.k) * p.frame.k;
+    // Seen edge-on along its axis, linear light has no direction across k: none reaches here.
+    if (glm::dot(across, across) < 1e-18) return glm::vec3(0.0f);
+    light = linear_light(angle_in(p.frame, axis));
+  } else if (state.state != light_state::unpolarized) {
+    light = circular_light(state.state == light_state::circular_positive);
+  }
+  return {float(glm::dot(p.rows[0], light)), float(glm::dot(p.rows[1], light)), float(glm::dot(p.rows[2], light))};
+}
+
+}  // namespace airr

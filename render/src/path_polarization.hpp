@@ -1,0 +1,57 @@
+#pragma once
+// A traced path's polarization (docs/polarization.md), followed from the observer back to the
+// display: for each channel, the row that turns the Stokes vector of the light on the path's
+// current segment (written in `frame`, its k the light's direction there) into what the observer
+// sees (S0, after its polarizer). Each call applies one part as the light meets it, in the order
+// the tracer meets them going back. Private to the tracer.
+#include <array>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "airr/core/geometry.hpp"
+#include "airr/layout/scene.hpp"
+#include "airr/models/polarization.hpp"
+
+namespace airr {
+
+struct pinhole_camera;
+
+// A part's local frame (part_frame axes) in the world.
+inline polarization_frame world_frame(const part_frame& f, const polarization_frame& local) {
+  return {to_world(f, local.x), to_world(f, local.y), to_world(f, local.k)};
+}
+
+struct path_polarization {
+  std::array<glm::dvec4, 3> rows;
+  polarization_frame frame;
+
+  // At the observer: light arriving against the camera ray `dir`, through its polarizer if any.
+  static path_polarization at_observer(const scene& s, const pinhole_camera& c, const glm::dvec3& dir);
+
+  // A part's films on one face crossed by the current segment's light, as the light leaves that
+  // face (`leaving`: outermost last) or arrives at it (outermost first).
+  void films(const std::vector<film_params>& films, part_face face, const part_frame& f, bool leaving);
+  // The half mirror (a plain one or a reflective polarizer), its Mueller matrix divided by the
+  // scalar reflectance or transmittance the tracer weighs the branch with. `k_in`: the light's
+  // direction before it (reflection), the current segment's after.
+  void half_mirror_reflection(const half_mirror_params& hm, const part_frame& f, const glm::dvec3& k_in);
+  void half_mirror_transmission(const half_mirror_params& hm, const part_frame& f);
+  // A mirror (or a sheet, which keeps the field as a perfect mirror facing the light does, default
+  // of every sheet model) sending light that came along k_in along the current segment.
+  void mirror(const glm::dvec3& k_in);
+  // A part's Mueller matrix from the light's frame `in` (k before it) to `out` (k the current
+  // segment's).
+  void through(const mueller& m, const polarization_frame& in, const polarization_frame& out) { apply(m, in, out); }
+  // A diffuse surface: what leaves it is unpolarized.
+  void depolarize(const glm::dvec3& k_in);
+  // What the observer sees of the display's light per channel (1 for unpolarized light and no
+  // analyzer): the display's state through its front films.
+  glm::vec3 emitted(const source_params& display, const part_frame& f) const;
+
+ private:
+  void apply(const mueller& m, const polarization_frame& in, const polarization_frame& out);
+  void apply_here(const std::array<mueller, 3>& m);  // one matrix a channel, the direction kept
+};
+
+}  // namespace airr
