@@ -126,3 +126,27 @@ TEST(PolarizedRender, AnAnalyzerBeforeTheObserverFollowsMalussLaw) {
   plain.observer.analyzer_deg = 20;
   EXPECT_NEAR(aerial_centre(plain) / aerial_centre(base), 0.5, 0.01);
 }
+
+// `airr gain` prints the aerial image's brightness against the same layout with a plain half
+// mirror: p-AIRR with ideal parts and an unpolarized display doubles it.
+TEST(PolarizedRender, GainCommandComparesWithAPlainHalfMirror) {
+  test::temp_dir dir;
+  save_scene(p_airr(bench()), dir.file("p_airr.json"));
+  const auto r = test::run_cli("gain " + dir.file("p_airr.json") + " --spp 2 --threads 2");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const auto at = r.out.rfind("gain: ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  // Over the whole image, not the centre alone: rays off the axis meet the polarizer a little askew.
+  EXPECT_NEAR(std::stod(r.out.substr(at + 6)), 2.0, 0.05) << r.out;
+  EXPECT_NE(r.out.find("with a plain half mirror (R = T = 0.5, no films): "), std::string::npos) << r.out;
+
+  // The layout as a plain half mirror leaves it: no gain.
+  const auto plain = test::run_cli("gain " + dir.file("p_airr.json") +
+                                   " --spp 2 --threads 2 --set half_mirror.kind=half_mirror --set "
+                                   "retroreflectors.0.films=[]");
+  ASSERT_EQ(plain.exit_code, 0) << plain.out;
+  EXPECT_NE(plain.out.find("gain: 1.0000x"), std::string::npos) << plain.out;
+
+  const auto bad = test::run_cli("gain " + dir.file("p_airr.json") + " --set retroreflectors.0.films.0.axis_deg=\"x\"");
+  test::expect_one_line_error(bad, {dir.file("p_airr.json"), "retroreflectors[0].films[0].axis_deg: must be a number"});
+}
