@@ -10,7 +10,7 @@
 #include "airr/core/low_discrepancy.hpp"
 #include "airr/core/random.hpp"
 #include "airr/formats/scene_json.hpp"
-#include "path_polarization.hpp"
+#include "airr/layout/path_polarization.hpp"
 
 namespace airr {
 
@@ -226,25 +226,6 @@ static camera_ray first_ray(const tracer_scene& ts, int px, int py, const sample
 template <class Polarization>
 inline constexpr bool polarized = std::is_same_v<Polarization, path_polarization>;
 
-// The half mirror's films and the mirror itself for a path (traced back) that the half mirror
-// reflected into `reflected` (its direction back) or passed.
-static void reflect_at_half_mirror(const tracer_scene& ts, const part_frame& f, path_polarization& pol,
-                                   const glm::dvec3& reflected) {
-  const auto& hm = ts.layout.half_mirror;
-  const part_face side = glm::dot(pol.frame.k, f.n) > 0 ? part_face::front : part_face::back;
-  pol.films(hm.films, side, f, true);
-  pol.half_mirror_reflection(hm, f, -reflected);
-  pol.films(hm.films, side, f, false);
-}
-
-static void pass_half_mirror(const tracer_scene& ts, const part_frame& f, path_polarization& pol) {
-  const auto& hm = ts.layout.half_mirror;
-  const bool to_front = glm::dot(pol.frame.k, f.n) > 0;
-  pol.films(hm.films, to_front ? part_face::front : part_face::back, f, true);
-  pol.half_mirror_transmission(hm, f);
-  pol.films(hm.films, to_front ? part_face::back : part_face::front, f, false);
-}
-
 // Scatters the path at a prop (a mirror reflection, or a Lambertian bounce drawn from the path's
 // generator), both sides alike; false when the prop absorbs it.
 template <class Polarization>
@@ -280,7 +261,8 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
   path_state<Polarization> stack[max_half_mirror_splits + 1];
   int pending = 0, splits_left = max_half_mirror_splits;
   stack[pending++] = {first.origin, first.dir, glm::vec3(1.0f), 0};
-  if constexpr (with_polarization) stack[0].pol = path_polarization::at_observer(ts.layout, ts.camera, first.dir);
+  if constexpr (with_polarization)
+    stack[0].pol = path_polarization::at_observer(ts.layout, ts.camera.right, ts.camera.up, first.dir);
   component_radiance radiance{};
 
   while (pending > 0) {
@@ -328,17 +310,17 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
           r.throughput *= float(hm.reflectance);
           ++r.depth;
           ++r.mirror_reflections;
-          if constexpr (with_polarization) reflect_at_half_mirror(ts, f, r.pol, reflected);
+          if constexpr (with_polarization) r.pol.half_mirror_reflected(hm, f, reflected);
           stack[pending++] = r;
           p.throughput *= float(hm.transmittance);
-          if constexpr (with_polarization) pass_half_mirror(ts, f, p.pol);
+          if constexpr (with_polarization) p.pol.half_mirror_passed(hm, f);
         } else {
           if (rng.next_double() * hm_total < hm.reflectance) {
             p.dir = reflected;
             ++p.mirror_reflections;
-            if constexpr (with_polarization) reflect_at_half_mirror(ts, f, p.pol, reflected);
+            if constexpr (with_polarization) p.pol.half_mirror_reflected(hm, f, reflected);
           } else if constexpr (with_polarization) {
-            pass_half_mirror(ts, f, p.pol);
+            p.pol.half_mirror_passed(hm, f);
           }
           p.throughput *= float(hm_total);
         }
@@ -360,16 +342,7 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
       if (!(rs.weight > 0)) break;
       p.dir = glm::normalize(to_world(f, rs.wo));
       if constexpr (with_polarization) {
-        // Out through the sheet's films, off the sheet, and in through them (tracing back).
-        const auto& films = ts.layout.retroreflectors[part - part_first_sheet].films;
-        p.pol.films(films, part_face::front, f, true);
-        if (rs.polarization) {
-          const sheet_light_frames local = light_frames_of(wi, rs.wo);
-          p.pol.through(*rs.polarization, world_frame(f, local.in), world_frame(f, local.out));
-        } else {
-          p.pol.mirror(-p.dir);
-        }
-        p.pol.films(films, part_face::front, f, false);
+        p.pol.sheet(ts.layout.retroreflectors[part - part_first_sheet], f, p.dir, rs.polarization, wi, rs.wo);
       }
       p.origin = hit + rs.shift_mm.x * f.u + rs.shift_mm.y * f.v;
       p.throughput *= glm::vec3(rs.channels) * float(rs.weight);

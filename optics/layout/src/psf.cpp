@@ -7,6 +7,7 @@
 #include "airr/core/error.hpp"
 #include "airr/core/geometry.hpp"
 #include "airr/layout/layout.hpp"
+#include "airr/layout/path_polarization.hpp"
 #include "psf_sample_blocks.hpp"
 
 namespace airr {
@@ -57,6 +58,9 @@ psf_chief_ray chief_ray_through(const scene& s, const glm::dvec3& aerial_point, 
   }
   c.sheet_point = r.sheet_point;
   c.ideal = r.landing;
+  c.camera_dir = d0;
+  c.camera_right = cam.right;
+  c.camera_up = cam.up;
   c.wi = -to_local(c.rr, r.towards_sheet);
   // Along the path: straight on through the half mirror, or folded at it.
   const glm::dvec3 fold = c.by_reflection ? *hit_part(c.hm, cam.position, d0) : aerial_point;
@@ -74,26 +78,47 @@ std::optional<glm::dvec3> psf_landing_offset(const psf_chief_ray& c, const retro
   return *at_source - c.ideal;
 }
 
+// What a sample's polarization along the chief path lets through of the display's white, per unit
+// of its unpolarized weight (docs/polarization.md): the tracer's path for that sample.
+static double chief_path_polarization(const scene& s, const psf_chief_ray& c, const retro_sample& rs) {
+  const half_mirror_params& hm = s.half_mirror;
+  path_polarization pol = path_polarization::at_observer(s, c.camera_right, c.camera_up, c.camera_dir);
+  if (c.by_reflection) {
+    pol.half_mirror_reflected(hm, c.hm, reflect(c.camera_dir, c.hm.n));
+  } else {
+    pol.half_mirror_passed(hm, c.hm);
+  }
+  const glm::dvec3 back = to_world(c.rr, rs.wo);
+  pol.sheet(s.retroreflectors[c.sheet], c.rr, back, rs.polarization, c.wi, rs.wo);
+  if (c.by_reflection) {
+    pol.half_mirror_passed(hm, c.hm);
+  } else {
+    pol.half_mirror_reflected(hm, c.hm, reflect(back, c.hm.n));
+  }
+  return pol.emitted_white(s.source, c.src);
+}
+
 // Samples one sheet through its chief ray into `out` (which keeps what it holds); returns the
-// sheet's brightness.
+// sheet's brightness. `polarized`: the scene, when it polarizes.
 static double add_sheet_samples(const psf_chief_ray& chief, const retro_model& model, const psf_params& p,
-                                double hm_factor, psf_samples& out) {
+                                double hm_factor, psf_samples& out, const scene* polarized) {
   const part_frame& src = chief.src;
   const glm::dvec3 wi = chief.wi;
   // The lobe and shift samples stratify each other across the PSF's samples (a rotated R6
   // sequence, as the tracer's pixels use); the rest comes from the per-sample generator.
-  const std::vector<psf_samples> parts =
-      sample_in_blocks<psf_samples>(p.samples, p.seed, 0, 0x5eedu, p.stratified,
-                                    [&](const std::array<double, 6>&, const retro_samples& u, psf_samples& part) {
-                                      const retro_sample rs = model.sample(wi, u);
-                                      if (!(rs.weight > 0) || !rs.retroreflected) return;
-                                      const auto delta = psf_landing_offset(chief, rs);
-                                      if (!delta) return;
-                                      // The image of a point shows where rays land relative to the ideal point,
-                                      // point-mirrored; source (u, v) map to aerial (x, y).
-                                      part.offset_mm.emplace_back(-glm::dot(*delta, src.u), -glm::dot(*delta, src.v));
-                                      part.weight.push_back(rs.weight * hm_factor);
-                                    });
+  const std::vector<psf_samples> parts = sample_in_blocks<psf_samples>(
+      p.samples, p.seed, 0, 0x5eedu, p.stratified,
+      [&](const std::array<double, 6>&, const retro_samples& u, psf_samples& part) {
+        const retro_sample rs = polarized ? model.sample_polarized(wi, u) : model.sample(wi, u);
+        if (!(rs.weight > 0) || !rs.retroreflected) return;
+        const auto delta = psf_landing_offset(chief, rs);
+        if (!delta) return;
+        // The image of a point shows where rays land relative to the ideal point,
+        // point-mirrored; source (u, v) map to aerial (x, y).
+        part.offset_mm.emplace_back(-glm::dot(*delta, src.u), -glm::dot(*delta, src.v));
+        part.weight.push_back(rs.weight * hm_factor *
+                              (polarized ? chief_path_polarization(*polarized, chief, rs) : 1.0));
+      });
   double sum = 0;
   for (const psf_samples& part : parts) {
     out.offset_mm.insert(out.offset_mm.end(), part.offset_mm.begin(), part.offset_mm.end());
@@ -121,8 +146,8 @@ psf_samples sample_sheet_psf(const scene& s, std::size_t sheet, const retro_mode
   out.incidence_deg = polar_angle_deg(chief.wi);
   out.offset_mm.reserve(p.samples);
   out.weight.reserve(p.samples);
-  const double brightness =
-      add_sheet_samples(chief, model, p, s.half_mirror.reflectance * s.half_mirror.transmittance, out);
+  const double brightness = add_sheet_samples(chief, model, p, s.half_mirror.reflectance * s.half_mirror.transmittance,
+                                              out, scene_polarizes(s) ? &s : nullptr);
   out.sheets.push_back(share_of(chief, brightness));
   return out;
 }
@@ -149,7 +174,8 @@ psf_samples sample_psf(const scene& s, const retro_model_list& models, const psf
       reached = true;
     }
     const double brightness =
-        add_sheet_samples(*chief, *models[i], p, s.half_mirror.reflectance * s.half_mirror.transmittance, out);
+        add_sheet_samples(*chief, *models[i], p, s.half_mirror.reflectance * s.half_mirror.transmittance, out,
+                          scene_polarizes(s) ? &s : nullptr);
     out.sheets.push_back(share_of(*chief, brightness));
   }
   if (!reached) throw input_error(first_error);

@@ -74,6 +74,8 @@ struct psf_chief_ray {
   glm::dvec3 ideal{0};         // where an exact retroreflection lands on the display plane
   glm::dvec3 wi{0, 0, 1};      // its incidence, sheet-local, pointing back towards the camera
   double rr_distance_mm = 0;   // sheet to aerial point, along the path
+  // The observer's ray through the aerial point, and its camera's right and up (polarization).
+  glm::dvec3 camera_dir{0, 0, -1}, camera_right{1, 0, 0}, camera_up{0, 1, 0};
 };
 // Throws input_error naming the sheet ("retroreflectors[i]") when the ray misses a part.
 psf_chief_ray chief_ray_through(const scene& s, const glm::dvec3& aerial_point, std::size_t sheet = 0);

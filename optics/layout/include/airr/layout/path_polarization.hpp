@@ -5,6 +5,7 @@
 // sees (S0, after its polarizer). Each call applies one part as the light meets it, in the order
 // the tracer meets them going back. Private to the tracer.
 #include <array>
+#include <optional>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -15,8 +16,6 @@
 
 namespace airr {
 
-struct pinhole_camera;
-
 // A part's local frame (part_frame axes) in the world.
 inline polarization_frame world_frame(const part_frame& f, const polarization_frame& local) {
   return {to_world(f, local.x), to_world(f, local.y), to_world(f, local.k)};
@@ -26,8 +25,22 @@ struct path_polarization {
   std::array<glm::dvec4, 3> rows;
   polarization_frame frame;
 
-  // At the observer: light arriving against the camera ray `dir`, through its polarizer if any.
-  static path_polarization at_observer(const scene& s, const pinhole_camera& c, const glm::dvec3& dir);
+  // At the observer (its camera's right and up): light arriving against the camera ray `dir`,
+  // through its polarizer if any.
+  static path_polarization at_observer(const scene& s, const glm::dvec3& right, const glm::dvec3& up,
+                                       const glm::dvec3& dir);
+
+  // The half mirror with its films, for a path (traced back) it reflected into `reflected` (the
+  // path's direction back after it), or passed.
+  void half_mirror_reflected(const half_mirror_params& hm, const part_frame& f, const glm::dvec3& reflected);
+  void half_mirror_passed(const half_mirror_params& hm, const part_frame& f);
+  // A sheet with its films, for a path (traced back) it sent back along `back` (world); `sheet`:
+  // the model's Mueller matrix of the light's path between `local` frames (retro_model.hpp), or
+  // none: the sheet keeps the field as a perfect mirror does.
+  void sheet(const retroreflector_params& r, const part_frame& f, const glm::dvec3& back,
+             const std::optional<mueller>& sheet, const glm::dvec3& wi, const glm::dvec3& wo);
+  // The display's light seen by the observer, the mean of the channels (the model PSF's white).
+  double emitted_white(const source_params& display, const part_frame& f) const;
 
   // A part's films on one face crossed by the current segment's light, as the light leaves that
   // face (`leaving`: outermost last) or arrives at it (outermost first).
@@ -40,9 +53,6 @@ struct path_polarization {
   // A mirror (or a sheet, which keeps the field as a perfect mirror facing the light does, default
   // of every sheet model) sending light that came along k_in along the current segment.
   void mirror(const glm::dvec3& k_in);
-  // A part's Mueller matrix from the light's frame `in` (k before it) to `out` (k the current
-  // segment's).
-  void through(const mueller& m, const polarization_frame& in, const polarization_frame& out) { apply(m, in, out); }
   // A diffuse surface: what leaves it is unpolarized.
   void depolarize(const glm::dvec3& k_in);
   // What the observer sees of the display's light per channel (1 for unpolarized light and no

@@ -1,9 +1,10 @@
-#include "path_polarization.hpp"
+#include "airr/layout/path_polarization.hpp"
 
 #include <cmath>
 
 #include "airr/layout/layout.hpp"
 #include "airr/models/diffraction.hpp"
+#include "airr/models/retro_model.hpp"
 
 namespace airr {
 
@@ -24,13 +25,14 @@ glm::dvec3 axis_on(const part_frame& f, double angle_deg) {
 
 }  // namespace
 
-path_polarization path_polarization::at_observer(const scene& s, const pinhole_camera& c, const glm::dvec3& dir) {
+path_polarization path_polarization::at_observer(const scene& s, const glm::dvec3& right, const glm::dvec3& up,
+                                                 const glm::dvec3& dir) {
   path_polarization p;
-  p.frame = polarization_frame::with_x(-dir, c.right);
+  p.frame = polarization_frame::with_x(-dir, right);
   glm::dvec4 row{1, 0, 0, 0};
   if (s.observer.analyzer_deg) {
     const double a = radians(*s.observer.analyzer_deg);
-    const glm::dvec3 axis = std::cos(a) * c.right + std::sin(a) * c.up;
+    const glm::dvec3 axis = std::cos(a) * right + std::sin(a) * up;
     row = row_times(row, linear_polarizer(angle_in(p.frame, axis)));
   }
   p.rows = {row, row, row};
@@ -121,6 +123,40 @@ glm::vec3 path_polarization::emitted(const source_params& display, const part_fr
     light = circular_light(state.state == light_state::circular_positive);
   }
   return {float(glm::dot(p.rows[0], light)), float(glm::dot(p.rows[1], light)), float(glm::dot(p.rows[2], light))};
+}
+
+void path_polarization::half_mirror_reflected(const half_mirror_params& hm, const part_frame& f,
+                                              const glm::dvec3& reflected) {
+  // The light leaves the mirror on the side its current segment lies, and came from that side.
+  const part_face side = glm::dot(frame.k, f.n) > 0 ? part_face::front : part_face::back;
+  films(hm.films, side, f, true);
+  half_mirror_reflection(hm, f, -reflected);
+  films(hm.films, side, f, false);
+}
+
+void path_polarization::half_mirror_passed(const half_mirror_params& hm, const part_frame& f) {
+  const bool to_front = glm::dot(frame.k, f.n) > 0;
+  films(hm.films, to_front ? part_face::front : part_face::back, f, true);
+  half_mirror_transmission(hm, f);
+  films(hm.films, to_front ? part_face::back : part_face::front, f, false);
+}
+
+void path_polarization::sheet(const retroreflector_params& r, const part_frame& f, const glm::dvec3& back,
+                              const std::optional<mueller>& sheet, const glm::dvec3& wi, const glm::dvec3& wo) {
+  // Out through the sheet's films, off the sheet, and in through them (tracing back).
+  films(r.films, part_face::front, f, true);
+  if (sheet) {
+    const sheet_light_frames local = light_frames_of(wi, wo);
+    apply(*sheet, world_frame(f, local.in), world_frame(f, local.out));
+  } else {
+    mirror(-back);
+  }
+  films(r.films, part_face::front, f, false);
+}
+
+double path_polarization::emitted_white(const source_params& display, const part_frame& f) const {
+  const glm::vec3 c = emitted(display, f);
+  return (double(c.x) + double(c.y) + double(c.z)) / 3;
 }
 
 }  // namespace airr
