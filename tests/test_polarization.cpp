@@ -61,6 +61,24 @@ TEST(Polarization, FramesTurnAsTheirAnglesSay) {
   EXPECT_NEAR(glm::dot(glm::cross(f.x, f.y), f.k), 1, 1e-12);
 }
 
+// The parts' closed forms are mueller_of of their Jones matrices.
+TEST(Polarization, ClosedFormsAreTheJonesMatricesMuellerMatrices) {
+  const complex rs(0.3, -0.7), rp(-0.55, 0.2);
+  jones d;
+  d.m = {{{rs, 0.0}, {0.0, rp}}};
+  expect_mueller_near(interface_mueller(rs, rp), mueller_of(d), 1e-14, "interface");
+  for (double deg : {-60.0, 0.0, 20.0, 45.0, 110.0}) {
+    const double a = radians(deg), c = std::cos(a), s = std::sin(a);
+    jones turn, back, retarder, polarizer;
+    turn.m = {{{c, s}, {-s, c}}};
+    back.m = {{{c, -s}, {s, c}}};
+    retarder.m = {{{1.0, 0.0}, {0.0, std::polar(1.0, 1.1)}}};
+    polarizer.m = {{{std::sqrt(0.8), 0.0}, {0.0, std::sqrt(0.05)}}};
+    expect_mueller_near(linear_retarder(a, 1.1), mueller_of(back * retarder * turn), 1e-14, "retarder");
+    expect_mueller_near(linear_polarizer(a, 0.8, 0.05), mueller_of(back * polarizer * turn), 1e-14, "polarizer");
+  }
+}
+
 // Malus's law: unpolarized light through two polarizers at 0 and theta passes cos^2(theta) / 2.
 TEST(Polarization, MalussLawForAPolarizerPair) {
   for (int deg = 0; deg <= 90; deg += 5) {

@@ -40,8 +40,8 @@ path_polarization path_polarization::at_observer(const scene& s, const glm::dvec
 }
 
 void path_polarization::apply(const mueller& m, const polarization_frame& in, const polarization_frame& out) {
-  const mueller to_current = reframe(out, frame) * m;
-  for (glm::dvec4& r : rows) r = row_times(r, to_current);
+  const mueller turn = reframe(out, frame);
+  for (glm::dvec4& r : rows) r = row_times(row_times(r, turn), m);
   frame = in;
 }
 
@@ -57,12 +57,14 @@ void path_polarization::films(const std::vector<film_params>& films, part_face f
   const auto one = [&](const film_params& film) {
     if (film.face != face) return;
     const double axis = angle_in(frame, axis_on(f, film.axis_deg));
+    if (film.kind == film_kind::polarizer) {
+      const mueller m = linear_polarizer(axis, film.pass_transmittance, film.block_transmittance);
+      return apply_here({m, m, m});
+    }
     std::array<mueller, 3> m;
     for (std::size_t c = 0; c < 3; ++c) {
-      m[c] = film.kind == film_kind::polarizer
-                 ? linear_polarizer(axis, film.pass_transmittance, film.block_transmittance)
-                 : linear_retarder(
-                       axis, 2 * pi * film.retardance_waves * path * film.wavelength_nm / display_primaries_nm[c]);
+      m[c] =
+          linear_retarder(axis, 2 * pi * film.retardance_waves * path * film.wavelength_nm / display_primaries_nm[c]);
     }
     apply_here(m);
   };

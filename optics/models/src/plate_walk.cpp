@@ -23,8 +23,10 @@ void polarized_walk::reflect(const glm::dvec3& n, double cos_i, std::complex<dou
   const fresnel_coefficients f = fresnel_amplitudes(cos_i, eta);
   const double r = 0.5 * (std::norm(f.rs) + std::norm(f.rp));
   if (!(r > 0)) return;
-  const polarized_step step = reflect_polarized(frame, n, f.rs, f.rp);
-  m = mueller::scale(1 / r) * step.m * m;
+  // Amplitudes scaled by 1 / sqrt(r): the matrix divided by r.
+  const double to_unit = 1 / std::sqrt(r);
+  const polarized_step step = reflect_polarized(frame, n, f.rs * to_unit, f.rp * to_unit);
+  m = step.m * m;
   frame = step.out;
 }
 

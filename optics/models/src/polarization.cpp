@@ -28,19 +28,31 @@ jones adjoint(const jones& j) {
   return a;
 }
 
-// The Jones matrix that rewrites amplitudes of a frame in one turned by `angle` (see rotator).
-jones frame_turn(double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  jones j;
-  j.m = {{{c, s}, {-s, c}}};
-  return j;
+// m rotator(angle) and rotator(angle) m, without the rotator's zeros (the tracer's hot path).
+mueller times_rotator(mueller m, double angle) {
+  const double c = std::cos(2 * angle), s = std::sin(2 * angle);
+  for (auto& row : m.m) {
+    const double a = row[1], b = row[2];
+    row[1] = a * c - b * s;
+    row[2] = a * s + b * c;
+  }
+  return m;
+}
+mueller rotator_times(double angle, mueller m) {
+  const double c = std::cos(2 * angle), s = std::sin(2 * angle);
+  for (int k = 0; k < 4; ++k) {
+    const double a = m.m[1][k], b = m.m[2][k];
+    m.m[1][k] = c * a + s * b;
+    m.m[2][k] = -s * a + c * b;
+  }
+  return m;
 }
 
-// A part with amplitude factors `along` and `across` its axis at `axis` from x towards y.
+// A part with amplitude factors `along` and `across` its axis at `axis` from x towards y: the
+// Jones matrix turn(-axis) diag(along, across) turn(axis), whose Mueller matrix is the product of
+// theirs (mueller_of, checked against it in tests/test_polarization.cpp).
 mueller axial_part(double axis, complex along, complex across) {
-  jones d;
-  d.m = {{{along, 0.0}, {0.0, across}}};
-  return mueller_of(frame_turn(-axis) * d * frame_turn(axis));
+  return rotator_times(-axis, times_rotator(interface_mueller(along, across), axis));
 }
 
 }  // namespace
@@ -124,9 +136,15 @@ mueller linear_retarder(double axis_rad, double retardance_rad) {
 }
 
 mueller interface_mueller(complex rs, complex rp) {
-  jones d;
-  d.m = {{{rs, 0.0}, {0.0, rp}}};
-  return mueller_of(d);
+  // mueller_of(diag(rs, rp)) written out: the tracer meets it at every interaction.
+  const double s = std::norm(rs), p = std::norm(rp);
+  const complex c = std::conj(rs) * rp;
+  mueller m;
+  m.m[0] = {0.5 * (s + p), 0.5 * (s - p), 0, 0};
+  m.m[1] = {0.5 * (s - p), 0.5 * (s + p), 0, 0};
+  m.m[2] = {0, 0, c.real(), -c.imag()};
+  m.m[3] = {0, 0, c.imag(), c.real()};
+  return m;
 }
 
 polarization_frame polarization_frame::about(const glm::dvec3& k) {
@@ -165,13 +183,14 @@ mueller reversed_path(const mueller& m) {
 polarized_step reflect_polarized(const polarization_frame& in, const glm::dvec3& n, complex rs, complex rp) {
   const polarization_frame sp = polarization_frame::at_surface(in.k, n);
   // s is across the plane of incidence, so the light leaving shares it.
-  return {interface_mueller(rs, rp) * reframe(in, sp), polarization_frame::with_x(reflect(in.k, n), sp.x)};
+  return {times_rotator(interface_mueller(rs, rp), angle_in(in, sp.x)),
+          polarization_frame::with_x(reflect(in.k, n), sp.x)};
 }
 
 polarized_step transmit_polarized(const polarization_frame& in, const glm::dvec3& n, const glm::dvec3& k_out,
                                   complex ts, complex tp, double energy) {
   const polarization_frame sp = polarization_frame::at_surface(in.k, n);
-  return {mueller::scale(energy) * interface_mueller(ts, tp) * reframe(in, sp),
+  return {times_rotator(interface_mueller(std::sqrt(energy) * ts, std::sqrt(energy) * tp), angle_in(in, sp.x)),
           polarization_frame::with_x(k_out, sp.x)};
 }
 
