@@ -104,7 +104,7 @@ TEST(ScenePolarization, BadValuesAreOneLineNamingTheFileAndTheField) {
        "source.films: must be an array of at most 8 films"},
       {[](json& j) { j["half_mirror"]["kind"] = "reflective_polarizer"; }, "half_mirror.polarizer: missing"},
       {[](json& j) { j["half_mirror"]["kind"] = "beam splitter"; },
-       "half_mirror.kind: unknown value 'beam splitter' (half_mirror, reflective_polarizer)"},
+       "half_mirror.kind: unknown value 'beam splitter' (half_mirror, reflective_polarizer, plate)"},
       {[](json& j) {
          j["half_mirror"]["kind"] = "reflective_polarizer";
          j["half_mirror"]["polarizer"] = {{"pass_transmittance", 0.9}};

@@ -4,13 +4,13 @@
 #include <cmath>
 #include <limits>
 #include <map>
-#include <type_traits>
 
 #include "airr/core/error.hpp"
 #include "airr/core/low_discrepancy.hpp"
 #include "airr/core/random.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/path_polarization.hpp"
+#include "tracer_path.hpp"
 
 namespace airr {
 
@@ -113,38 +113,13 @@ static glm::vec3 source_radiance(const tracer_scene& ts, const glm::dvec2& local
   return glm::mix(top, bottom, fy) * intensity;
 }
 
-// Paths split into both half-mirror branches this many times (weights R and T, no noise);
-// after that one branch is chosen at random with weight R + T.
-static constexpr int max_half_mirror_splits = 3;
-
-namespace {
-struct no_polarization {};
-
-// `Polarization`: path_polarization when the scene polarizes, else nothing (the path as it was).
-template <class Polarization>
-struct path_state {
-  glm::dvec3 origin;
-  glm::dvec3 dir;
-  glm::vec3 throughput;
-  int depth;
-  int retroreflections = 0;
-  int mirror_reflections = 0;
-  int prop_scatterings = 0;
-  int sheet_scatterings = 0;  // a sheet sent the light back without retroreflecting it
-  // Each branch split off before any retroreflection takes the sample's first-retroreflection
-  // numbers at its first sheet, as the control variate predicts every sheet with them.
-  bool first_retro_used = false;
-  [[no_unique_address]] Polarization pol;
-};
-
-template <class Polarization>
-image_component component_of(const path_state<Polarization>& p) {
-  if (p.retroreflections > 0) return component_aerial;
-  if (p.prop_scatterings > 0 || p.sheet_scatterings > 0) return component_rest;
-  if (p.mirror_reflections == 0) return component_direct;
-  return p.mirror_reflections == 1 ? component_reflection : component_rest;
-}
-}  // namespace
+using tracer_path::component_of;
+using tracer_path::meet_plate;
+using tracer_path::meet_thin_half_mirror;
+using tracer_path::no_polarization;
+using tracer_path::path_stack;
+using tracer_path::path_state;
+using tracer_path::polarized;
 
 std::array<double, 6> pixel_sequence_rotation(const tracer_scene& ts, int px, int py) {
   pcg32 pixel_rng = sample_rng(std::uint64_t(py) * ts.camera.width + px, 0, ts.layout.seed ^ 0x5eedu);
@@ -223,9 +198,6 @@ static camera_ray first_ray(const tracer_scene& ts, int px, int py, const sample
   return make_camera_ray(ts.camera, px + n.jitter.x, py + n.jitter.y, n.lens);
 }
 
-template <class Polarization>
-inline constexpr bool polarized = std::is_same_v<Polarization, path_polarization>;
-
 // Scatters the path at a prop (a mirror reflection, or a Lambertian bounce drawn from the path's
 // generator), both sides alike; false when the prop absorbs it.
 template <class Polarization>
@@ -256,17 +228,15 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
   constexpr bool with_polarization = polarized<Polarization>;
   pcg32& rng = n.rng;
   const auto& hm = ts.layout.half_mirror;
-  const double hm_total = hm.reflectance + hm.transmittance;
 
-  path_state<Polarization> stack[max_half_mirror_splits + 1];
-  int pending = 0, splits_left = max_half_mirror_splits;
-  stack[pending++] = {first.origin, first.dir, glm::vec3(1.0f), 0};
+  path_stack<Polarization> stack;
+  stack.paths[stack.pending++] = {first.origin, first.dir, glm::vec3(1.0f), 0};
   if constexpr (with_polarization)
-    stack[0].pol = path_polarization::at_observer(ts.layout, ts.camera.right, ts.camera.up, first.dir);
+    stack.paths[0].pol = path_polarization::at_observer(ts.layout, ts.camera.right, ts.camera.up, first.dir);
   component_radiance radiance{};
 
-  while (pending > 0) {
-    path_state<Polarization> p = stack[--pending];
+  while (stack.pending > 0) {
+    path_state<Polarization> p = stack.paths[--stack.pending];
     for (; p.depth < ts.layout.render.max_depth; ++p.depth) {
       RTCRayHit rh;
       if (p.depth == 0 && first_hit) {
@@ -300,30 +270,9 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
         break;  // the display absorbs what it does not emit; its back emits nothing
       }
       if (part == part_half_mirror) {
-        if (hm_total <= 0) break;
-        const glm::dvec3 reflected = reflect(p.dir, f.n);
-        p.origin = hit;
-        if (splits_left > 0) {
-          --splits_left;
-          path_state<Polarization> r = p;
-          r.dir = reflected;
-          r.throughput *= float(hm.reflectance);
-          ++r.depth;
-          ++r.mirror_reflections;
-          if constexpr (with_polarization) r.pol.half_mirror_reflected(hm, f, reflected);
-          stack[pending++] = r;
-          p.throughput *= float(hm.transmittance);
-          if constexpr (with_polarization) p.pol.half_mirror_passed(hm, f);
-        } else {
-          if (rng.next_double() * hm_total < hm.reflectance) {
-            p.dir = reflected;
-            ++p.mirror_reflections;
-            if constexpr (with_polarization) p.pol.half_mirror_reflected(hm, f, reflected);
-          } else if constexpr (with_polarization) {
-            p.pol.half_mirror_passed(hm, f);
-          }
-          p.throughput *= float(hm_total);
-        }
+        const bool goes_on = hm.kind == half_mirror_kind::plate ? meet_plate(hm, f, hit, p, stack, rng)
+                                                                : meet_thin_half_mirror(hm, f, hit, p, stack, rng);
+        if (!goes_on) break;
         continue;
       }
       // Retroreflector: only its front face retroreflects.

@@ -1,6 +1,7 @@
 // Checks of a scene: every value in range, every named file present, the layout sound, the models built.
 #include "airr/formats/scene_json.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <utility>
@@ -76,6 +77,28 @@ struct checker {
       fail(field + ".block_reflectance", "block_transmittance + block_reflectance must not exceed 1");
     }
   }
+  void coating(const std::string& field, const coating_params& c) const {
+    for (const auto& [key, v] : {std::pair{".rs", c.rs}, {".rp", c.rp}, {".ts", c.ts}, {".tp", c.tp}}) {
+      range(field + key, v, 0, 1);
+    }
+    if (c.rs + c.ts > 1 + 1e-12) fail(field + ".ts", "rs + ts must not exceed 1");
+    if (c.rp + c.tp > 1 + 1e-12) fail(field + ".tp", "rp + tp must not exceed 1");
+    range(field + ".phase_deg", c.phase_deg, -360, 360);
+    range(field + ".residual", c.residual, 0, 0.5);
+  }
+  void plate(const std::string& field, const half_mirror_params& hm) const {
+    const plate_params& p = hm.plate;
+    positive(field + ".thickness_mm", p.thickness_mm);
+    // The plate's light leaves through its faces, not its edges.
+    if (p.thickness_mm >= std::min(hm.width_mm, hm.height_mm)) {
+      fail(field + ".thickness_mm", "the plate (" + number_text(p.thickness_mm) +
+                                        " mm) must be thinner than its width (" +
+                                        number_text(std::min(hm.width_mm, hm.height_mm)) + " mm)");
+    }
+    range(field + ".index", p.index, 1, 4);
+    coating(field + ".front", p.front);
+    coating(field + ".back", p.back);
+  }
   void pose(const std::string& field, const airr::pose& p) const {
     position(field + ".center_mm", p.center_mm);
     range(field + ".yaw_deg", p.yaw_deg, -360, 360);
@@ -93,6 +116,7 @@ void validate_scene(const scene& s, const std::string& origin) {
   c.range("source.polarization.angle_deg", s.source.polarization.angle_deg, -360, 360);
   c.part("half_mirror", s.half_mirror);
   c.reflective_polarizer("half_mirror.polarizer", s.half_mirror.polarizer);
+  if (s.half_mirror.kind == half_mirror_kind::plate) c.plate("half_mirror.plate", s.half_mirror);
   c.range("half_mirror.reflectance", s.half_mirror.reflectance, 0, 1);
   c.range("half_mirror.transmittance", s.half_mirror.transmittance, 0, 1);
   if (s.half_mirror.reflectance + s.half_mirror.transmittance > 1 + 1e-12) {

@@ -89,10 +89,12 @@ json scene_to_json(const scene& s, json_form form) {
   json hm = part_to_json(s.half_mirror);
   hm["reflectance"] = s.half_mirror.reflectance;
   hm["transmittance"] = s.half_mirror.transmittance;
-  if (form == json_form::complete || s.half_mirror.kind == half_mirror_kind::reflective_polarizer) {
-    hm["kind"] = s.half_mirror.kind == half_mirror_kind::reflective_polarizer ? "reflective_polarizer" : "half_mirror";
+  if (form == json_form::complete || s.half_mirror.kind != half_mirror_kind::half_mirror) {
+    hm["kind"] = half_mirror_kind_names[int(s.half_mirror.kind)];
     hm["polarizer"] = reflective_polarizer_to_json(s.half_mirror.polarizer);
   }
+  if (form == json_form::complete || s.half_mirror.kind == half_mirror_kind::plate)
+    hm["plate"] = plate_to_json(s.half_mirror.plate);
   json sheets = json::array();
   for (const auto& r : s.retroreflectors) {
     json j = part_to_json(r);
@@ -225,9 +227,11 @@ static scene scene_from_json_v2(json_reader& r) {
     read_part(c, s.half_mirror);
     c.number("reflectance", s.half_mirror.reflectance);
     c.number("transmittance", s.half_mirror.transmittance);
-    read_enum(c, "kind", s.half_mirror.kind, std::array{"half_mirror", "reflective_polarizer"});
+    read_enum(c, "kind", s.half_mirror.kind, half_mirror_kind_names);
     if (s.half_mirror.kind == half_mirror_kind::reflective_polarizer) c.require("polarizer");
+    if (s.half_mirror.kind == half_mirror_kind::plate) c.require("plate");
     if (c.has("polarizer")) read_reflective_polarizer(c.child("polarizer"), s.half_mirror.polarizer);
+    if (c.has("plate")) read_plate(c.child("plate"), s.half_mirror.plate);
     derive_half_mirror_light(s.half_mirror);
     c.finish();
   }

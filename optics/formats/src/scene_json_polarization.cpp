@@ -13,6 +13,28 @@ namespace {
 constexpr std::array light_state_names{"unpolarized", "linear", "circular_positive", "circular_negative"};
 constexpr std::array film_kind_names{"retarder", "polarizer"};
 constexpr std::array part_face_names{"front", "back"};
+constexpr std::array coating_kind_names{"uncoated", "partial_mirror", "anti_reflection"};
+
+json coating_to_json(const coating_params& c) {
+  json j = {{"coating", coating_kind_names[int(c.kind)]}};
+  if (c.kind == coating_kind::partial_mirror) {
+    j.update({{"rs", c.rs}, {"rp", c.rp}, {"ts", c.ts}, {"tp", c.tp}, {"phase_deg", c.phase_deg}});
+  } else if (c.kind == coating_kind::anti_reflection) {
+    j["residual"] = c.residual;
+  }
+  return j;
+}
+
+void read_coating(json_reader r, coating_params& c) {
+  read_enum(r, "coating", c.kind, coating_kind_names);
+  r.number("rs", c.rs);
+  r.number("rp", c.rp);
+  r.number("ts", c.ts);
+  r.number("tp", c.tp);
+  r.number("phase_deg", c.phase_deg);
+  r.number("residual", c.residual);
+  r.finish();
+}
 }  // namespace
 
 json polarization_to_json(const source_polarization& p) {
@@ -77,6 +99,21 @@ void read_reflective_polarizer(json_reader r, reflective_polarizer_params& p) {
   r.number("pass_reflectance", p.pass_reflectance);
   r.number("block_reflectance", p.block_reflectance);
   r.number("block_transmittance", p.block_transmittance);
+  r.finish();
+}
+
+json plate_to_json(const plate_params& p) {
+  return {{"thickness_mm", p.thickness_mm},
+          {"index", p.index},
+          {"front", coating_to_json(p.front)},
+          {"back", coating_to_json(p.back)}};
+}
+
+void read_plate(json_reader r, plate_params& p) {
+  r.number("thickness_mm", p.thickness_mm);
+  r.number("index", p.index);
+  if (r.has("front")) read_coating(r.child("front"), p.front);
+  if (r.has("back")) read_coating(r.child("back"), p.back);
   r.finish();
 }
 

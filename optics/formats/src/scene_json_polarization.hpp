@@ -1,12 +1,13 @@
 #pragma once
 // The scene file's polarization fields (docs/scene-format.md): the display's light, films on a
-// part's faces and the reflective polarizer (private to the formats library).
+// part's faces, the reflective polarizer and the plate (private to the formats library).
+#include <array>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "airr/core/json_reader.hpp"
-#include "airr/layout/polarizing_parts.hpp"
+#include "airr/layout/scene.hpp"
 
 namespace airr {
 
@@ -19,5 +20,9 @@ void read_films(json_reader& part, std::vector<film_params>& films);
 
 nlohmann::json reflective_polarizer_to_json(const reflective_polarizer_params& p);
 void read_reflective_polarizer(json_reader r, reflective_polarizer_params& p);
+
+inline constexpr std::array half_mirror_kind_names{"half_mirror", "reflective_polarizer", "plate"};
+nlohmann::json plate_to_json(const plate_params& p);
+void read_plate(json_reader r, plate_params& p);
 
 }  // namespace airr

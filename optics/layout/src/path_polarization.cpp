@@ -76,24 +76,49 @@ void path_polarization::films(const std::vector<film_params>& films, part_face f
   }
 }
 
+mueller path_polarization::plate_path_mueller(const plate_path& path) {
+  if (!(path.weight > 0)) return mueller::scale(0);
+  const double a = 1 / std::sqrt(path.weight);
+  return interface_mueller(a * path.as, a * path.ap);
+}
+
 void path_polarization::half_mirror_reflection(const half_mirror_params& hm, const part_frame& f,
-                                               const glm::dvec3& k_in) {
+                                               const glm::dvec3& k_in, const mueller* taken) {
+  if (hm.kind == half_mirror_kind::plate) {
+    const polarization_frame in = polarization_frame::at_surface(k_in, f.n);
+    const double cos_n = glm::dot(k_in, f.n);
+    const polarization_frame out = polarization_frame::with_x(reflect(k_in, f.n), in.x);
+    if (taken) return apply(*taken, in, out);
+    const plate_path main = plate_paths_at(hm.plate, std::abs(cos_n), cos_n < 0).reflected[0];
+    const double a = hm.reflectance > 0 ? 1 / std::sqrt(hm.reflectance) : 0;
+    return apply(interface_mueller(a * main.as, a * main.ap), in, out);
+  }
   const polarization_frame in = polarization_frame::about(k_in);
   const polarized_step step = reflect_polarized(in, f.n, -1.0, 1.0);
   if (hm.kind == half_mirror_kind::half_mirror) return apply(step.m, in, step.out);
   const reflective_polarizer_params& p = hm.polarizer;
   const double pass = angle_in(in, axis_on(f, p.axis_deg));
-  const mueller m = mueller::scale(hm.reflectance > 0 ? 1 / hm.reflectance : 0) * step.m *
-                    linear_polarizer(pass, p.pass_reflectance, p.block_reflectance);
-  apply(m, in, step.out);
+  // The branch's scalar weight (the reflectance) divided out of the polarizer's.
+  const double per = hm.reflectance > 0 ? 1 / hm.reflectance : 0;
+  apply(step.m * linear_polarizer(pass, per * p.pass_reflectance, per * p.block_reflectance), in, step.out);
 }
 
-void path_polarization::half_mirror_transmission(const half_mirror_params& hm, const part_frame& f) {
+void path_polarization::half_mirror_transmission(const half_mirror_params& hm, const part_frame& f,
+                                                 const mueller* taken) {
   if (hm.kind == half_mirror_kind::half_mirror) return;
+  if (hm.kind == half_mirror_kind::plate) {
+    const polarization_frame sp = polarization_frame::at_surface(frame.k, f.n);
+    if (taken) return apply(*taken, sp, sp);
+    const double cos_n = glm::dot(frame.k, f.n);
+    mueller all = mueller::scale(0);
+    for (const plate_path& path : plate_paths_at(hm.plate, std::abs(cos_n), cos_n < 0).transmitted)
+      all = all + interface_mueller(path.as, path.ap);
+    return apply(mueller::scale(hm.transmittance > 0 ? 1 / hm.transmittance : 0) * all, sp, sp);
+  }
   const reflective_polarizer_params& p = hm.polarizer;
-  const mueller m =
-      mueller::scale(hm.transmittance > 0 ? 1 / hm.transmittance : 0) *
-      linear_polarizer(angle_in(frame, axis_on(f, p.axis_deg)), p.pass_transmittance, p.block_transmittance);
+  const double per = hm.transmittance > 0 ? 1 / hm.transmittance : 0;
+  const mueller m = linear_polarizer(angle_in(frame, axis_on(f, p.axis_deg)), per * p.pass_transmittance,
+                                     per * p.block_transmittance);
   apply_here({m, m, m});
 }
 
@@ -128,18 +153,18 @@ glm::vec3 path_polarization::emitted(const source_params& display, const part_fr
 }
 
 void path_polarization::half_mirror_reflected(const half_mirror_params& hm, const part_frame& f,
-                                              const glm::dvec3& reflected) {
+                                              const glm::dvec3& reflected, const mueller* taken) {
   // The light leaves the mirror on the side its current segment lies, and came from that side.
   const part_face side = glm::dot(frame.k, f.n) > 0 ? part_face::front : part_face::back;
   films(hm.films, side, f, true);
-  half_mirror_reflection(hm, f, -reflected);
+  half_mirror_reflection(hm, f, -reflected, taken);
   films(hm.films, side, f, false);
 }
 
-void path_polarization::half_mirror_passed(const half_mirror_params& hm, const part_frame& f) {
+void path_polarization::half_mirror_passed(const half_mirror_params& hm, const part_frame& f, const mueller* taken) {
   const bool to_front = glm::dot(frame.k, f.n) > 0;
   films(hm.films, to_front ? part_face::front : part_face::back, f, true);
-  half_mirror_transmission(hm, f);
+  half_mirror_transmission(hm, f, taken);
   films(hm.films, to_front ? part_face::back : part_face::front, f, false);
 }
 

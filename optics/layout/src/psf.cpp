@@ -78,16 +78,23 @@ std::optional<glm::dvec3> psf_landing_offset(const psf_chief_ray& c, const retro
   return *at_source - c.ideal;
 }
 
-// What a sample's polarization along the chief path lets through of the display's white, per unit
-// of its unpolarized weight (docs/polarization.md): the tracer's path for that sample.
-static double chief_path_polarization(const scene& s, const psf_chief_ray& c, const retro_sample& rs) {
-  const half_mirror_params& hm = s.half_mirror;
+// The chief path's polarization from the observer to the sheet, the same for every sample.
+static path_polarization chief_path_to_sheet(const scene& s, const psf_chief_ray& c) {
   path_polarization pol = path_polarization::at_observer(s, c.camera_right, c.camera_up, c.camera_dir);
   if (c.by_reflection) {
-    pol.half_mirror_reflected(hm, c.hm, reflect(c.camera_dir, c.hm.n));
+    pol.half_mirror_reflected(s.half_mirror, c.hm, reflect(c.camera_dir, c.hm.n));
   } else {
-    pol.half_mirror_passed(hm, c.hm);
+    pol.half_mirror_passed(s.half_mirror, c.hm);
   }
+  return pol;
+}
+
+// What a sample's polarization along the chief path lets through of the display's white, per unit
+// of its unpolarized weight (docs/polarization.md): the tracer's path for that sample. `pol`: the
+// path to the sheet (chief_path_to_sheet).
+static double chief_path_polarization(const scene& s, const psf_chief_ray& c, path_polarization pol,
+                                      const retro_sample& rs) {
+  const half_mirror_params& hm = s.half_mirror;
   const glm::dvec3 back = to_world(c.rr, rs.wo);
   pol.sheet(s.retroreflectors[c.sheet], c.rr, back, rs.polarization, c.wi, rs.wo);
   if (c.by_reflection) {
@@ -104,6 +111,8 @@ static double add_sheet_samples(const psf_chief_ray& chief, const retro_model& m
                                 double hm_factor, psf_samples& out, const scene* polarized) {
   const part_frame& src = chief.src;
   const glm::dvec3 wi = chief.wi;
+  const std::optional<path_polarization> to_sheet =
+      polarized ? std::optional(chief_path_to_sheet(*polarized, chief)) : std::nullopt;
   // The lobe and shift samples stratify each other across the PSF's samples (a rotated R6
   // sequence, as the tracer's pixels use); the rest comes from the per-sample generator.
   const std::vector<psf_samples> parts = sample_in_blocks<psf_samples>(
@@ -117,7 +126,7 @@ static double add_sheet_samples(const psf_chief_ray& chief, const retro_model& m
         // point-mirrored; source (u, v) map to aerial (x, y).
         part.offset_mm.emplace_back(-glm::dot(*delta, src.u), -glm::dot(*delta, src.v));
         part.weight.push_back(rs.weight * hm_factor *
-                              (polarized ? chief_path_polarization(*polarized, chief, rs) : 1.0));
+                              (polarized ? chief_path_polarization(*polarized, chief, *to_sheet, rs) : 1.0));
       });
   double sum = 0;
   for (const psf_samples& part : parts) {

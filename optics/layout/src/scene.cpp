@@ -1,5 +1,7 @@
 #include "airr/layout/scene.hpp"
 
+#include <cmath>
+
 #include "airr/core/files.hpp"
 
 namespace airr {
@@ -23,12 +25,19 @@ bool differ_in_placement_alone(const scene& a, const scene& b) {
 }
 
 void derive_half_mirror_light(half_mirror_params& hm) {
+  if (hm.kind == half_mirror_kind::plate) {
+    const plate_paths paths = plate_paths_at(hm.plate, std::sqrt(0.5), false);
+    hm.reflectance = paths.reflected[0].weight;
+    hm.transmittance = paths.transmitted_total;
+    return;
+  }
   if (hm.kind != half_mirror_kind::reflective_polarizer) return;
   const reflective_polarizer_params& p = hm.polarizer;
   hm.reflectance = 0.5 * (p.pass_reflectance + p.block_reflectance);
   hm.transmittance = 0.5 * (p.pass_transmittance + p.block_transmittance);
 }
 
+// A plate reflects s and p light unequally (Fresnel), so it polarizes.
 bool scene_polarizes(const scene& s) {
   if (s.source.polarization.state != light_state::unpolarized) return true;
   if (s.half_mirror.kind != half_mirror_kind::half_mirror || s.observer.analyzer_deg) return true;

@@ -31,9 +31,14 @@ struct path_polarization {
                                        const glm::dvec3& dir);
 
   // The half mirror with its films, for a path (traced back) it reflected into `reflected` (the
-  // path's direction back after it), or passed.
-  void half_mirror_reflected(const half_mirror_params& hm, const part_frame& f, const glm::dvec3& reflected);
-  void half_mirror_passed(const half_mirror_params& hm, const part_frame& f);
+  // path's direction back after it), or passed. A plate's `taken`: the Mueller matrix of the path
+  // the tracer chose (plate_path_mueller); none: its main image's, the reflection at the near face
+  // or every transmitted path, divided by the half mirror's reflectance or transmittance.
+  void half_mirror_reflected(const half_mirror_params& hm, const part_frame& f, const glm::dvec3& reflected,
+                             const mueller* taken = nullptr);
+  void half_mirror_passed(const half_mirror_params& hm, const part_frame& f, const mueller* taken = nullptr);
+  // A plate's path in the s/p frames of the light in and out, divided by its own weight.
+  static mueller plate_path_mueller(const plate_path& path);
   // A sheet with its films, for a path (traced back) it sent back along `back` (world); `sheet`:
   // the model's Mueller matrix of the light's path between `local` frames (retro_model.hpp), or
   // none: the sheet keeps the field as a perfect mirror does.
@@ -48,8 +53,9 @@ struct path_polarization {
   // The half mirror (a plain one or a reflective polarizer), its Mueller matrix divided by the
   // scalar reflectance or transmittance the tracer weighs the branch with. `k_in`: the light's
   // direction before it (reflection), the current segment's after.
-  void half_mirror_reflection(const half_mirror_params& hm, const part_frame& f, const glm::dvec3& k_in);
-  void half_mirror_transmission(const half_mirror_params& hm, const part_frame& f);
+  void half_mirror_reflection(const half_mirror_params& hm, const part_frame& f, const glm::dvec3& k_in,
+                              const mueller* taken);
+  void half_mirror_transmission(const half_mirror_params& hm, const part_frame& f, const mueller* taken);
   // A mirror (or a sheet, which keeps the field as a perfect mirror facing the light does, default
   // of every sheet model) sending light that came along k_in along the current segment.
   void mirror(const glm::dvec3& k_in);

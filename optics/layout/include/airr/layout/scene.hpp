@@ -11,6 +11,7 @@
 
 #include "airr/layout/polarizing_parts.hpp"
 #include "airr/models/model_params.hpp"
+#include "airr/models/plate.hpp"
 
 namespace airr {
 
@@ -69,11 +70,16 @@ struct source_params : part_params {
   bool operator==(const source_params&) const = default;
 };
 
-enum class half_mirror_kind { half_mirror, reflective_polarizer };
+// The half mirror: a thin sheet with fixed reflectance and transmittance, a reflective polarizer,
+// or a glass plate with coated faces whose pose is its mid-plane's.
+enum class half_mirror_kind { half_mirror, reflective_polarizer, plate };
 
 struct half_mirror_params : part_params {
   half_mirror_kind kind = half_mirror_kind::half_mirror;
-  reflective_polarizer_params polarizer;  // kind reflective_polarizer; reflectance and transmittance follow from it
+  // The other kinds' parts; their reflectance and transmittance follow from them
+  // (derive_half_mirror_light).
+  reflective_polarizer_params polarizer;
+  plate_params plate;
   double reflectance = 0.5;
   double transmittance = 0.5;
 
@@ -164,7 +170,9 @@ struct scene {
 };
 
 // A reflective polarizer's reflectance and transmittance for unpolarized light (the means of its
-// pass and block values) set as the half mirror's; a plain half mirror is left as it is.
+// pass and block values), or a plate's main reflection and its transmission for unpolarized light
+// at 45 deg on its back face (the canonical layout's display side), set as the half mirror's
+// scalars (the fast first look's); a plain half mirror is left as it is.
 void derive_half_mirror_light(half_mirror_params& hm);
 
 // True when something in the scene polarizes light or looks at its polarization: the display's

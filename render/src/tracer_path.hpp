@@ -1,0 +1,151 @@
+#pragma once
+// A path's state in the tracer and the half mirror it meets (private to tracer.cpp).
+#include <type_traits>
+
+#include <glm/glm.hpp>
+
+#include "airr/core/geometry.hpp"
+#include "airr/core/random.hpp"
+#include "airr/layout/path_polarization.hpp"
+#include "airr/render/tracer.hpp"
+
+namespace airr {
+
+// Paths split into both half-mirror branches this many times (weights R and T, no noise);
+// after that one branch is chosen at random with weight R + T.
+inline constexpr int max_half_mirror_splits = 3;
+
+namespace tracer_path {
+
+struct no_polarization {};
+
+// `Polarization`: path_polarization when the scene polarizes, else nothing (the path as it was).
+template <class Polarization>
+struct path_state {
+  glm::dvec3 origin;
+  glm::dvec3 dir;
+  glm::vec3 throughput;
+  int depth;
+  int retroreflections = 0;
+  int mirror_reflections = 0;
+  int prop_scatterings = 0;
+  int sheet_scatterings = 0;  // a sheet sent the light back without retroreflecting it
+  // Each branch split off before any retroreflection takes the sample's first-retroreflection
+  // numbers at its first sheet, as the control variate predicts every sheet with them.
+  bool first_retro_used = false;
+  [[no_unique_address]] Polarization pol;
+};
+
+template <class Polarization>
+inline constexpr bool polarized = std::is_same_v<Polarization, path_polarization>;
+
+template <class Polarization>
+image_component component_of(const path_state<Polarization>& p) {
+  if (p.retroreflections > 0) return component_aerial;
+  if (p.prop_scatterings > 0 || p.sheet_scatterings > 0) return component_rest;
+  if (p.mirror_reflections == 0) return component_direct;
+  return p.mirror_reflections == 1 ? component_reflection : component_rest;
+}
+
+// The paths split off and still to trace.
+template <class Polarization>
+struct path_stack {
+  path_state<Polarization> paths[max_half_mirror_splits + 1];
+  int pending = 0, splits_left = max_half_mirror_splits;
+};
+
+// The thin half mirror (a plain one or a reflective polarizer) met at `hit`: `p` goes on through
+// it, its reflection split off onto the stack while splits are left; after that one branch is
+// chosen. False when nothing goes on.
+template <class Polarization>
+bool meet_thin_half_mirror(const half_mirror_params& hm, const part_frame& f, const glm::dvec3& hit,
+                           path_state<Polarization>& p, path_stack<Polarization>& stack, pcg32& rng) {
+  constexpr bool with_polarization = polarized<Polarization>;
+  const double hm_total = hm.reflectance + hm.transmittance;
+  if (hm_total <= 0) return false;
+  const glm::dvec3 reflected = reflect(p.dir, f.n);
+  p.origin = hit;
+  if (stack.splits_left > 0) {
+    --stack.splits_left;
+    path_state<Polarization> r = p;
+    r.dir = reflected;
+    r.throughput *= float(hm.reflectance);
+    ++r.depth;
+    ++r.mirror_reflections;
+    if constexpr (with_polarization) r.pol.half_mirror_reflected(hm, f, reflected);
+    stack.paths[stack.pending++] = r;
+    p.throughput *= float(hm.transmittance);
+    if constexpr (with_polarization) p.pol.half_mirror_passed(hm, f);
+  } else {
+    if (rng.next_double() * hm_total < hm.reflectance) {
+      p.dir = reflected;
+      ++p.mirror_reflections;
+      if constexpr (with_polarization) p.pol.half_mirror_reflected(hm, f, reflected);
+    } else if constexpr (with_polarization) {
+      p.pol.half_mirror_passed(hm, f);
+    }
+    p.throughput *= float(hm_total);
+  }
+  return true;
+}
+
+// The plate met at `hit` on its mid-plane: as the thin half mirror, the reflected and the
+// transmitted families split or chosen by their totals, and within a family one path chosen by
+// its share (so its Mueller matrix is divided by its own weight, the family's scalar weight
+// applied); the light leaves the plate's face where that path leaves it.
+template <class Polarization>
+bool meet_plate(const half_mirror_params& hm, const part_frame& f, const glm::dvec3& hit, path_state<Polarization>& p,
+                path_stack<Polarization>& stack, pcg32& rng) {
+  const double cos_n = glm::dot(p.dir, f.n);
+  const double cos_i = std::abs(cos_n);
+  if (cos_i < 1e-9) return false;  // along the plate: it meets an edge
+  const plate_paths paths = plate_paths_at(hm.plate, cos_i, cos_n < 0);
+  const double t = hm.plate.thickness_mm;
+  // Where the light enters the near face, and the way along the faces it advances inside.
+  const glm::dvec3 entry = hit - p.dir * (0.5 * t / cos_i);
+  const glm::dvec3 tangent = p.dir - cos_n * f.n;
+  const double tangent_length = glm::length(tangent);
+  const glm::dvec3 along = tangent_length > 1e-12 ? tangent / tangent_length : glm::dvec3(0);
+  const glm::dvec3 across = (cos_n < 0 ? -t : t) * f.n;  // near face to far face
+
+  const auto take = [&](path_state<Polarization>& q, bool reflected, double weight) {
+    const auto& family = reflected ? paths.reflected : paths.transmitted;
+    const double total = reflected ? paths.reflected_total : paths.transmitted_total;
+    double u = rng.next_double() * total;
+    std::size_t k = 0;
+    while (k + 1 < family.size() && u >= family[k].weight) u -= family[k++].weight;
+    q.origin = entry + family[k].advance * t * along + (reflected ? glm::dvec3(0) : across);
+    if (reflected) {
+      q.dir = reflect(q.dir, f.n);
+      ++q.mirror_reflections;
+    }
+    q.throughput *= float(weight);
+    if constexpr (polarized<Polarization>) {
+      const mueller m = path_polarization::plate_path_mueller(family[k]);
+      if (reflected) {
+        q.pol.half_mirror_reflected(hm, f, q.dir, &m);
+      } else {
+        q.pol.half_mirror_passed(hm, f, &m);
+      }
+    }
+  };
+  const double all = paths.reflected_total + paths.transmitted_total;
+  if (!(all > 0)) return false;
+  if (stack.splits_left > 0) {
+    --stack.splits_left;
+    path_state<Polarization> r = p;
+    ++r.depth;
+    if (paths.reflected_total > 0) {
+      take(r, true, paths.reflected_total);
+      stack.paths[stack.pending++] = r;
+    }
+    if (!(paths.transmitted_total > 0)) return false;
+    take(p, false, paths.transmitted_total);
+  } else {
+    take(p, rng.next_double() * all < paths.reflected_total, all);
+  }
+  return true;
+}
+
+}  // namespace tracer_path
+}  // namespace airr
