@@ -1,5 +1,5 @@
 // airr render SCENE -o OUT.exr|OUT.png [--spp N] [--seed S] [--components | --component NAME]
-//             [--set key=value ...] [--shard i/N]
+//             [--stokes] [--set key=value ...] [--shard i/N]
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -9,6 +9,7 @@
 #include "airr/core/error.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
+#include "airr/measure/stokes_render.hpp"
 #include "airr/render/memory_need.hpp"
 #include "airr/render/render_metadata.hpp"
 #include "airr/render/render_session.hpp"
@@ -27,6 +28,7 @@ void add_render_command(CLI::App& app) {
     double exposure = 0;
     int threads = 0;
     bool components = false;
+    bool stokes = false;
     std::string component;
     std::string shard;
   };
@@ -47,6 +49,10 @@ void add_render_command(CLI::App& app) {
                   "Write one component instead of the whole image: aerial, direct, reflection or rest")
       ->check(CLI::IsMember({"aerial", "direct", "reflection", "rest"}))
       ->excludes(layers);
+  cmd->add_flag("--stokes", opt->stokes,
+                "EXR: also write the Stokes parameters of the light reaching the observer (before its polarizer) as "
+                "layers S0, S1, S2, S3 and their degree of polarization, dop")
+      ->excludes(layers);
   cmd->add_option("--shard", opt->shard,
                   "Render rows of shard i of N (0 <= i < N) alone into an EXR for airr merge (e.g. a Slurm array "
                   "task's share)");
@@ -60,6 +66,11 @@ void add_render_command(CLI::App& app) {
       throw airr::input_error(opt->out + ": --components needs an EXR output (layers); use --component for a PNG");
     }
     const mpi_job& job = this_job();
+    if (opt->stokes) {
+      if (!opt->out.ends_with(".exr")) throw airr::input_error(opt->out + ": --stokes needs an EXR output (layers)");
+      if (!opt->component.empty() || !opt->shard.empty() || job.size > 1)
+        throw airr::input_error("--stokes: renders the whole image in one process, without --component or --shard");
+    }
     std::optional<airr::shard_index> shard;  // this process's rows go to a shard file
     airr::session_params params{.threads = opt->threads, .target_spp = opt->spp, .components = split};
     if (!opt->shard.empty()) {
@@ -123,6 +134,16 @@ void add_render_command(CLI::App& app) {
                    opt->shard.c_str(), first, end - 1, snap.width, snap.height,
                    static_cast<unsigned long long>(snap.spp));
       return;
+    }
+    airr::stokes_images stokes;
+    if (opt->stokes) {
+      progress_bar stokes_bar("stokes");
+      stokes = airr::render_stokes(s, opt->spp, opt->threads, [&](int i, std::uint64_t spp) {
+        stokes_bar.update((i + double(spp) / double(opt->spp)) / 4, "S" + std::to_string(i));
+      });
+      stokes_bar.finish();
+      for (int i = 0; i < 4; ++i) layers.push_back({"S" + std::to_string(i), &stokes.s[std::size_t(i)]});
+      layers.push_back({"dop", &stokes.degree});
     }
     airr::write_image(opt->out, image, meta, exposure, layers);
     std::fprintf(stderr, "wrote %s (%dx%d, %llu spp, %.6g mm/pixel)\n", opt->out.c_str(), snap.width, snap.height,

@@ -59,6 +59,7 @@ std::vector<float> render_snapshot::even_rgb() const {
 }
 
 render_session::render_session(const scene& s, session_params p) : params_(p), target_spp_(p.target_spp) {
+  scene_.stokes = p.stokes;
   build_tracer_scene(scene_, device_, s);
   update_model_image(scene_, params_.build_cancel, params_.quick_model_image);
   snapshot_.width = scene_.camera.width;

@@ -61,7 +61,8 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   ts.retro = std::move(models);
   ts.layout = s;
   derive_half_mirror_light(ts.layout.half_mirror);
-  ts.polarized = scene_polarizes(s) || ts.force_polarized;
+  ts.polarized = scene_polarizes(s) || ts.force_polarized || ts.stokes >= 0;
+  if (ts.stokes >= 0) ts.use_model_image = false;  // it predicts what the eye sees, not S1 to S3
   ts.frames = {source_panel_frame(s), half_mirror_frame(s)};
   for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) ts.frames.push_back(retroreflector_frame(s, i));
   ts.props = std::move(props);
@@ -232,7 +233,7 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
   path_stack<Polarization> stack;
   stack.paths[stack.pending++] = {first.origin, first.dir, glm::vec3(1.0f), 0};
   if constexpr (with_polarization)
-    stack.paths[0].pol = path_polarization::at_observer(ts.layout, ts.camera.right, ts.camera.up, first.dir);
+    stack.paths[0].pol = path_polarization::at_observer(ts.layout, ts.camera.right, ts.camera.up, first.dir, ts.stokes);
   component_radiance radiance{};
 
   while (stack.pending > 0) {

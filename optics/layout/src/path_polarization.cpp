@@ -26,11 +26,14 @@ glm::dvec3 axis_on(const part_frame& f, double angle_deg) {
 }  // namespace
 
 path_polarization path_polarization::at_observer(const scene& s, const glm::dvec3& right, const glm::dvec3& up,
-                                                 const glm::dvec3& dir) {
+                                                 const glm::dvec3& dir, int stokes) {
   path_polarization p;
   p.frame = polarization_frame::with_x(-dir, right);
   glm::dvec4 row{1, 0, 0, 0};
-  if (s.observer.analyzer_deg) {
+  if (stokes >= 0) {
+    row = glm::dvec4(0);
+    row[stokes] = 1;
+  } else if (s.observer.analyzer_deg) {
     const double a = radians(*s.observer.analyzer_deg);
     const glm::dvec3 axis = std::cos(a) * right + std::sin(a) * up;
     row = row_times(row, linear_polarizer(angle_in(p.frame, axis)));

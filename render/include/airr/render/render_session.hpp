@@ -51,6 +51,8 @@ struct session_params {
   // stops early and the session starts without it: a caller waiting on the constructor can give
   // up (and stop the session) at once.
   const std::atomic<bool>* build_cancel = nullptr;
+  // What the pixels hold: -1 the image, 0 to 3 a Stokes parameter (tracer_scene::stokes).
+  int stokes = -1;
 };
 
 // An immutable picture of the accumulation after a whole wave.

@@ -46,6 +46,10 @@ struct tracer_scene {
   // forced (a test of the polarized tracer on scenes that do not).
   bool polarized = false;
   bool force_polarized = false;
+  // -1: what the observer sees (through its polarizer if any). 0 to 3: the Stokes parameter S_i of
+  // the light reaching the observer, before its polarizer, in the image's frame (x its right, y
+  // its up); traced with polarization and without the control variate.
+  int stokes = -1;
 };
 
 // Builds (or, given the previous state, updates in place: meshes and textures are reused when

@@ -26,9 +26,10 @@ struct path_polarization {
   polarization_frame frame;
 
   // At the observer (its camera's right and up): light arriving against the camera ray `dir`,
-  // through its polarizer if any.
+  // through its polarizer if any; or with `stokes` 0 to 3, the Stokes parameter S_stokes of the
+  // light arriving, before the polarizer, in the frame of the image's right and up.
   static path_polarization at_observer(const scene& s, const glm::dvec3& right, const glm::dvec3& up,
-                                       const glm::dvec3& dir);
+                                       const glm::dvec3& dir, int stokes = -1);
 
   // The half mirror with its films, for a path (traced back) it reflected into `reflected` (the
   // path's direction back after it), or passed. A plate's `taken`: the Mueller matrix of the path
