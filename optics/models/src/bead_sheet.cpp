@@ -10,6 +10,7 @@
 #include "airr/core/geometry.hpp"
 #include "airr/models/dielectric.hpp"
 #include "airr/models/diffraction.hpp"
+#include "polarized_walk.hpp"
 
 namespace airr {
 
@@ -77,9 +78,17 @@ glm::dvec2 bead_cell_point(const bead_sheet_geometry& g, const glm::dvec2& u) {
   return u.x * glm::dvec2(s, 0) + u.y * glm::dvec2(s / 2, s * std::sqrt(3.0) / 2);
 }
 
-bead_path trace_bead_sheet(const bead_sheet_geometry& g, const glm::dvec3& wi, const glm::dvec2& entry, pcg32& rng) {
+bead_path trace_bead_sheet(const bead_sheet_geometry& g, const glm::dvec3& wi, const glm::dvec2& entry, pcg32& rng,
+                           std::optional<mueller>* polarized) {
   bead_path out;
   if (!(wi.z > 0)) return out;
+  std::optional<polarized_walk> light;
+  if (polarized) light = polarized_walk::arriving(wi);
+  // A mirror backing's reflection, its phases the metal coat's (a diffuse one depolarizes once the
+  // light's new direction is drawn).
+  const auto off_backing = [&](const glm::dvec3& n, double cos_i, std::complex<double> eta) {
+    if (light && !g.diffuse_backing) light->reflect(n, cos_i, eta);
+  };
   const double r = g.diameter_mm / 2;
   glm::dvec3 p(entry, 0.0), d = -wi;
   std::optional<glm::dvec3> bead;  // the centre of the bead the light is in
@@ -93,17 +102,23 @@ bead_path trace_bead_sheet(const bead_sheet_geometry& g, const glm::dvec3& wi, c
       const double t = -b + std::sqrt(std::max(0.0, b * b - (glm::dot(o, o) - r * r)));
       p += t * d;
       const glm::dvec3 n = (p - *bead) / r;  // outward
+      const double cos_out = glm::dot(d, n);
       if (p.z < bead->z) {
         ++out.backing_reflections;
         weight *= g.backing_reflectance;
+        off_backing(n, cos_out, metal_coat_index / g.index);
         d = g.diffuse_backing ? diffuse_about(-n, rng) : reflect(d, n);
+        if (light && g.diffuse_backing) light->depolarize(d);
         continue;
       }
-      if (rng.next_double() < fresnel_dielectric(glm::dot(d, n), 1 / g.index)) {
+      if (rng.next_double() < fresnel_dielectric(cos_out, 1 / g.index)) {
+        if (light) light->reflect(n, cos_out, 1 / g.index);
         d = reflect(d, n);
         continue;
       }
-      d = glm::normalize(*refract(d, -n, g.index));
+      const glm::dvec3 leaving = glm::normalize(*refract(d, -n, g.index));
+      if (light) light->refract(n, cos_out, 1 / g.index, leaving);
+      d = leaving;
       bead.reset();
       continue;
     }
@@ -116,11 +131,15 @@ bead_path trace_bead_sheet(const bead_sheet_geometry& g, const glm::dvec3& wi, c
     if (hit) {
       p += hit->t * d;
       const glm::dvec3 n = (p - hit->centre) / r;
-      if (rng.next_double() < fresnel_dielectric(-glm::dot(d, n), g.index)) {
+      const double cos_in = -glm::dot(d, n);
+      if (rng.next_double() < fresnel_dielectric(cos_in, g.index)) {
+        if (light) light->reflect(n, cos_in, g.index);
         d = reflect(d, n);
         continue;
       }
-      d = glm::normalize(*refract(d, n, 1 / g.index));
+      const glm::dvec3 entering = glm::normalize(*refract(d, n, 1 / g.index));
+      if (light) light->refract(n, cos_in, g.index, entering);
+      d = entering;
       bead = hit->centre;
       ++entries;
       continue;
@@ -130,7 +149,9 @@ bead_path trace_bead_sheet(const bead_sheet_geometry& g, const glm::dvec3& wi, c
       ++binder;
       ++out.backing_reflections;
       weight *= g.backing_reflectance;
+      off_backing({0, 0, 1}, -d.z, metal_coat_index);
       d = g.diffuse_backing ? diffuse_about({0, 0, 1}, rng) : glm::dvec3(d.x, d.y, -d.z);
+      if (light && g.diffuse_backing) light->depolarize(d);
       continue;
     }
     out.wo = d;
@@ -152,6 +173,7 @@ bead_path trace_bead_sheet(const bead_sheet_geometry& g, const glm::dvec3& wi, c
         }
       }
     }
+    if (light) *polarized = light->leaving(out.wo);
     return out;
   }
   out.lost = true;
@@ -171,6 +193,14 @@ bead_sheet_retro::bead_sheet_retro(const bead_sheet_geometry& g) : g_(g) {
 retro_sample bead_sheet_retro::sample(const glm::dvec3& wi, retro_samples u) const {
   const bead_path path = trace_bead_sheet(g_, wi, bead_cell_point(g_, u.lobe), u.more);
   return {path.wo, path.shift_mm, path.weight, path.through_bead, path.channels};
+}
+
+retro_sample bead_sheet_retro::sample_polarized(const glm::dvec3& wi, retro_samples u) const {
+  std::optional<mueller> m;
+  const bead_path path = trace_bead_sheet(g_, wi, bead_cell_point(g_, u.lobe), u.more, &m);
+  // The walk went the sample's way, from the observer's side: the light goes the other.
+  if (m) m = reversed_path(*m);
+  return {path.wo, path.shift_mm, path.weight, path.through_bead, path.channels, m};
 }
 
 const retro_model_kind& bead_sheet_retro_kind() {

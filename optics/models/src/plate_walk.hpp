@@ -14,6 +14,7 @@
 #include "airr/models/diffraction.hpp"
 #include "airr/models/polarization.hpp"
 #include "airr/models/prism_sheet.hpp"
+#include "polarized_walk.hpp"
 
 namespace airr {
 
@@ -47,23 +48,6 @@ struct plate_walk_record {
   std::vector<stretch_end> faces;
   int crossings = 0;  // of the back surface, out into the air under it or back in
 };
-
-// A walk's polarization (docs/polarization.md): the Mueller matrix so far, from the light arriving
-// to the light now in `frame` (its k the walk's direction). Each event's matrix is divided by the
-// probability (or the metal coat's reflectance) the walk weighs it with, so that it changes the
-// polarization, not the light the walk counts.
-struct polarized_walk {
-  mueller m = mueller::identity();
-  polarization_frame frame;
-  static polarized_walk arriving(const glm::dvec3& wi);  // in polarization_frame::about(-wi)
-  mueller leaving(const glm::dvec3& wo) const;           // the matrix into about(wo)
-  void reflect(const glm::dvec3& n, double cos_i, std::complex<double> eta);
-  void refract(const glm::dvec3& n, double cos_i, std::complex<double> eta, const glm::dvec3& k_out);
-};
-
-// The phase and s/p balance of the metal coat (aluminium at 550 nm, n = 0.96 + 6.69i); how much it
-// reflects is the sheet's face_reflectance.
-inline constexpr std::complex<double> metal_coat_index{0.96, 6.69};
 
 // Light arriving against wi (sheet-local, wi.z > 0) at `entry` (mm) on the front surface; the
 // front surface's first choice takes u_front, every later Fresnel choice draws from rng. With

@@ -8,6 +8,8 @@
 //
 // Sheet-local frame: the beads' tops touch z = 0 (the sheet plane) with the light arriving from
 // z > 0; their centres and the backing lie at z = -diameter / 2.
+#include <optional>
+
 #include <glm/glm.hpp>
 
 #include "airr/core/random.hpp"
@@ -41,8 +43,11 @@ struct bead_path {
 };
 
 // Light arriving against wi (sheet-local, wi.z > 0) at `entry` (mm) on the sheet plane; every
-// choice draws from rng.
-bead_path trace_bead_sheet(const bead_sheet_geometry& g, const glm::dvec3& wi, const glm::dvec2& entry, pcg32& rng);
+// choice draws from rng. With `polarized`, it also gets the walk's Mueller matrix, from the frame
+// about -wi to the frame about wo, divided by the path's weight (the beads' Fresnel refractions
+// and reflections, the mirror backing's metal phases, a diffuse backing's depolarization).
+bead_path trace_bead_sheet(const bead_sheet_geometry& g, const glm::dvec3& wi, const glm::dvec2& entry, pcg32& rng,
+                           std::optional<mueller>* polarized = nullptr);
 
 // A point of the sheet plane, uniform over one cell of the array as u runs over [0, 1)^2.
 glm::dvec2 bead_cell_point(const bead_sheet_geometry& g, const glm::dvec2& u);
@@ -53,6 +58,7 @@ class bead_sheet_retro final : public retro_model {
  public:
   explicit bead_sheet_retro(const bead_sheet_geometry& g);  // throws input_error out of range
   retro_sample sample(const glm::dvec3& wi, retro_samples u) const override;
+  retro_sample sample_polarized(const glm::dvec3& wi, retro_samples u) const override;
 
  private:
   bead_sheet_geometry g_;
