@@ -118,8 +118,9 @@ TEST(Plate, ItRoundTripsThroughTheSceneFileAndSet) {
   EXPECT_TRUE(scene_polarizes(s));
   // The main reflection of unpolarized light at 45 deg on the back face, and all that passes.
   EXPECT_NEAR(s.half_mirror.reflectance, 0.5, 1e-12);
-  // Straight through, and once round inside (the coat's 0.005, the mirror's 0.55 and 0.45).
-  EXPECT_NEAR(s.half_mirror.transmittance, 0.5 * 0.995 * (0.4 * (1 + 0.005 * 0.55) + 0.5 * (1 + 0.005 * 0.45)), 1e-6);
+  // Straight through, and once round inside (the coat's 0.005, the mirror's 0.55 and 0.45); the
+  // second round trip adds 3e-6.
+  EXPECT_NEAR(s.half_mirror.transmittance, 0.5 * 0.995 * (0.4 * (1 + 0.005 * 0.55) + 0.5 * (1 + 0.005 * 0.45)), 1e-5);
   save_scene(s, dir.file("plate.json"));
   scene back = load_scene(dir.file("plate.json"));
   back.base_dir = s.base_dir;
