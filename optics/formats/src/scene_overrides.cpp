@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "airr/core/error.hpp"
+#include "airr/formats/sheet_json.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/models/retro_model.hpp"
 
@@ -113,12 +114,36 @@ void apply_overrides(json& j, const std::vector<scene_override>& overrides) {
 
 // ---------------------------------------------------------------- files
 
+// retroreflectors.N.sheet=NAME: the sheet's model becomes the named sheet's.
+static void use_named_sheet(scene& s, const scene_override& o) {
+  const std::string index = o.key.substr(16, o.key.size() - 16 - std::string(named_sheet_suffix).size());
+  std::size_t i = 0, used = 0;
+  try {
+    i = std::stoul(index, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (index.empty() || used != index.size() || i >= s.retroreflectors.size()) {
+    throw input_error("--set " + o.key + ": no sheet '" + index + "' (" + std::to_string(s.retroreflectors.size()) +
+                      " present, numbered from 0)");
+  }
+  const json v = override_value(o.value);
+  if (!v.is_string()) throw input_error("--set " + o.key + ": must name a sheet");
+  try {
+    use_sheet_model(s.retroreflectors[i], load_named_sheet(v.get<std::string>()), s.base_dir);
+  } catch (const input_error& e) {
+    throw input_error("--set " + o.key + ": " + e.what());
+  }
+}
+
 scene with_overrides(scene s, const std::vector<scene_override>& overrides, const std::string& origin) {
   // The floating distance is derived from the display's pose; setting it moves the display.
   std::vector<scene_override> fields;
   std::optional<std::string> distance;
   for (const auto& o : overrides) {
-    if (o.key == floating_distance_key) {
+    if (o.key.starts_with("retroreflectors.") && o.key.ends_with(named_sheet_suffix)) {
+      use_named_sheet(s, o);
+    } else if (o.key == floating_distance_key) {
       distance = o.value;
     } else if (o.key == tilt_key) {
       fields.push_back({"retroreflectors.0.pose.pitch_deg", o.value});

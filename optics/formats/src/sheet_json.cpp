@@ -1,9 +1,11 @@
 #include "airr/formats/sheet_json.hpp"
 
+#include <algorithm>
 #include <filesystem>
 
 #include <nlohmann/json.hpp>
 
+#include "airr/core/assets.hpp"
 #include "airr/core/error.hpp"
 #include "airr/core/files.hpp"
 #include "airr/core/json_reader.hpp"
@@ -50,6 +52,32 @@ void save_sheet(const sheet_description& sheet, const std::string& path) {
                             {"note", sheet.note},
                             {"model", model_values_to_json(model, find_retro_model_kind(model.type).fields)}};
   write_file_atomic(path, j.dump(2) + "\n");
+}
+
+std::vector<std::string> shipped_sheet_names() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(asset_dir() + "/sheets", ec)) {
+    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+sheet_description load_named_sheet(const std::string& name_or_path) {
+  if (name_or_path.ends_with(".json")) return load_sheet(name_or_path);
+  const std::vector<std::string> names = shipped_sheet_names();
+  if (std::find(names.begin(), names.end(), name_or_path) == names.end()) {
+    std::string list;
+    for (const std::string& n : names) list += (list.empty() ? "" : ", ") + n;
+    throw input_error("no shipped sheet '" + name_or_path + "' (" + list + "; or a sheet file's path, *.json)");
+  }
+  return load_sheet(asset_dir() + "/sheets/" + name_or_path + ".json");
+}
+
+void use_sheet_model(retroreflector_params& sheet, const sheet_description& named, const std::string& scene_dir) {
+  sheet.model = named.model;
+  rebase_model_paths(sheet.model, named.base_dir, scene_dir);
 }
 
 }  // namespace airr

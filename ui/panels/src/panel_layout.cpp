@@ -7,6 +7,7 @@
 #include <imgui_stdlib.h>
 
 #include "airr/core/assets.hpp"
+#include "airr/formats/sheet_json.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/models/retro_model.hpp"
 #include "airr/ui/panels/panels.hpp"
@@ -185,6 +186,26 @@ void model_section(studio& st, retroreflector_params& sheet, double theta_deg, c
       if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", k->help.c_str());
     }
     ImGui::EndCombo();
+  }
+  // The explicit sheets that stand for real ones, their geometry at once (not the generic defaults).
+  if (ImGui::BeginCombo("named sheet", "choose...")) {
+    for (const std::string& name : shipped_sheet_names()) {
+      if (!ImGui::Selectable(name.c_str(), false)) continue;
+      try {
+        const sheet_description named = load_named_sheet(name);
+        use_sheet_model(sheet, named, st.doc.base_dir);
+        st.status = part + ": the model of " + named.name;
+      } catch (const std::exception& e) {
+        st.status = e.what();
+      }
+    }
+    ImGui::EndCombo();
+  }
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(
+        "the model of a shipped sheet (assets/sheets): RF-Ay-like and RF-AN-like prism sheets, a bead "
+        "sheet, a tile sheet; --set %s.sheet=NAME",
+        part.c_str());
   }
   const retro_model_kind& kind = find_retro_model_kind(m.type);
   const retro_model_params before = m;  // the rows read the values as they were this frame

@@ -21,8 +21,13 @@ inline constexpr const char* floating_distance_key = "floating_distance_mm";
 // Short for the first sheet's pitch, retroreflectors.0.pose.pitch_deg: the tilt.
 inline constexpr const char* tilt_key = "tilt_deg";
 
+// A sheet's model set from a named sheet: retroreflectors.N.sheet=NAME (a shipped sheet of
+// assets/sheets, e.g. prism-rf-ay-like) or =PATH.json; applied before the other overrides.
+inline constexpr const char* named_sheet_suffix = ".sheet";
+
 // A command-line override "dotted.key=value", e.g. "retroreflectors.0.pose.pitch_deg=20"
-// (array elements by index), "floating_distance_mm=200" or "tilt_deg=20".
+// (array elements by index), "floating_distance_mm=200", "tilt_deg=20" or
+// "retroreflectors.0.sheet=prism-rf-ay-like".
 struct scene_override {
   std::string key;
   std::string value;

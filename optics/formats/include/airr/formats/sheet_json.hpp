@@ -4,7 +4,9 @@
 // The model object is a scene's retroreflector model (its fields, its files relative to the
 // sheet file). Loading is strict; saving is atomic.
 #include <string>
+#include <vector>
 
+#include "airr/layout/scene.hpp"
 #include "airr/models/model_params.hpp"
 
 namespace airr {
@@ -19,5 +21,13 @@ struct sheet_description {
 // Throws input_error "<path>: <field>: <problem>"; the model is checked by building it.
 sheet_description load_sheet(const std::string& path);
 void save_sheet(const sheet_description& sheet, const std::string& path);
+
+// The shipped sheets (assets/sheets), by name (the file's stem), sorted.
+std::vector<std::string> shipped_sheet_names();
+// A sheet by its shipped name, or a path to a sheet file (it ends in .json); an unknown name is
+// an input_error listing the shipped ones.
+sheet_description load_named_sheet(const std::string& name_or_path);
+// The scene's sheet given the named sheet's model, its files made relative to the scene's directory.
+void use_sheet_model(retroreflector_params& sheet, const sheet_description& named, const std::string& scene_dir);
 
 }  // namespace airr
