@@ -11,64 +11,12 @@
 #include "airr/layout/layout.hpp"
 #include "airr/models/retro_model.hpp"
 #include "airr/ui/panels/panels.hpp"
+#include "layout_rows.hpp"
+#include "polarization_rows.hpp"
 
 namespace airr::ui {
 
 namespace {
-
-// A row the designer picked, by its --set key, from the row's context menu: a variable of the
-// Optimise window or a tolerance of the Tolerance window.
-struct design_pick {
-  std::string key;
-  bool tolerance = false;
-};
-std::optional<design_pick> picked;
-
-// One row: slider over [lo, hi], a typed field (may go beyond the slider), label with unit. With
-// its --set key, the label's context menu offers the row to the Optimise and Tolerance windows.
-bool edit_number(const char* label, double& v, double lo, double hi, const char* unit, const char* fmt = "%.2f",
-                 const char* help = nullptr, const std::string& key = {}) {
-  ImGui::PushID(label);
-  const float w = ImGui::GetContentRegionAvail().x;
-  bool changed = false;
-  ImGui::SetNextItemWidth(0.36f * w);
-  double clamped = std::clamp(v, lo, hi);
-  if (ImGui::SliderScalar("##slider", ImGuiDataType_Double, &clamped, &lo, &hi, fmt)) {
-    v = clamped;
-    changed = true;
-  }
-  ImGui::SameLine();
-  ImGui::SetNextItemWidth(0.20f * w);
-  double typed = v;
-  if (ImGui::InputDouble("##typed", &typed, 0, 0, fmt, ImGuiInputTextFlags_EnterReturnsTrue) && std::isfinite(typed)) {
-    v = typed;
-    changed = true;
-  }
-  ImGui::SameLine();
-  if (unit && *unit) {
-    ImGui::Text("%s (%s)", label, unit);
-  } else {
-    ImGui::TextUnformatted(label);
-  }
-  if (ImGui::IsItemHovered() && (help || !key.empty())) {
-    const std::string menu = key.empty() ? "" : "right-click: optimise over " + key + " or add it as a tolerance";
-    ImGui::SetTooltip("%s%s%s", help ? help : "", help && !menu.empty() ? "\n" : "", menu.c_str());
-  }
-  if (!key.empty() && ImGui::BeginPopupContextItem("##design")) {
-    if (ImGui::MenuItem("Optimise over this value")) picked = design_pick{key, false};
-    if (ImGui::MenuItem("Add as an assembly tolerance")) picked = design_pick{key, true};
-    ImGui::EndPopup();
-  }
-  ImGui::PopID();
-  return changed;
-}
-
-bool edit_int(const char* label, int& v, int lo, int hi, const char* unit) {
-  double d = v;
-  if (!edit_number(label, d, lo, hi, unit, "%.0f")) return false;
-  v = int(std::lround(d));
-  return true;
-}
 
 // The pose rows of a part: centre and the three angles.
 // `part`: the part's --set key, e.g. "half_mirror".
@@ -355,16 +303,22 @@ void draw_layout_panel(studio& st) {
       ImGui::SetTooltip("CSV angle_deg,relative_luminance; empty: Lambertian (assets/displays/lcd_typical.csv)");
     }
     edit_pose(s.source.pose, 500, "source");
+    display_light_rows(s.source.polarization);
+    if (ImGui::TreeNode("films on the display")) {
+      film_rows(s.source.films, "source");
+      ImGui::TreePop();
+    }
     ImGui::PopID();
   }
   if (ImGui::CollapsingHeader("Half mirror")) {
     ImGui::PushID("mirror");
-    edit_number("reflectance R", s.half_mirror.reflectance, 0, 1, "fraction", "%.3f", nullptr,
-                "half_mirror.reflectance");
-    edit_number("transmittance T", s.half_mirror.transmittance, 0, 1, "fraction", "%.3f", nullptr,
-                "half_mirror.transmittance");
+    half_mirror_rows(s.half_mirror);
     edit_part_size(s.half_mirror, 1000, "half_mirror");
     edit_pose(s.half_mirror.pose, 500, "half_mirror");
+    if (ImGui::TreeNode("films on the half mirror")) {
+      film_rows(s.half_mirror.films, "half_mirror");
+      ImGui::TreePop();
+    }
     ImGui::PopID();
   }
   if (ImGui::CollapsingHeader("Retroreflectors", ImGuiTreeNodeFlags_DefaultOpen)) {
@@ -380,6 +334,10 @@ void draw_layout_panel(studio& st) {
         model_section(st, r, theta, part);
         edit_part_size(r, 1000, part);
         edit_pose(r.pose, 500, part);
+        if (ImGui::TreeNodeEx("films on the sheet", r.films.empty() ? 0 : ImGuiTreeNodeFlags_DefaultOpen)) {
+          film_rows(r.films, part);
+          ImGui::TreePop();
+        }
         if (s.retroreflectors.size() > 1 && ImGui::Button("remove this sheet")) remove = i;
         ImGui::TreePop();
       }
@@ -415,15 +373,13 @@ void draw_layout_panel(studio& st) {
   if (ImGui::CollapsingHeader("Observer")) {
     ImGui::PushID("observer");
     observer_section(s);
+    analyzer_row(s.observer);
     double seed = double(s.seed);
     if (edit_number("seed", seed, 0, 1000, "", "%.0f")) s.seed = std::uint64_t(std::max(0.0, seed));
     ImGui::PopID();
   }
   ImGui::End();
-  if (picked) {
-    add_design_pick(st, picked->key, picked->tolerance);
-    picked.reset();
-  }
+  if (const std::optional<design_pick> pick = take_design_pick()) add_design_pick(st, pick->key, pick->tolerance);
 }
 
 }  // namespace airr::ui
