@@ -37,6 +37,32 @@ glm::vec4 prop_colour(const prop_params& p, const triangle_mesh& mesh) {
   return {c, 0.3f};
 }
 
+// A part's films: each a tinted sheet lifted off its face (violet a retarder, amber a polarizer),
+// hatched along its axis.
+void add_films(const part_frame& f, const std::vector<film_params>& films, std::vector<gl_draw_item>& items) {
+  int on_face[2] = {0, 0};
+  for (const film_params& film : films) {
+    const int face = int(film.face);
+    const double lift = (face == 0 ? 1.0 : -1.0) * (1.0 + on_face[face]++);
+    const glm::vec3 tint =
+        film.kind == film_kind::retarder ? glm::vec3(0.7f, 0.45f, 1.0f) : glm::vec3(1.0f, 0.7f, 0.2f);
+    gl_draw_item sheet;
+    sheet.triangles = rectangle(f, lift);
+    sheet.colour = {tint, 0.3f};
+    items.push_back(std::move(sheet));
+    const double a = radians(film.axis_deg), half = 0.45 * std::min(f.width, f.height);
+    const glm::dvec3 along = std::cos(a) * f.u + std::sin(a) * f.v, across = -std::sin(a) * f.u + std::cos(a) * f.v;
+    gl_draw_item hatch;
+    hatch.colour = {tint, 1.0f};
+    for (double o = -0.8; o <= 0.81; o += 0.4) {
+      const glm::dvec3 c = f.center + lift * f.n + o * half * across;
+      const double reach = half * std::sqrt(std::max(0.0, 1 - o * o));
+      hatch.lines.insert(hatch.lines.end(), {glm::vec3(c - reach * along), glm::vec3(c + reach * along)});
+    }
+    items.push_back(std::move(hatch));
+  }
+}
+
 // Everything the view draws, in world millimetres; `meshes` are the props' (null: not loaded).
 std::vector<gl_draw_item> layout_items(const scene& s,
                                        const std::vector<std::shared_ptr<const triangle_mesh>>& meshes) {
@@ -58,7 +84,18 @@ std::vector<gl_draw_item> layout_items(const scene& s,
   solid(rectangle(area, 0.2), {0.95f, 0.95f, 0.95f, 1});
   for (std::size_t i = 0; i < s.retroreflectors.size(); ++i)
     solid(rectangle(retroreflector_frame(s, i)), {0.47f, 0.85f, 0.55f, 1});
-  solid(rectangle(hm), {0.55f, 0.78f, 1.0f, 0.35f});
+  if (s.half_mirror.kind == half_mirror_kind::plate) {
+    // Its two faces, about its mid-plane.
+    const double t = 0.5 * s.half_mirror.plate.thickness_mm;
+    solid(rectangle(hm, t), {0.55f, 0.78f, 1.0f, 0.3f});
+    solid(rectangle(hm, -t), {0.55f, 0.78f, 1.0f, 0.3f});
+  } else {
+    solid(rectangle(hm), {0.55f, 0.78f, 1.0f, 0.35f});
+  }
+  add_films(area, s.source.films, items);
+  add_films(hm, s.half_mirror.films, items);
+  for (std::size_t i = 0; i < s.retroreflectors.size(); ++i)
+    add_films(retroreflector_frame(s, i), s.retroreflectors[i].films, items);
   const part_frame aerial = aerial_image_frame(s);
   solid(rectangle(aerial), {1.0f, 0.47f, 0.78f, 0.55f});
   for (std::size_t i = 0; i < s.props.size() && i < meshes.size(); ++i) {
