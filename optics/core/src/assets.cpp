@@ -56,4 +56,14 @@ bool is_shipped_asset(const std::string& path) {
   return !ec && is_within(file, assets);
 }
 
+std::vector<std::string> shipped_json_names(const std::string& folder) {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(asset_dir() + "/" + folder, ec)) {
+    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
 }  // namespace airr

@@ -54,15 +54,7 @@ void save_sheet(const sheet_description& sheet, const std::string& path) {
   write_file_atomic(path, j.dump(2) + "\n");
 }
 
-std::vector<std::string> shipped_sheet_names() {
-  std::vector<std::string> names;
-  std::error_code ec;
-  for (const auto& e : std::filesystem::directory_iterator(asset_dir() + "/sheets", ec)) {
-    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
+std::vector<std::string> shipped_sheet_names() { return shipped_json_names("sheets"); }
 
 sheet_description load_named_sheet(const std::string& name_or_path) {
   if (name_or_path.ends_with(".json")) return load_sheet(name_or_path);

@@ -39,15 +39,7 @@ void edit_part_size(part_params& p, double max_mm, const std::string& part) {
   edit_number("height", p.height_mm, 1, max_mm, "mm", "%.1f", nullptr, part + ".height_mm");
 }
 
-std::vector<std::string> shipped_presets() {
-  std::vector<std::string> names;
-  std::error_code ec;
-  for (const auto& e : std::filesystem::directory_iterator(asset_dir() + "/presets", ec)) {
-    if (e.path().extension() == ".json") names.push_back(e.path().stem().string());
-  }
-  std::sort(names.begin(), names.end());
-  return names;
-}
+std::vector<std::string> shipped_presets() { return shipped_json_names("presets"); }
 
 // One model field as a row, driven by its description.
 void edit_model_field(const model_field& f, retro_model_params& m, const model_values& v, const retro_model_kind& kind,

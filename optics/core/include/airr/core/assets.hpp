@@ -1,6 +1,7 @@
 #pragma once
 // Where the shipped assets (scenes, presets, charts, models) are found.
 #include <string>
+#include <vector>
 
 namespace airr {
 
@@ -15,6 +16,9 @@ void set_asset_dir(const std::string& dir);
 std::string default_scene_path();
 // The same layout with the ideal retroreflector (mu = 1): a sharp image, for exact comparisons.
 std::string ideal_bench_scene_path();
+// The names (file stems) of the shipped JSON files in one of the assets' folders ("presets",
+// "sheets"), sorted; none when the folder is missing.
+std::vector<std::string> shipped_json_names(const std::string& folder);
 // Whether `path` is one of the shipped assets (the designer never saves over those).
 bool is_shipped_asset(const std::string& path);
 
