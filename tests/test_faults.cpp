@@ -104,6 +104,7 @@ std::vector<fs::path> leftovers(const fs::path& dir, const std::vector<std::stri
 }
 
 struct kill_counts {
+  int rounds = 0;
   int complete = 0;   // the file is exactly one of the two versions
   int torn = 0;       // anything else
   int mid_write = 0;  // the kill left a temporary file: it landed inside a save
@@ -111,8 +112,10 @@ struct kill_counts {
 
 // A child process saves the two versions into one file, alternately and without end; it is
 // killed after a random delay (up to three saves' time), and what the file holds is classified.
+// At least `min_rounds` rounds, and more until `mid_writes` kills have landed inside a save (a
+// loaded machine starts the child late, so fewer land there), up to `max_rounds`.
 kill_counts kill_during_saves(const test::temp_dir& dir, const std::string& name, const save_function& save,
-                              int rounds) {
+                              int min_rounds, int mid_writes, int max_rounds) {
   const std::string target = dir.file(name), first = dir.file("first." + name), second = dir.file("second." + name);
   save(0, first);
   save(1, second);
@@ -125,7 +128,7 @@ kill_counts kill_during_saves(const test::temp_dir& dir, const std::string& name
   std::mt19937 rng(20261124);
   std::uniform_real_distribution<double> delay_us(0.0, 3.0 * save_us + 200.0);
   kill_counts counts;
-  for (int round = 0; round < rounds; ++round) {
+  for (; counts.rounds < max_rounds && (counts.rounds < min_rounds || counts.mid_write < mid_writes); ++counts.rounds) {
     save(0, target);
     const pid_t child = fork();
     if (child == 0) {
@@ -148,13 +151,14 @@ kill_counts kill_during_saves(const test::temp_dir& dir, const std::string& name
 
 void expect_never_torn(const std::string& name, const save_function& save) {
   test::temp_dir dir;
-  const int rounds = 100;
-  const kill_counts c = kill_during_saves(dir, name, save, rounds);
+  const int mid_writes = 5;
+  const kill_counts c = kill_during_saves(dir, name, save, 100, mid_writes, 2000);
   EXPECT_EQ(c.torn, 0) << name;
-  EXPECT_EQ(c.complete, rounds) << name;
+  EXPECT_EQ(c.complete, c.rounds) << name;
   // The kills did land inside saves (else this would test nothing).
-  EXPECT_GE(c.mid_write, rounds / 20) << name << ": only " << c.mid_write << " kills landed inside a save";
-  std::printf("%s: %d kills, %d inside a save, %d torn\n", name.c_str(), rounds, c.mid_write, c.torn);
+  EXPECT_GE(c.mid_write, mid_writes) << name << ": only " << c.mid_write << " of " << c.rounds
+                                     << " kills landed inside a save";
+  std::printf("%s: %d kills, %d inside a save, %d torn\n", name.c_str(), c.rounds, c.mid_write, c.torn);
 }
 
 // Runs `body` in a child process; what it returns, and how the child ended.
