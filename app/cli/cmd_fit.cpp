@@ -106,7 +106,8 @@ void run_synthesise(const options& opt) {
       {.model = model,
        .base_dir = "",
        .name = "synthetic " + truth.name,
-       .note = "synthesised by `airr fit --synthesise` from preset " + opt.preset},
+       .note = "synthesised by `airr fit --synthesise` from preset " + opt.preset,
+       .shift_table = truth.shift_table},
       p,
       [&](const airr::analysis::fit_progress& f) {
         if (bar) bar->update(f.fraction, f.stage);

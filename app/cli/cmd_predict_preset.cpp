@@ -50,7 +50,8 @@ void run(const options& opt) {
 
   std::printf("preset predicted for %s (%s) from the bench's measurements in %s\n", sheet.name.c_str(),
               sheet.model.type.c_str(), data.c_str());
-  std::printf("c = %.5f mm, R = %g mm\n", r.preset.c_mm, r.preset.reference_distance_mm);
+  std::printf("c = %.5f mm, R = %g mm, shift table: %s\n", r.preset.c_mm, r.preset.reference_distance_mm,
+              r.preset.shift_table.empty() ? "the shipped corner cube's" : "the sheet's own, beside the preset");
   std::printf("%8s %10s %9s %13s %13s %11s %11s\n", "tilt_deg", "a_per_mm", "mu", "mean_mtf_expl", "mean_mtf_pred",
               "bright_expl", "bright_pred");
   for (std::size_t i = 0; i < agreement.size(); ++i) {
@@ -87,6 +88,10 @@ void add_predict_preset_command(CLI::App& app) {
   cmd->add_option("--fit-samples", opt->p.fit.psf_samples, "PSF samples per simulation of the fit (default 200000)")
       ->check(CLI::Range(std::uint64_t(100), std::uint64_t(100000000)));
   cmd->add_option("--seed", opt->p.synthesis.seed, "Random seed of the measurements (default 7)");
+  cmd->add_flag(
+      "--shipped-shift-table", [opt](std::int64_t) { opt->p.sheet_shifts = false; },
+      "Read the shipped corner cube's shift table (inside a prism sheet's plate) instead of tracing the "
+      "sheet's own");
   cmd->add_option("--lsf-window-mm", opt->p.synthesis.lsf_window_mm,
                   "Half-width of the bench's LSF window in mm: its region of interest (default 5; 0: none)")
       ->check(CLI::Range(0.0, 1000.0));

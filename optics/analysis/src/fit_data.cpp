@@ -17,6 +17,7 @@
 #include "airr/core/json_reader.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
+#include "airr/models/shift_table.hpp"
 
 namespace airr::analysis {
 
@@ -246,6 +247,7 @@ std::vector<std::string> fit_data::files() const {
   for (const auto& m : tilt_series) out.push_back(m.file);
   for (const auto& m : distance_series) out.push_back(m.file);
   for (const auto& w : white_squares) out.push_back(w.file);
+  if (!shift_table.empty()) out.push_back(shift_table);
   std::sort(out.begin() + 2, out.end());
   out.erase(std::unique(out.begin() + 2, out.end()), out.end());
   return out;
@@ -311,6 +313,10 @@ fit_data load_fit_data(const std::string& dir_text) {
   if (d.mu && (*d.mu < 0 || *d.mu > 1)) r.fail(r.field("mu"), "must be in [0, 1]");
   if (d.mu && !d.white_squares.empty())
     r.fail(r.field("mu"), "give white_squares (mu is fitted) or mu (mu is fixed), not both");
+  if (r.has("shift_table")) {
+    d.shift_table = resolve_file(r, d.dir, "shift_table");
+    cached_shift_table(d.shift_table);  // read now: a bad table is named before the fit starts
+  }
   r.finish();
 
   auto by_tilt = [](const auto& a, const auto& b) { return a.tilt_deg < b.tilt_deg; };

@@ -134,6 +134,10 @@ void synthesise_fit_data(const std::string& dir_name, const scene& bench, const 
               {"tilt_series", json::array()},
               {"distance_series", json::array()},
               {"white_squares", json::array()}};
+  if (!truth.shift_table.empty()) {
+    copy_file_atomic(truth.shift_table, (dir / "shift_table.json").string());
+    fit["shift_table"] = "shift_table.json";
+  }
   for (std::size_t i = 0; i < ms.size(); ++i) {
     const double* item = values.data() + i * width;
     const int t = int(ms[i].tilt), d = int(ms[i].d);

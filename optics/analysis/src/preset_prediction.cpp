@@ -1,6 +1,8 @@
 #include "airr/analysis/preset_prediction.hpp"
 
+#include <cmath>
 #include <filesystem>
+#include <optional>
 
 #include "airr/analysis/fit_data.hpp"
 #include "airr/analysis/fit_simulation.hpp"
@@ -14,8 +16,9 @@ namespace airr::analysis {
 
 namespace {
 
-// The share of the whole prediction the synthesis takes (it simulates the explicit sheet).
-constexpr double synthesis_share = 0.3;
+// The shares of the whole prediction the sheet's shift table and the synthesis take (both simulate
+// the explicit sheet); the fit takes the rest.
+constexpr double table_share = 0.1, synthesis_share = 0.3;
 
 fit_progress_callback scaled(const fit_progress_callback& progress, double from, double to) {
   if (!progress) return {};
@@ -41,23 +44,51 @@ double shift_index_of(const sheet_description& sheet) {
   return plate ? read_model_values(sheet.model).number("index") : 1.0;
 }
 
+// The traced Mueller matrices at the preset's tilts; none when the sheet does not change the light's
+// polarization (a model that does not follow it).
+std::vector<mueller> polarization_at(const traced_sheet& traced, const std::vector<double>& tilts) {
+  bool changes = false;
+  for (const mueller& m : traced.polarization)
+    for (int i = 0; i < 4; ++i)
+      for (int k = 0; k < 4; ++k) changes |= std::abs(m.m[i][k] - (i == k ? 1.0 : 0.0)) > 1e-9;
+  std::vector<mueller> out;
+  if (!changes) return out;
+  for (double t : tilts) out.push_back(interpolate_by_angle(traced.shifts.theta_deg, traced.polarization, t));
+  return out;
+}
+
 }  // namespace
 
 fit_result predict_preset(const sheet_description& sheet, const scene& bench, const std::string& data_dir,
                           const prediction_params& p, const fit_progress_callback& progress, const item_share& share) {
+  // The sheet's shift table (when it names a cube edge) and Mueller matrix, from the same samples.
+  const std::optional<double> unit = sheet_shift_unit_mm(sheet.model, sheet.base_dir);
+  if (progress && !progress({.stage = "the sheet's shift table and polarization", .fraction = 0}))
+    throw fit_cancelled();
+  const traced_sheet traced =
+      trace_sheet_shift_table(sheet.model, sheet.base_dir, bench, unit.value_or(1.0), p.shifts, share);
+  std::string table;
+  if (p.sheet_shifts && unit) {
+    std::filesystem::create_directories(data_dir);
+    table = (std::filesystem::path(data_dir) / "shift_table.json").string();
+    save_shift_table(traced.shifts, table);
+  }
   synthesise_fit_data(data_dir, bench,
                       {.model = sheet.model,
                        .base_dir = sheet.base_dir,
                        .name = sheet.name,
-                       .note = "the sheet " + sheet.name + " (" + sheet.model.type + ") on the simulated bench"},
-                      p.synthesis, scaled(progress, 0, synthesis_share), share);
+                       .note = "the sheet " + sheet.name + " (" + sheet.model.type + ") on the simulated bench",
+                       .shift_table = table},
+                      p.synthesis, scaled(progress, table_share, synthesis_share), share);
   fit_params fit = p.fit;
-  fit.shift_index = shift_index_of(sheet);
+  // The sheet's own table is tabulated at the angle outside; the shipped one is read inside the plate.
+  fit.shift_index = table.empty() ? shift_index_of(sheet) : 1.0;
   // The sinc-shift lobe takes the shape of a shift-dominated sheet's curve, not of a diffraction
   // cut-off (docs/models.md): a predicted preset matches the mean MTF, the designer's figure.
   fit.a_by_mean_mtf = true;
   fit_result r = fit_sheet(load_fit_data(data_dir), fit, scaled(progress, synthesis_share, 1), share);
   r.preset.name = sheet.name;
+  r.preset.polarization = polarization_at(traced, r.preset.theta_deg);
   r.preset.provenance["source"] = "airr predict-preset";
   r.preset.provenance["sheet"] = {
       {"name", sheet.name},
@@ -83,7 +114,7 @@ std::vector<prediction_agreement> compare_prediction(const sheet_description& sh
     const psf_samples a = sample_psf(truth, make_sheet_models(truth), pp);
     const scene model =
         fit_scene(setup, t, 150, interpolate_by_angle(preset.theta_deg, preset.a_per_mm, t), preset.c_mm,
-                  interpolate_by_angle(preset.theta_deg, preset.mu, t), preset.shift_index);
+                  interpolate_by_angle(preset.theta_deg, preset.mu, t), preset.shift_index, preset.shift_table);
     const psf_samples b = sample_psf(model, make_sheet_models(model), pp);
     o[0] = bench_mean_mtf(a, p.lsf_window_mm);
     o[1] = bench_mean_mtf(b, p.lsf_window_mm);

@@ -223,7 +223,7 @@ class sheet_fitter {
 
   // One simulation, uncounted (safe to call from several items at once).
   psf_samples sample(double tilt, double distance, double a, double c) const {
-    const scene s = fit_scene(d_.setup, tilt, distance, a, c, 1.0, p_.shift_index);
+    const scene s = fit_scene(d_.setup, tilt, distance, a, c, 1.0, p_.shift_index, d_.shift_table);
     return sample_psf(s, make_sheet_models(s), {.samples = p_.psf_samples, .seed = p_.seed});
   }
 
@@ -243,7 +243,7 @@ class sheet_fitter {
 }  // namespace
 
 scene fit_scene(const scene& setup, double tilt_deg, double floating_distance_mm, double a_per_mm, double c_mm,
-                double mu, double shift_index) {
+                double mu, double shift_index, const std::string& shift_table) {
   scene s = measurement_layout(setup, tilt_deg, floating_distance_mm);
   const double r_mm = reference_distance(setup);
   for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) {
@@ -258,6 +258,7 @@ scene fit_scene(const scene& setup, double tilt_deg, double floating_distance_mm
     set_model_value(m, "c_mm", c_mm);
     set_model_value(m, "mu", mu);
     if (shift_index != 1.0) set_model_value(m, "shift_index", shift_index);
+    if (!shift_table.empty()) set_model_value(m, "shift_table", shift_table);
   }
   return s;
 }
@@ -322,7 +323,7 @@ fit_result fit_sheet(const fit_data& d, const fit_params& p, const fit_progress_
   const std::vector<double> mu_fits = fitter.items(d.white_squares.size(), 3, [&](std::size_t i, double* out) {
     const auto& w = d.white_squares[i];
     const double a = a_at(w.tilt_deg);
-    const scene s = fit_scene(d.setup, w.tilt_deg, w.floating_distance_mm, a, c, 1.0, p.shift_index);
+    const scene s = fit_scene(d.setup, w.tilt_deg, w.floating_distance_mm, a, c, 1.0, p.shift_index, d.shift_table);
     const psf_samples ps = fitter.sample(w.tilt_deg, w.floating_distance_mm, a, c);
     const cv::Mat unit = white_square_image(s, ps, w.width_mm, w.height_mm);
     const double sim_sim = unit.dot(unit), real_sim = w.luminance.dot(unit);
@@ -359,6 +360,7 @@ fit_result fit_sheet(const fit_data& d, const fit_params& p, const fit_progress_
   preset.reference_distance_mm = reference_distance(d.setup);
   preset.c_mm = c;
   preset.shift_index = p.shift_index;
+  preset.shift_table = d.shift_table;
   for (const auto& a : report.a) {
     preset.theta_deg.push_back(a.tilt_deg);
     preset.a_per_mm.push_back(a.a_per_mm);

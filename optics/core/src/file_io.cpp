@@ -101,6 +101,11 @@ std::string xdg_app_dir(const char* variable, const char* fallback) {
   return dir.string();
 }
 
+void copy_file_atomic(const std::string& from, const std::string& to) {
+  if (absolute_path(from) == absolute_path(to)) return;
+  write_file_atomic(to, read_text_file(from));
+}
+
 static std::string too_deep_message(const std::string& origin) {
   return origin + ": malformed JSON: nested deeper than " + std::to_string(max_json_depth) + " levels";
 }

@@ -1,6 +1,7 @@
 #include "airr/models/preset.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "airr/core/assets.hpp"
@@ -31,6 +32,39 @@ static std::vector<double> read_values(json_reader& r, const std::string& key) {
   return r.number_array(key);
 }
 
+// One Mueller matrix (4 rows of 4 numbers) relative to the model's weight: m00 is the share of the
+// weight unpolarized light keeps (about 1), and no entry is larger in size than m00.
+static mueller read_mueller(json_reader& r, const json& v, const std::string& key) {
+  mueller m;
+  if (!v.is_array() || v.size() != 4) r.fail(key, "must be a Mueller matrix: 4 rows of 4 numbers");
+  for (std::size_t i = 0; i < 4; ++i) {
+    if (!v[i].is_array() || v[i].size() != 4) r.fail(key, "must be a Mueller matrix: 4 rows of 4 numbers");
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (!v[i][k].is_number() || !std::isfinite(v[i][k].get<double>())) r.fail(key, "must hold finite numbers");
+      m.m[i][k] = v[i][k].get<double>();
+    }
+  }
+  if (!(m.m[0][0] > 0) || m.m[0][0] > 2) r.fail(key, "m00 must be in (0, 2]");
+  for (std::size_t i = 0; i < 4; ++i)
+    for (std::size_t k = 0; k < 4; ++k)
+      if (std::abs(m.m[i][k]) > m.m[0][0] * (1 + 1e-9)) r.fail(key, "no entry of a Mueller matrix exceeds m00 in size");
+  return m;
+}
+
+// One matrix, or one per tilt.
+static std::vector<mueller> read_polarization(json_reader& r, std::size_t tilts) {
+  const json& v = r.raw("polarization");
+  if (v.is_array() && !v.empty() && v[0].is_array() && !v[0].empty() && v[0][0].is_array()) {
+    if (v.size() != tilts)
+      r.fail("polarization", "needs one Mueller matrix or one per tilt_deg entry (" + std::to_string(tilts) + ")");
+    std::vector<mueller> out;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      out.push_back(read_mueller(r, v[i], "polarization[" + std::to_string(i) + "]"));
+    return out;
+  }
+  return {read_mueller(r, v, "polarization")};
+}
+
 sheet_preset preset_from_json(const json& j, const std::string& origin) {
   json_reader r(j, origin, "");
   sheet_preset p;
@@ -50,6 +84,13 @@ sheet_preset preset_from_json(const json& j, const std::string& origin) {
   p.c_mm = r.number("c_mm");
   r.number("reference_distance_mm", p.reference_distance_mm);
   r.number("shift_index", p.shift_index);
+  if (r.has("polarization")) p.polarization = read_polarization(r, p.theta_deg.size());
+  r.string("shift_table", p.shift_table);
+  if (!p.shift_table.empty()) {
+    p.shift_table = resolve_path(p.shift_table, std::filesystem::path(origin).parent_path().string());
+    if (!std::filesystem::is_regular_file(p.shift_table))
+      r.fail("shift_table", "no such file '" + p.shift_table + "' (a predicted preset's table lies beside it)");
+  }
   if (r.has("provenance")) p.provenance = r.raw("provenance");
   r.finish();
 
@@ -96,16 +137,36 @@ json preset_to_json(const sheet_preset& p) {
             {"reference_distance_mm", p.reference_distance_mm}};
   if (!p.theta_deg.empty()) j["tilt_deg"] = p.theta_deg;
   if (p.shift_index != 1.0) j["shift_index"] = p.shift_index;
+  if (!p.shift_table.empty()) j["shift_table"] = p.shift_table;
+  if (!p.polarization.empty()) {
+    json all = json::array();
+    for (const mueller& m : p.polarization) all.push_back(m.m);
+    j["polarization"] = p.polarization.size() == 1 ? all[0] : all;
+  }
   if (!p.provenance.is_null()) j["provenance"] = p.provenance;
   return j;
 }
 
 void save_preset(const sheet_preset& p, const std::string& path) {
-  write_file_atomic(path, preset_to_json(p).dump(2) + "\n");
+  sheet_preset written = p;
+  if (!p.shift_table.empty()) {
+    // The table goes beside the preset (a copy, unless it is there already), so the two travel together.
+    const std::filesystem::path target = std::filesystem::absolute(path);
+    const std::filesystem::path table = target.parent_path() / (target.stem().string() + "_shifts.json");
+    copy_file_atomic(p.shift_table, table.string());
+    written.shift_table = table.filename().string();
+  }
+  write_file_atomic(path, preset_to_json(written).dump(2) + "\n");
 }
 
 double interpolate_by_angle(const std::vector<double>& theta_deg, const std::vector<double>& values, double theta) {
   return interpolate_linear(theta_deg, values, theta);
+}
+
+mueller interpolate_by_angle(const std::vector<double>& theta_deg, const std::vector<mueller>& values, double theta) {
+  if (values.size() == 1) return values.front();
+  const interpolation_segment g = segment_at(theta_deg, theta);
+  return mueller::scale(1 - g.t) * values[g.lo] + mueller::scale(g.t) * values[g.hi];
 }
 
 }  // namespace airr

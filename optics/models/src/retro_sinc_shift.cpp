@@ -23,6 +23,8 @@ sinc_shift_params resolve_sinc_shift_params(const model_values& v, const model_s
     p.c_mm = preset.c_mm;
     p.reference_distance_mm = preset.reference_distance_mm;
     p.shift_index = preset.shift_index;
+    p.shift_table = preset.shift_table;
+    p.polarization = preset.polarization;
   } else if (!a) {
     v.fail("a_per_mm", "needed by the sinc_shift model without a preset");
   }
@@ -31,6 +33,8 @@ sinc_shift_params resolve_sinc_shift_params(const model_values& v, const model_s
   if (c) p.c_mm = *c;
   if (r) p.reference_distance_mm = *r;
   if (n) p.shift_index = *n;
+  if (const std::string table = v.text("shift_table"); !table.empty())
+    p.shift_table = resolve_path(table, setting.base_dir);
   if (v.text("lookup") == "per_render") p.lookup_angle_deg = setting.chief_incidence_deg;
   return p;
 }
@@ -58,7 +62,8 @@ const retro_model_kind& sinc_shift_retro_kind() {
                               "Index in front of the cube corners: the shift table is read at the angle inside; "
                               "unset: the preset's, else 1",
                               2),
-        text_field("shift_table", field_kind::path, "Corner-cube shift table (JSON); empty: the shipped table"),
+        text_field("shift_table", field_kind::path,
+                   "Corner-cube shift table (JSON); empty: the preset's, else the shipped table"),
         choice_field("lookup", {"per_ray", "per_render"},
                      "Angle of a, mu and the shift distribution: each ray's incidence (per_ray) or the sheet's "
                      "chief ray for the whole render (per_render, as the paper's fit)"),
@@ -66,10 +71,8 @@ const retro_model_kind& sinc_shift_retro_kind() {
     k.make = [](const model_values& v, const model_setting& setting) -> std::unique_ptr<retro_model> {
       sinc_shift_params sp = resolve_sinc_shift_params(v, setting);
       std::shared_ptr<const shift_table> shifts;
-      if (sp.c_mm > 0) {
-        const std::string table = v.text("shift_table");
-        shifts = cached_shift_table(table.empty() ? default_shift_table_path() : resolve_path(table, setting.base_dir));
-      }
+      if (sp.c_mm > 0)
+        shifts = cached_shift_table(sp.shift_table.empty() ? default_shift_table_path() : sp.shift_table);
       return std::make_unique<sinc_shift_retro>(std::move(sp), std::move(shifts));
     };
     k.derived = [](const model_values& v, const std::string& key, const std::string& base_dir,
@@ -137,6 +140,14 @@ retro_sample sinc_shift_retro::sample(const incidence& in, retro_samples u) cons
 }
 
 retro_sample sinc_shift_retro::sample(const glm::dvec3& wi, retro_samples u) const { return sample(prepare(wi), u); }
+
+retro_sample sinc_shift_retro::sample_polarized(const glm::dvec3& wi, retro_samples u) const {
+  retro_sample s = sample(wi, u);
+  if (s.weight > 0 && !p_.polarization.empty())
+    s.polarization =
+        interpolate_by_angle(p_.theta_deg, p_.polarization, p_.lookup_angle_deg.value_or(polar_angle_deg(wi)));
+  return s;
+}
 
 namespace {
 class sinc_shift_incidence final : public retro_at_incidence {

@@ -49,6 +49,9 @@ struct fit_data {
   std::vector<mtf_measurement> distance_series;  // tilt 0, ascending D, at least 2 distinct D
   std::vector<white_square> white_squares;       // one per tilt, ascending; may be empty
   std::optional<double> mu;                      // fit.json "mu", used when there are no white squares
+  // fit.json "shift_table" (resolved): the sheet's own shift distributions, which the fit simulates
+  // with and the preset names; empty: the shipped corner cube's.
+  std::string shift_table;
 
   // Every file the data names (scene, CSVs, images), for provenance.
   std::vector<std::string> files() const;

@@ -28,6 +28,10 @@ struct synthesis_truth {
   std::string base_dir;
   std::string name;
   std::string note;
+  // The sheet's own shift distributions (a file: a preset's, or sheet_shift_table.hpp's), copied
+  // into the data directory as shift_table.json and named in fit.json, so the fit simulates with
+  // them. Empty: none (the shipped corner cube's).
+  std::string shift_table;
 };
 
 // The bench a synthesis measures with: `setup`'s layout (its other sheets the first's mirror

@@ -9,6 +9,7 @@
 
 #include "airr/analysis/fit_synthesis.hpp"
 #include "airr/analysis/sheet_fit.hpp"
+#include "airr/analysis/sheet_shift_table.hpp"
 #include "airr/formats/sheet_json.hpp"
 #include "airr/layout/scene.hpp"
 #include "airr/models/preset.hpp"
@@ -20,11 +21,18 @@ struct prediction_params {
   // sheet's front-surface reflection lands centimetres away and is not part of its blur.
   synthesis_params synthesis{.samples = 1000000, .seed = 7, .lsf_window_mm = 5.0};
   fit_params fit;
+  // The sheet's own shift distributions, traced from its geometry (sheet_shift_table.hpp), for a
+  // sheet that names a cube edge; false: the shipped corner cube's table, read inside the plate.
+  bool sheet_shifts = true;
+  sheet_shift_params shifts;
 };
 
 // Synthesises the bench's measurements of `sheet` into data_dir (kept: fit.json, the curves and
 // images), fits them and returns the preset, named after the sheet, its provenance naming the sheet.
-// A prism sheet's preset reads the shift table at the angle inside its plate (shift_index: its index).
+// The preset's shift table is the sheet's own (traced into data_dir as shift_table.json; save_preset
+// puts a copy beside the preset); without one a prism sheet's preset reads the shipped table at
+// the angle inside its plate (shift_index: its index). The preset's polarization is the sheet's
+// mean Mueller matrix at each tilt (sheet_shift_table.hpp), for a sheet that changes it.
 // Progress runs over both stages; returning false cancels (fit_cancelled). Their independent
 // simulations run as items through `share` (an MPI job's ranks) when given.
 fit_result predict_preset(const sheet_description& sheet, const scene& bench, const std::string& data_dir,

@@ -57,8 +57,9 @@ fit_result fit_sheet(const fit_data& data, const fit_params& p, const fit_progre
 // The scene a measurement is simulated in: the setup at `tilt_deg` (the first sheet's) and
 // `floating_distance_mm` with every sheet's model set to the sinc-shift model of scalar a, c, mu:
 // a device's sheets are cut from the one material being fitted, each reached by its own path (the
-// setup's shift table, R and each sheet's angle lookup are kept).
+// setup's shift table, R and each sheet's angle lookup are kept). A shift_table (a file) stands for
+// the sheet's own shift distributions.
 scene fit_scene(const scene& setup, double tilt_deg, double floating_distance_mm, double a_per_mm, double c_mm,
-                double mu, double shift_index = 1.0);
+                double mu, double shift_index = 1.0, const std::string& shift_table = "");
 
 }  // namespace airr::analysis

@@ -40,6 +40,9 @@ std::string rebase_path(const std::string& path, const std::string& old_base, co
 // The absolute, normalised form of a path (for recent-file lists and dropped files).
 std::string absolute_path(const std::string& path);
 
+// Copies the file `from` to `to` atomically (write_file_atomic), unless both name the same file.
+void copy_file_atomic(const std::string& from, const std::string& to);
+
 // The programs' folder in an XDG base directory, created: $<variable>/airr-studio when the
 // variable holds an absolute path, else ~/<fallback>/airr-studio, else <temp>/airr-studio; e.g.
 // ("XDG_CACHE_HOME", ".cache"). The designer's settings, recovery copies and the cache live there.

@@ -5,6 +5,7 @@
 // (or, with the "per_render" lookup, the incidence angle of the sheet's chief ray).
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "airr/core/geometry.hpp"
 #include "airr/models/preset.hpp"
@@ -20,7 +21,9 @@ struct sinc_shift_params {
   std::vector<double> mu{1.0};
   double c_mm = 0.0;
   double reference_distance_mm = 300.0;
-  double shift_index = 1.0;  // the shift table is read at the angle inside this index (preset.hpp)
+  double shift_index = 1.0;           // the shift table is read at the angle inside this index (preset.hpp)
+  std::string shift_table;            // resolved path: the scene's, else the preset's; empty: the shipped table
+  std::vector<mueller> polarization;  // the preset's, over theta_deg (preset.hpp); empty: the identity
   // Lookup "per_render": a, mu and the shift distribution at this one angle (the sheet's chief
   // ray) for every ray; unset ("per_ray"): at each ray's own incidence angle.
   std::optional<double> lookup_angle_deg{};
@@ -41,6 +44,8 @@ class sinc_shift_retro final : public retro_model {
   // lobe: the deviation's table cell and its azimuth; shift: the shift's bin and direction;
   // more: the jitter inside the lobe cell, the choice between angle tables, the jitter in the bin.
   retro_sample sample(const glm::dvec3& wi, retro_samples u) const override;
+  // With the preset's Mueller matrix at the lookup angle (none without one).
+  retro_sample sample_polarized(const glm::dvec3& wi, retro_samples u) const override;
   std::unique_ptr<const retro_at_incidence> at_incidence(const glm::dvec3& wi) const override;
   // The lobe's density about the retro direction; the shift does not change directions.
   std::optional<double> pdf(const glm::dvec3& wi, const glm::dvec3& wo) const override;
