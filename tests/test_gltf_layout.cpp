@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "airr/core/assets.hpp"
 #include "airr/core/error.hpp"
 #include "airr/formats/gltf_layout.hpp"
 #include "airr/formats/mesh_gltf.hpp"
@@ -272,4 +273,25 @@ TEST(GltfLayout, BadLayoutsNameTheNode) {
   EXPECT_NE(bad_value.find("half_mirror.reflectance"), std::string::npos) << bad_value;
   EXPECT_NE(error_of([&] { export_gltf_layout(scene{}, dir.file("layout.obj")); }).find(".glb or .gltf"),
             std::string::npos);
+}
+
+// The polarization parts travel in the nodes' extras: the p-AIRR scene with a plate half mirror, a
+// quarter-wave film on the sheet and an analyzer before the observer comes back field for field.
+TEST(GltfLayout, PolarizationPartsSurviveTheRoundTrip) {
+  test::temp_dir dir;
+  const std::vector<scene_override> parts = {
+      parse_override("half_mirror.kind=plate"), parse_override("half_mirror.plate.thickness_mm=2.5"),
+      parse_override("half_mirror.plate.front.coating=partial_mirror"), parse_override("observer.analyzer_deg=30"),
+      parse_override("source.polarization.state=circular_negative")};
+  const scene s = load_scene(asset_dir() + "/scenes/p_airr.json", parts);
+  const std::string path = dir.file("p_airr.glb");
+  export_gltf_layout(s, path);
+  const nlohmann::json a = scene_to_json(s), b = scene_to_json(load_scene(path));
+  for (const char* key : {"/source/polarization", "/half_mirror/kind", "/half_mirror/plate", "/half_mirror/polarizer",
+                          "/retroreflectors/0/films", "/retroreflectors/0/model", "/observer/analyzer_deg"}) {
+    const nlohmann::json::json_pointer at(key);
+    ASSERT_TRUE(a.contains(at)) << key;
+    EXPECT_EQ(b.value(at, nlohmann::json()), a.at(at)) << key;
+  }
+  EXPECT_EQ(b.at("/half_mirror/plate/thickness_mm"_json_pointer), 2.5);
 }

@@ -58,8 +58,15 @@ and leaves the scene as it was.)")
           py::arg("key"), py::arg("value"),
           "Sets a value as `--set key=value` does (a number, text, True/False or a list); raises ValueError as "
           "`airr --set` fails.")
-      .def("get", &py_scene::get, py::arg("key"),
-           "The number a key names (e.g. \"tilt_deg\", \"floating_distance_mm\", \"observer.width\").")
+      .def(
+          "get",
+          [](const py_scene& s, const std::string& key) {
+            return py::module_::import("json").attr("loads")(s.get(key).dump());
+          },
+          py::arg("key"),
+          "The value a key names: a number, text, True/False, None (unset), a list or a dict, as the scene's JSON "
+          "holds it (e.g. \"tilt_deg\", \"floating_distance_mm\", \"half_mirror.kind\", "
+          "\"retroreflectors.0.films\").")
       .def(
           "save",
           [](py_scene& s, const std::optional<std::filesystem::path>& path) {

@@ -17,8 +17,8 @@ class py_scene {
   // Applies `key=value` after the overrides so far; the scene is unchanged when that fails.
   // Throws input_error with the message `airr --set key=value` gives.
   void set(const std::string& key, const std::string& value);
-  // The number a key names (the short keys floating_distance_mm and tilt_deg included).
-  double get(const std::string& key) const { return scene_number(scene_, key); }
+  // The value a key names (the short keys floating_distance_mm and tilt_deg included).
+  nlohmann::json get(const std::string& key) const { return scene_value(scene_, key); }
 
   // Writes the scene (atomically), its relative paths counting from the file's folder; the file
   // is then the scene's origin.

@@ -1,5 +1,6 @@
 """airr.Scene and airr.render against `airr render` and `airr --set`."""
 import math
+import os
 import threading
 
 import numpy as np
@@ -163,3 +164,30 @@ def test_every_python_value_sets_or_raises_value_error(key):
             assert key in str(e) or "(with --set)" in str(e), (key, value, str(e))
             assert "\n" not in str(e)
             assert scene.to_json() == before, (key, value)
+
+
+def test_polarization_fields_set_get_and_render(tmp_path):
+    """The p-AIRR scene's parts through the module: the plate half mirror, the sheet's film and the
+    observer's analyzer are keys like any other, and crossing the analyzer with the LCD's light
+    through the plain mirror darkens the image as Malus's law says."""
+    scene = airr.Scene.load(os.path.join(airr.asset_dir(), "scenes", "p_airr.json"))
+    scene.set("observer.width", 48)
+    scene.set("observer.height", 48)
+    assert scene.get("half_mirror.kind") == "reflective_polarizer"
+    assert scene.get("retroreflectors.0.films.0.retardance_waves") == pytest.approx(0.25)
+    scene.set("half_mirror.kind", "plate")
+    scene.set("half_mirror.plate.thickness_mm", 2.0)
+    assert scene.get("half_mirror.plate.thickness_mm") == 2.0
+    scene.save(tmp_path / "plate.json")
+    assert airr.Scene.load(tmp_path / "plate.json").to_json() == scene.to_json()
+    with pytest.raises(ValueError, match="thickness_mm"):
+        scene.set("half_mirror.plate.thickness_mm", float("nan"))
+
+    scene.set("half_mirror.kind", "half_mirror")
+    scene.set("retroreflectors.0.films", [])
+    brightness = {}
+    for angle in (0, 90):
+        scene.set("observer.analyzer_deg", angle)
+        brightness[angle] = float(np.mean(airr.render(scene, spp=4, seed=3)))
+    assert brightness[0] > 0
+    assert min(brightness.values()) < 0.05 * max(brightness.values())

@@ -171,12 +171,16 @@ scene with_overrides(scene s, const std::vector<scene_override>& overrides, cons
   return s;
 }
 
-double scene_number(const scene& s, const std::string& key) {
+json scene_value(const scene& s, const std::string& key) {
   if (key == floating_distance_key) return floating_distance(s);
   json full = scene_to_json(s, json_form::complete);
-  const key_node found = find_key(full, key == tilt_key ? "retroreflectors.0.pose.pitch_deg" : key);
-  if (!found.node->is_number()) throw input_error("--set " + key + ": not a number in the scene");
-  return found.node->get<double>();
+  return *find_key(full, key == tilt_key ? "retroreflectors.0.pose.pitch_deg" : key).node;
+}
+
+double scene_number(const scene& s, const std::string& key) {
+  const json v = scene_value(s, key);
+  if (!v.is_number()) throw input_error("--set " + key + ": not a number in the scene");
+  return v.get<double>();
 }
 
 }  // namespace airr

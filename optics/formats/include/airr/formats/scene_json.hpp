@@ -54,6 +54,9 @@ scene with_overrides(scene s, const std::vector<scene_override>& overrides, cons
 // The number an override key names in s (the short keys included); throws input_error for a key
 // the scene does not have or that names no number (an unset value, a group, a text).
 double scene_number(const scene& s, const std::string& key);
+// The value an override key names in s, as the scene's complete JSON holds it (a number, text,
+// true/false, null for an unset value, a list or a group); throws input_error for a key it lacks.
+nlohmann::json scene_value(const scene& s, const std::string& key);
 
 // Checks every value's range; throws input_error "<origin>: <field>: <problem>".
 void validate_scene(const scene& s, const std::string& origin);
