@@ -1,8 +1,6 @@
 #include "airr/analysis/sheet_shift_table.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <ctime>
 #include <vector>
 
 #include <tbb/parallel_for.h>
@@ -31,7 +29,7 @@ std::size_t row_width(const sheet_shift_params& p) { return std::size_t(p.bins) 
 std::vector<double> trace_row(const retro_model& model, const glm::dvec3& wi, double unit_mm,
                               const sheet_shift_params& p, std::uint64_t row) {
   const std::uint64_t blocks = (p.samples + block_samples - 1) / block_samples;
-  const std::size_t width = row_width(p), kept = std::size_t(p.bins);
+  const std::size_t width = row_width(p), weight_at = std::size_t(p.bins);
   std::vector<std::vector<double>> block_bins(blocks, std::vector<double>(width, 0.0));
   tbb::parallel_for(std::uint64_t(0), blocks, [&](std::uint64_t b) {
     std::vector<double>& h = block_bins[b];
@@ -45,9 +43,9 @@ std::vector<double> trace_row(const retro_model& model, const glm::dvec3& wi, do
       if (!(s.weight > 0) || !s.retroreflected) continue;
       const double shift = glm::length(s.shift_mm) / unit_mm;
       h[std::size_t(std::clamp(int(shift / p.s_max * p.bins), 0, p.bins - 1))] += s.weight;
-      h[kept] += s.weight;
+      h[weight_at] += s.weight;
       const mueller m = s.polarization.value_or(mueller::identity());
-      for (std::size_t k = 0; k < 16; ++k) h[kept + 1 + k] += s.weight * m.m[k / 4][k % 4];
+      for (std::size_t k = 0; k < 16; ++k) h[weight_at + 1 + k] += s.weight * m.m[k / 4][k % 4];
     }
   });
   std::vector<double> sum(width, 0.0);

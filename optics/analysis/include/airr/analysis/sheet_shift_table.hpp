@@ -33,14 +33,16 @@ struct sheet_shift_params {
 // c then comes out near; empty for a sheet that names none (the shipped table then stands).
 std::optional<double> sheet_shift_unit_mm(const retro_model_params& model, const std::string& base_dir);
 
-// The table at the incidence the chief ray of measurement_layout(bench, tilt, 150) has at each
-// row's tilt, rows indexed by that tilt (the angle outside the sheet: shift_index 1). Throws
-// input_error for a sheet that retroreflects nothing at some row's tilt. Rows run as items through
-// `share` when given.
 struct traced_sheet {
+  // Its retro_fraction: the weight retroreflected per entering sample, the sheet's losses included.
   shift_table shifts;
   std::vector<mueller> polarization;  // one per row, relative to the weight; identity for a model without
 };
+
+// The table at the incidence the chief ray of measurement_layout(bench, tilt, 150) has at each
+// row's tilt, rows indexed by that tilt (the angle outside the sheet: shift_index 1), with the
+// Mueller matrix there. Throws input_error for a sheet that retroreflects nothing at some row's
+// tilt. Rows run as items through `share` when given.
 traced_sheet trace_sheet_shift_table(const retro_model_params& model, const std::string& base_dir, const scene& bench,
                                      double unit_mm, const sheet_shift_params& p, const item_share& share = {});
 
