@@ -54,6 +54,7 @@ void path_polarization::apply_here(const std::array<mueller, 3>& m) {
 
 void path_polarization::films(const std::vector<film_params>& films, part_face face, const part_frame& f,
                               bool leaving) {
+  if (films.empty()) return;
   const double cos_i = std::min(1.0, std::abs(glm::dot(frame.k, f.n)));
   const double sin_t = std::sqrt(1 - cos_i * cos_i) / film_index;
   const double path = 1 / std::sqrt(1 - sin_t * sin_t);  // the film's thickness crossed at an angle
