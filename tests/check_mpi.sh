@@ -74,7 +74,7 @@ done
 predict=(predict-preset --sheet "$2/assets/sheets/prism-rf-ay-like.json" --samples 5000 --fit-samples 5000)
 # The preset without what differs by nature (run time, the data folder's name).
 preset_numbers() {
-  python3 -c 'import json,re,sys; p=json.load(open(sys.argv[1])); p["provenance"]["fit"].pop("seconds"); print(re.sub(r"p[0-9]_bench", "DATA", json.dumps(p, sort_keys=True)))' "$1"
+  python3 -c 'import json,re,sys; p=json.load(open(sys.argv[1])); p["provenance"]["fit"].pop("seconds"); print(re.sub(r"p[0-9]_(bench|shifts)", "DATA", json.dumps(p, sort_keys=True)))' "$1"
 }
 (cd "$tmp" && "$airr" "${predict[@]}" -o p1.json 2>/dev/null | grep -v "run time\|wrote" | sed "s/p1_bench/DATA/" >p1.out)
 for n in 2 3; do

@@ -314,7 +314,8 @@ fit_data load_fit_data(const std::string& dir_text) {
   if (d.mu && !d.white_squares.empty())
     r.fail(r.field("mu"), "give white_squares (mu is fitted) or mu (mu is fixed), not both");
   if (r.has("shift_table")) {
-    d.shift_table = resolve_file(r, d.dir, "shift_table");
+    // Absolute: the fit's scenes resolve it against the setup's folder.
+    d.shift_table = absolute_path(resolve_file(r, d.dir, "shift_table"));
     cached_shift_table(d.shift_table);  // read now: a bad table is named before the fit starts
   }
   r.finish();
