@@ -163,7 +163,10 @@ TEST(ModelImage, CancelledComputationGivesNothing) {
   build_tracer_scene(ts, device, s);
   std::atomic<bool> cancel{true};
   EXPECT_FALSE(compute_model_image(s, ts.retro.front(), ts.texture.get(), {}, &cancel));
+  EXPECT_FALSE(compute_display_grids(s, ts.texture.get(), {}, &cancel));
+  EXPECT_FALSE(compute_layout_model_image(s, ts.retro, ts.texture.get(), {}, &cancel));
   cancel = false;
+  EXPECT_TRUE(compute_display_grids(s, ts.texture.get(), {}, &cancel));
   EXPECT_TRUE(compute_model_image(s, ts.retro.front(), ts.texture.get(), {}, &cancel));
 }
 

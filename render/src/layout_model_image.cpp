@@ -16,7 +16,8 @@ std::shared_ptr<const layout_model_image> compute_layout_model_image(const scene
   check_model_image_params(p);
   const auto t0 = std::chrono::steady_clock::now();
   auto out = std::make_shared<layout_model_image>();
-  const std::shared_ptr<const display_grids> grids = compute_display_grids(s, display, p);
+  const std::shared_ptr<const display_grids> grids = compute_display_grids(s, display, p, cancel);
+  if (!grids) return nullptr;  // cancelled
   for (std::size_t i = 0; i < models.size() && i < s.retroreflectors.size(); ++i) {
     const std::string sheet = "retroreflectors[" + std::to_string(i) + "]: ";
     std::shared_ptr<const model_image> m;

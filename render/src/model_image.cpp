@@ -70,7 +70,9 @@ void check_model_image_params(const model_image_params& p) {
 }
 
 std::shared_ptr<const display_grids> compute_display_grids(const scene& s, const image_rgb* display,
-                                                           const model_image_params& p) {
+                                                           const model_image_params& p,
+                                                           const std::atomic<bool>* cancel) {
+  auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
   check_model_image_params(p);
   using clock_type = std::chrono::steady_clock;
   const auto t0 = clock_type::now();
@@ -89,12 +91,15 @@ std::shared_ptr<const display_grids> compute_display_grids(const scene& s, const
                cv::Size(std::max(1, int(std::lround(texels.cols * f))), std::max(1, int(std::lround(texels.rows * f)))),
                0, 0, cv::INTER_AREA);
   }
-  g->maps[model_fine] = make_grid(g->grids[model_fine], texels, p.texel_refine, p.core_radius_mm, src);
-  g->maps[model_tail] = make_grid(g->grids[model_tail], tail_texels, 1, p.kernel_radius_mm, src);
+  g->maps[model_fine] = make_grid(g->grids[model_fine], texels, p.texel_refine, p.core_radius_mm, src, cancel);
+  if (cancelled()) return nullptr;
+  g->maps[model_tail] = make_grid(g->grids[model_tail], tail_texels, 1, p.kernel_radius_mm, src, cancel);
+  if (cancelled()) return nullptr;
   const auto t1 = clock_type::now();
   g->grids_seconds = std::chrono::duration<double>(t1 - t0).count();
-  g->spectra[model_fine] = spectrum_of(g->grids[model_fine].padded);
-  g->spectra[model_tail] = spectrum_of(g->grids[model_tail].padded);
+  g->spectra[model_fine] = spectrum_of(g->grids[model_fine].padded, cancel);
+  g->spectra[model_tail] = spectrum_of(g->grids[model_tail].padded, cancel);
+  if (cancelled()) return nullptr;
   g->spectra_seconds = std::chrono::duration<double>(clock_type::now() - t1).count();
   return g;
 }
@@ -115,7 +120,8 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
   m->sheet = sheet;
   m->hm_factor = s.half_mirror.reflectance * s.half_mirror.transmittance;
   const bool own_grids = !grids;
-  m->display = own_grids ? compute_display_grids(s, display, p) : std::move(grids);
+  m->display = own_grids ? compute_display_grids(s, display, p, cancel) : std::move(grids);
+  if (!m->display) return nullptr;  // cancelled
   m->grids = m->display->grids;
   const grid_mapping(&maps)[2] = m->display->maps;
 
@@ -200,10 +206,11 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
       bin_seconds[std::size_t(k)][0] = since(t);
       if (cancelled()) break;
       t = clock_type::now();
-      correlated_grid fine = correlate(spectra[model_fine], kernels[model_fine]);
+      correlated_grid fine = correlate(spectra[model_fine], kernels[model_fine], cancel);
       if (cancelled()) break;
       std::array<correlated_grid, 2> correlated = {std::move(fine),
-                                                   correlate(spectra[model_tail], kernels[model_tail])};
+                                                   correlate(spectra[model_tail], kernels[model_tail], cancel)};
+      if (cancelled()) break;
       bin_seconds[std::size_t(k)][1] = since(t);
       t = clock_type::now();
       for (std::size_t i = 0; i < m->pixels.size(); ++i) {

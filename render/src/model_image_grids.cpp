@@ -40,7 +40,10 @@ cv::Mat display_texels(const scene& s, const image_rgb* display, int max_texels)
 // times more densely: nodes at texel coordinates origin + j / refine. With an even `refine` the
 // nodes start half a texel out and include every texel centre, so the refined grid's bilinear
 // surface is the texels' own, exactly.
-static image_rgb refined_grid(const cv::Mat& texels, int refine, double& origin) {
+static bool cancelled(const std::atomic<bool>* cancel) { return cancel && cancel->load(std::memory_order_relaxed); }
+
+// Empty when `cancel` is set before it is done (a display's grid takes a fifth of a second).
+static image_rgb refined_grid(const cv::Mat& texels, int refine, double& origin, const std::atomic<bool>* cancel) {
   origin = refine % 2 == 0 ? -0.5 : 0.0;
   image_rgb out;
   out.width = int(std::lround((texels.cols - 1 - 2 * origin) * refine)) + 1;
@@ -51,6 +54,7 @@ static image_rgb refined_grid(const cv::Mat& texels, int refine, double& origin)
     return glm::vec3(v[0], v[1], v[2]);
   };
   for (int j = 0; j < out.height; ++j) {
+    if (j % 64 == 0 && cancelled(cancel)) return {};
     const double ty = origin + double(j) / refine;
     const int y0 = int(std::floor(ty));
     const float fy = float(ty - y0);
@@ -82,7 +86,7 @@ static bool is_grey(const image_rgb& img) {
   return true;
 }
 
-grid_spectrum spectrum_of(const image_rgb& padded) {
+grid_spectrum spectrum_of(const image_rgb& padded, const std::atomic<bool>* cancel) {
   grid_spectrum out;
   out.width = padded.width;
   out.height = padded.height;
@@ -91,6 +95,7 @@ grid_spectrum spectrum_of(const image_rgb& padded) {
   const int n = is_grey(padded) ? 1 : 3;
   const std::size_t reals = std::size_t(out.fft_width) * out.fft_height;
   for (int c = 0; c < n; ++c) {
+    if (cancelled(cancel)) return {};
     fft_buffer<float> channel = real_buffer(reals);
     std::fill_n(channel.data.get(), reals, 0.0f);
     for (int y = 0; y < padded.height; ++y) {
@@ -105,7 +110,7 @@ grid_spectrum spectrum_of(const image_rgb& padded) {
   return out;
 }
 
-correlated_grid correlate(const grid_spectrum& grid, const cv::Mat& kernel) {
+correlated_grid correlate(const grid_spectrum& grid, const cv::Mat& kernel, const std::atomic<bool>* cancel) {
   const int w = grid.fft_width, h = grid.fft_height, r = kernel.rows / 2;
   const std::size_t reals = std::size_t(w) * h, complexes = std::size_t(h) * (w / 2 + 1);
   // The kernel with offset o at index o modulo the transform's size.
@@ -125,6 +130,7 @@ correlated_grid correlate(const grid_spectrum& grid, const cv::Mat& kernel) {
   // Correlation: the grid's spectrum times the kernel's conjugate, back, scaled by 1 / (w h).
   const float scale = 1.0f / float(reals);
   for (const auto& channel : grid.channels) {
+    if (cancelled(cancel)) return {};
     fft_buffer<std::complex<float>> product = complex_buffer(complexes);
     for (std::size_t i = 0; i < complexes; ++i)
       product.data[i] = channel.data[i] * std::conj(kernel_spectrum.data[i]) * scale;
@@ -135,13 +141,14 @@ correlated_grid correlate(const grid_spectrum& grid, const cv::Mat& kernel) {
   return out;
 }
 
-grid_mapping make_grid(model_grid& grid, const cv::Mat& texels, int refine, double reach_mm, const part_frame& src) {
+grid_mapping make_grid(model_grid& grid, const cv::Mat& texels, int refine, double reach_mm, const part_frame& src,
+                       const std::atomic<bool>* cancel) {
   grid_mapping map;
-  const image_rgb nodes = refined_grid(texels, refine, map.origin);
+  const image_rgb nodes = refined_grid(texels, refine, map.origin, cancel);
   grid.node_w = src.width / texels.cols / refine;
   grid.node_h = src.height / texels.rows / refine;
   grid.radius = std::clamp(int(std::ceil(reach_mm / std::min(grid.node_w, grid.node_h))) + 1, 2, 2048);
-  grid.padded = pad(nodes, grid.radius);
+  if (!nodes.rgb.empty()) grid.padded = pad(nodes, grid.radius);
   map.cols = texels.cols;
   map.rows = texels.rows;
   map.width = src.width;

@@ -77,7 +77,8 @@ struct grid_spectrum {
   std::vector<fft_buffer<std::complex<float>>> channels;  // per distinct channel (one for a grey display)
 };
 
-grid_spectrum spectrum_of(const image_rgb& padded);
+// Empty (no channels) when `cancel` is set before it is done: it is checked between channels.
+grid_spectrum spectrum_of(const image_rgb& padded, const std::atomic<bool>* cancel = nullptr);
 
 // out(x) = sum over offsets o of kernel(o) grid(x + o), the kernel's centre at offset 0 (the
 // prediction's sum, for every node at once); one matrix per distinct channel, as the spectrum.
@@ -98,7 +99,8 @@ struct correlated_grid {
   }
 };
 
-correlated_grid correlate(const grid_spectrum& grid, const cv::Mat& kernel);
+// Empty (no channels) when `cancel` is set before it is done: it is checked between channels.
+correlated_grid correlate(const grid_spectrum& grid, const cv::Mat& kernel, const std::atomic<bool>* cancel = nullptr);
 
 // One grid over the display's texels (`refine` nodes per texel) and where display-local points
 // fall on it.
@@ -110,7 +112,9 @@ struct grid_mapping {
   }
 };
 
-grid_mapping make_grid(model_grid& grid, const cv::Mat& texels, int refine, double reach_mm, const part_frame& src);
+// `grid` is left without its padded nodes when `cancel` is set while they are made.
+grid_mapping make_grid(model_grid& grid, const cv::Mat& texels, int refine, double reach_mm, const part_frame& src,
+                       const std::atomic<bool>* cancel = nullptr);
 
 // The pixels of a w x h image on the grids: where their paths land, their angles and profiles
 // (not yet their bins). A pixel landing beyond the tail's padded grid is not ok.

@@ -33,7 +33,7 @@ struct path_state {
   // Each branch split off before any retroreflection takes the sample's first-retroreflection
   // numbers at its first sheet, as the control variate predicts every sheet with them.
   bool first_retro_used = false;
-  [[no_unique_address]] Polarization pol;
+  [[no_unique_address]] Polarization pol{};
 };
 
 template <class Polarization>

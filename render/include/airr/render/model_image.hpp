@@ -124,10 +124,11 @@ struct model_image {
 void check_model_image_params(const model_image_params& p);
 
 // The display's grids and their spectra for a layout's model images (`display` is the display's
-// texture, null: uniform; the scene's intensity is applied here). Throws input_error for parameters
-// out of range.
+// texture, null: uniform; the scene's intensity is applied here). Null when `cancel` is set while it
+// runs. Throws input_error for parameters out of range.
 std::shared_ptr<const display_grids> compute_display_grids(const scene& s, const image_rgb* display,
-                                                           const model_image_params& p = {});
+                                                           const model_image_params& p = {},
+                                                           const std::atomic<bool>* cancel = nullptr);
 
 // Sheet `sheet`'s model image (`model` is that sheet's). Null when no pixel has an ideal path to
 // the sheet (or there is no such sheet), or when `cancel` is set while it runs. `display` is the

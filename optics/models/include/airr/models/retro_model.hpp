@@ -42,7 +42,7 @@ struct retro_sample {
   // to the observer), between the frames sheet_light_frames gives, divided by its unpolarized
   // throughput, which `weight` carries. Empty: the sheet keeps the field as a perfect mirror
   // facing the light would (docs/polarization.md).
-  std::optional<mueller> polarization;
+  std::optional<mueller> polarization{};
 };
 
 // The sheet-local frames retro_sample::polarization is written in: of the light arriving against
