@@ -97,8 +97,9 @@ inline double median_retro_spread(const prism_sheet_geometry& g, const glm::dvec
 }
 
 // A sheet without absorption at 0, 20, 40 and 60 deg (azimuth 13): front reflection,
-// retroreflected, stray and transmitted light add up to all of it within 0.5%, and at most 0.1%
-// of the paths are lost. Returns the counts per angle.
+// retroreflected, stray and transmitted light add up to all of it within 0.5%, and at most 0.02%
+// of the paths are lost (numerical slips: a face met again as it was left once lost 0.3%).
+// Returns the counts per angle.
 inline std::vector<fates> expect_no_light_lost(const path_source& paths, std::uint64_t seed) {
   std::vector<fates> out;
   for (const double theta : {0.0, 20.0, 40.0, 60.0}) {
@@ -107,7 +108,7 @@ inline std::vector<fates> expect_no_light_lost(const path_source& paths, std::ui
     std::printf("theta %g: front %.3f retro %.3f stray %.3f transmitted %.3f lost %.0f\n", theta, f.front / f.n,
                 f.retro / f.n, f.stray / f.n, f.transmitted / f.n, f.lost);
     EXPECT_NEAR(total, 1.0, 0.005) << theta;
-    EXPECT_LE(f.lost / f.n, 0.001) << theta;
+    EXPECT_LE(f.lost / f.n, 2e-4) << theta;
     out.push_back(f);
   }
   return out;

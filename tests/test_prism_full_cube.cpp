@@ -166,11 +166,15 @@ TEST(FaceOrders, SixPartsDivideTheEffectiveAperture) {
           areas.push_back(area);
           centres.push_back(centre);
         }
-        if (theta == 0) EXPECT_NEAR(area, polygon_area(whole) / 6, 1e-12) << full << " " << k;
+        if (theta == 0) {
+          EXPECT_NEAR(area, polygon_area(whole) / 6, 1e-12) << full << " " << k;
+        }
       }
       double sum = 0;
       for (double x : areas) sum += x;
-      if (theta > 0) EXPECT_NEAR(sum, polygon_area(whole), 1e-9 * polygon_area(whole)) << full << " " << theta;
+      if (theta > 0) {
+        EXPECT_NEAR(sum, polygon_area(whole), 1e-9 * polygon_area(whole)) << full << " " << theta;
+      }
       EXPECT_LE(areas.size(), 6u);
     }
   }

@@ -110,7 +110,9 @@ TEST(PrismSheet, RetroreflectedFractionIsTheEffectiveArea) {
             "%.4f\n",
             index, theta, phi, measured, expected, f.retro / entered);
         EXPECT_NEAR(measured, expected, 4 * sigma + 1e-3) << "theta " << theta << " phi " << phi;
-        if (index == 1.0) EXPECT_EQ(f.retro, f.cube_retro);
+        if (index == 1.0) {
+          EXPECT_EQ(f.retro, f.cube_retro);
+        }
         EXPECT_LE(f.lost / f.n, 0.001);
       }
     }

@@ -5,6 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "airr/core/cancel.hpp"
 #include "airr/core/error.hpp"
 
 namespace airr {
@@ -27,7 +28,7 @@ std::shared_ptr<const layout_model_image> compute_layout_model_image(const scene
       out->left_out.push_back(sheet + e.what());  // a chief ray grazing a part's edge
       continue;
     }
-    if (cancel && cancel->load(std::memory_order_relaxed)) return nullptr;
+    if (cancel_requested(cancel)) return nullptr;
     if (!m) {
       out->left_out.push_back(sheet + "no pixel has an ideal path to it");
       continue;

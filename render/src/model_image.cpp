@@ -7,6 +7,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "airr/core/cancel.hpp"
 #include "airr/core/error.hpp"
 #include "airr/core/geometry.hpp"
 #include "airr/render/parallel_rows.hpp"
@@ -72,7 +73,6 @@ void check_model_image_params(const model_image_params& p) {
 std::shared_ptr<const display_grids> compute_display_grids(const scene& s, const image_rgb* display,
                                                            const model_image_params& p,
                                                            const std::atomic<bool>* cancel) {
-  auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
   check_model_image_params(p);
   using clock_type = std::chrono::steady_clock;
   const auto t0 = clock_type::now();
@@ -92,14 +92,14 @@ std::shared_ptr<const display_grids> compute_display_grids(const scene& s, const
                0, 0, cv::INTER_AREA);
   }
   g->maps[model_fine] = make_grid(g->grids[model_fine], texels, p.texel_refine, p.core_radius_mm, src, cancel);
-  if (cancelled()) return nullptr;
+  if (cancel_requested(cancel)) return nullptr;
   g->maps[model_tail] = make_grid(g->grids[model_tail], tail_texels, 1, p.kernel_radius_mm, src, cancel);
-  if (cancelled()) return nullptr;
+  if (cancel_requested(cancel)) return nullptr;
   const auto t1 = clock_type::now();
   g->grids_seconds = std::chrono::duration<double>(t1 - t0).count();
   g->spectra[model_fine] = spectrum_of(g->grids[model_fine].padded, cancel);
   g->spectra[model_tail] = spectrum_of(g->grids[model_tail].padded, cancel);
-  if (cancelled()) return nullptr;
+  if (cancel_requested(cancel)) return nullptr;
   g->spectra_seconds = std::chrono::duration<double>(clock_type::now() - t1).count();
   return g;
 }
@@ -173,13 +173,12 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
     b.jitter_mm = pixel_footprint(parts, bx, by);
     m->bins.push_back(std::move(b));
   }
-  auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
   using clock_type = std::chrono::steady_clock;
   auto since = [](clock_type::time_point t) { return std::chrono::duration<double>(clock_type::now() - t).count(); };
   m->spectra_seconds = own_grids ? m->display->spectra_seconds : 0.0;
   m->bins_seconds = since(t0) - m->paths_seconds - m->spectra_seconds;
   const grid_spectrum(&spectra)[2] = m->display->spectra;
-  if (cancelled()) return nullptr;
+  if (cancel_requested(cancel)) return nullptr;
   for (model_pixel& px : m->pixels) assign_bin(m->bins, px);
   // Each bin adds its share to the pixels it is the lower bin of, or the upper: no pixel is
   // written by two bins at once, and a bin's correlated grids are dropped as soon as it is done.
@@ -199,18 +198,18 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
   std::vector<std::array<double, 3>> bin_seconds(std::size_t(bins), {0.0, 0.0, 0.0});
   const auto t_loop = clock_type::now();
   detail::parallel_rows(bins, p.threads, [&](int k0, int k1) {
-    for (int k = k0; k < k1 && !cancelled(); ++k) {
+    for (int k = k0; k < k1 && !cancel_requested(cancel); ++k) {
       auto t = clock_type::now();
       const std::array<cv::Mat, 2> kernels =
           bin_kernels(*m, m->bins[std::size_t(k)], std::size_t(k), p.psf_samples, s.seed, p.threads, cancel);
       bin_seconds[std::size_t(k)][0] = since(t);
-      if (cancelled()) break;
+      if (cancel_requested(cancel)) break;
       t = clock_type::now();
       correlated_grid fine = correlate(spectra[model_fine], kernels[model_fine], cancel);
-      if (cancelled()) break;
+      if (cancel_requested(cancel)) break;
       std::array<correlated_grid, 2> correlated = {std::move(fine),
                                                    correlate(spectra[model_tail], kernels[model_tail], cancel)};
-      if (cancelled()) break;
+      if (cancel_requested(cancel)) break;
       bin_seconds[std::size_t(k)][1] = since(t);
       t = clock_type::now();
       for (std::size_t i = 0; i < m->pixels.size(); ++i) {
@@ -226,7 +225,7 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
       if (kept) kept->bins[std::size_t(k)] = std::move(correlated);
     }
   });
-  if (cancelled()) return nullptr;
+  if (cancel_requested(cancel)) return nullptr;
   m->loop_seconds = since(t_loop);
   for (const auto& b : bin_seconds) {
     m->kernels_seconds += b[0];

@@ -6,6 +6,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "airr/core/cancel.hpp"
+
 namespace airr::model_image_steps {
 
 cv::Mat display_texels(const scene& s, const image_rgb* display, int max_texels) {
@@ -40,8 +42,6 @@ cv::Mat display_texels(const scene& s, const image_rgb* display, int max_texels)
 // times more densely: nodes at texel coordinates origin + j / refine. With an even `refine` the
 // nodes start half a texel out and include every texel centre, so the refined grid's bilinear
 // surface is the texels' own, exactly.
-static bool cancelled(const std::atomic<bool>* cancel) { return cancel && cancel->load(std::memory_order_relaxed); }
-
 // Empty when `cancel` is set before it is done (a display's grid takes a fifth of a second).
 static image_rgb refined_grid(const cv::Mat& texels, int refine, double& origin, const std::atomic<bool>* cancel) {
   origin = refine % 2 == 0 ? -0.5 : 0.0;
@@ -54,7 +54,7 @@ static image_rgb refined_grid(const cv::Mat& texels, int refine, double& origin,
     return glm::vec3(v[0], v[1], v[2]);
   };
   for (int j = 0; j < out.height; ++j) {
-    if (j % 64 == 0 && cancelled(cancel)) return {};
+    if (j % 64 == 0 && cancel_requested(cancel)) return {};
     const double ty = origin + double(j) / refine;
     const int y0 = int(std::floor(ty));
     const float fy = float(ty - y0);
@@ -95,7 +95,7 @@ grid_spectrum spectrum_of(const image_rgb& padded, const std::atomic<bool>* canc
   const int n = is_grey(padded) ? 1 : 3;
   const std::size_t reals = std::size_t(out.fft_width) * out.fft_height;
   for (int c = 0; c < n; ++c) {
-    if (cancelled(cancel)) return {};
+    if (cancel_requested(cancel)) return {};
     fft_buffer<float> channel = real_buffer(reals);
     std::fill_n(channel.data.get(), reals, 0.0f);
     for (int y = 0; y < padded.height; ++y) {
@@ -130,7 +130,7 @@ correlated_grid correlate(const grid_spectrum& grid, const cv::Mat& kernel, cons
   // Correlation: the grid's spectrum times the kernel's conjugate, back, scaled by 1 / (w h).
   const float scale = 1.0f / float(reals);
   for (const auto& channel : grid.channels) {
-    if (cancelled(cancel)) return {};
+    if (cancel_requested(cancel)) return {};
     fft_buffer<std::complex<float>> product = complex_buffer(complexes);
     for (std::size_t i = 0; i < complexes; ++i)
       product.data[i] = channel.data[i] * std::conj(kernel_spectrum.data[i]) * scale;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "airr/core/cancel.hpp"
 #include "airr/core/geometry.hpp"
 #include "airr/render/parallel_rows.hpp"
 
@@ -40,15 +41,14 @@ static pixel_path pixel_ideal(const ideal_parts& parts, const emission_profile* 
 std::vector<pixel_path> pixel_paths(const ideal_parts& parts, const emission_profile* emission,
                                     const model_image_params& p, const std::atomic<bool>* cancel) {
   const int w = parts.cam.width, h = parts.cam.height, n = p.path_stride;
-  auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
   std::vector<pixel_path> out(std::size_t(w) * h);
   if (n <= 1) {
     detail::parallel_rows(h, p.threads, [&](int y0, int y1) {
-      for (int y = y0; y < y1 && !cancelled(); ++y) {
+      for (int y = y0; y < y1 && !cancel_requested(cancel); ++y) {
         for (int x = 0; x < w; ++x) out[std::size_t(y) * w + x] = pixel_ideal(parts, emission, x + 0.5, y + 0.5);
       }
     });
-    return cancelled() ? std::vector<pixel_path>{} : out;
+    return cancel_requested(cancel) ? std::vector<pixel_path>{} : out;
   }
   // Lattice node i sits on pixel min(i n, size - 1).
   const int lw = (w - 1 + n - 1) / n + 1, lh = (h - 1 + n - 1) / n + 1;
@@ -75,7 +75,7 @@ std::vector<pixel_path> pixel_paths(const ideal_parts& parts, const emission_pro
     }
   }
   detail::parallel_rows(h, p.threads, [&](int y0, int y1) {
-    for (int y = y0; y < y1 && !cancelled(); ++y) {
+    for (int y = y0; y < y1 && !cancel_requested(cancel); ++y) {
       const int j = std::min(y / n, std::max(0, lh - 2)), ya = at(j, h), yb = at(j + 1, h);
       const double fy = yb > ya ? double(y - ya) / (yb - ya) : 0.0;
       for (int x = 0; x < w; ++x) {
@@ -102,7 +102,7 @@ std::vector<pixel_path> pixel_paths(const ideal_parts& parts, const emission_pro
       }
     }
   });
-  return cancelled() ? std::vector<pixel_path>{} : out;
+  return cancel_requested(cancel) ? std::vector<pixel_path>{} : out;
 }
 
 std::shared_ptr<const emission_profile> scene_emission(const scene& s) {

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "airr/core/cancel.hpp"
 #include "airr/core/low_discrepancy.hpp"
 #include "airr/core/random.hpp"
 #include "airr/render/parallel_rows.hpp"
@@ -121,7 +122,7 @@ std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std
     return part;
   };
   detail::parallel_rows(int(blocks), threads, [&](int b0, int b1) {
-    for (int k = b0; k < b1 && !(cancel && cancel->load(std::memory_order_relaxed)); ++k) {
+    for (int k = b0; k < b1 && !cancel_requested(cancel); ++k) {
       parts[std::size_t(k)] = block_kernels(std::size_t(k));
     }
   });

@@ -11,6 +11,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "airr/core/cancel.hpp"
 #include "airr/core/error.hpp"
 #include "airr/layout/layout.hpp"
 
@@ -221,7 +222,7 @@ viewing_zone_map geometric_viewing_zone(const scene& s, const eye_grid& g, const
   std::atomic<int> done{0};
   std::mutex report;
   tbb::parallel_for(0, g.ny, [&](int j) {
-    if (cancel && cancel->load(std::memory_order_relaxed)) return;
+    if (cancel_requested(cancel)) return;
     for (int i = 0; i < g.nx; ++i) {
       map.visible[std::size_t(j) * g.nx + i] =
           visible_fraction(parts, eye_position(s, g, g.x_at(i), g.y_at(j)), rows_per_eye, refine);
@@ -232,7 +233,7 @@ viewing_zone_map geometric_viewing_zone(const scene& s, const eye_grid& g, const
       progress(n, g.ny);
     }
   });
-  if (cancel && cancel->load(std::memory_order_relaxed)) map.visible.clear();
+  if (cancel_requested(cancel)) map.visible.clear();
   map.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return map;
 }

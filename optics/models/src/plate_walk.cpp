@@ -49,7 +49,8 @@ prism_path walk_plate(const plate_optics& o, const follow_back& follow, const gl
     const stretch_end end = follow(p, d, in_plate);
     p = end.point;
     if (!end.face_normal) {
-      if (in_plate) continue;  // above the structure: on to the front surface
+      if (in_plate && d.z > 0) continue;  // above the structure: on to the front surface
+      if (in_plate) break;                // down through a hole in the structure: lost
       if (d.z < 0) {
         out.fate = prism_fate::transmitted;
         out.wo = d;

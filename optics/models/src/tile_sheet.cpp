@@ -43,6 +43,9 @@ stretch_end follow_tile(const tile_sheet_geometry& g, const tile_structure& t, c
   glm::dvec3 q = f.point_in(p0), p = p0;
   glm::dvec2 cell = glm::floor(glm::dvec2(q) / g.period_mm);
   const double eps = 1e-9 * std::min(g.period_mm.x, g.period_mm.y);
+  // Past the face being left: beyond single precision's error in a hit's distance (a unit in the
+  // last place of the cell's coordinates, not of the distance), growing when light leaves grazing.
+  const float skip = float(1e-6 * std::min(g.period_mm.x, g.period_mm.y));
   for (int step = 0; step < max_steps; ++step) {
     const glm::dvec2 origin = cell * g.period_mm;
     const glm::dvec3 local = q - glm::dvec3(origin, 0);
@@ -62,12 +65,16 @@ stretch_end follow_tile(const tile_sheet_geometry& g, const tile_structure& t, c
     ray.ray.tfar = t_far;
     intersect(t.scene(), ray);
     glm::dvec2 shift(0);
-    for (int again = 0; again < 4 && ray.hit.geomID != RTC_INVALID_GEOMETRY_ID; ++again) {
+    float step_past = skip;
+    for (int again = 0; again < 4 && ray.hit.geomID != RTC_INVALID_GEOMETRY_ID; ++again, step_past *= 10) {
       shift = t.instance_offset(ray.hit.instID[0]) * g.period_mm;
       // Single precision puts the ray's start a little off the face it leaves: past it, if met.
-      if (t.face_of(ray.hit.primID) != leaving.face || glm::dvec3(origin + shift, 0) != leaving.cell) break;
+      // Cells compare by index: one origin summed two ways can differ in its last bit.
+      const bool same_cell =
+          glm::round((origin + shift) / g.period_mm) == glm::round(glm::dvec2(leaving.cell) / g.period_mm);
+      if (t.face_of(ray.hit.primID) != leaving.face || !same_cell) break;
       const float past = ray.ray.tfar;
-      ray = make_ray_hit(local, v, std::nextafter(past, t_far));
+      ray = make_ray_hit(local, v, past + step_past);
       ray.ray.tfar = t_far;
       intersect(t.scene(), ray);
     }

@@ -7,6 +7,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "airr/core/cancel.hpp"
 #include "airr/core/error.hpp"
 #include "airr/core/geometry.hpp"
 #include "airr/core/random.hpp"
@@ -117,7 +118,7 @@ tolerance_result run_tolerance(const design_spec& spec, const scene& nominal,
   // exchanges.
   const std::size_t batch_size = share ? 1024 : 16;
   for (std::size_t first = 0; first < draws.size(); first += batch_size) {
-    if (cancel && cancel->load()) {
+    if (cancel_requested(cancel)) {
       out.cancelled = true;
       break;
     }

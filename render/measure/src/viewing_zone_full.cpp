@@ -8,6 +8,7 @@
 #include <mutex>
 #include <thread>
 
+#include "airr/core/cancel.hpp"
 #include "airr/core/color.hpp"
 #include "airr/core/error.hpp"
 #include "airr/layout/layout.hpp"
@@ -222,14 +223,14 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
   } else {
     detail::parallel_rows(int(n), 0, [&](int e0, int e1) {
       std::unique_ptr<tracer_scene> ts = take();
-      for (int e = e0; e < e1 && !(cancel && cancel->load(std::memory_order_relaxed)); ++e) {
+      for (int e = e0; e < e1 && !cancel_requested(cancel); ++e) {
         one_eye(std::size_t(e), *ts);
         count_done();
       }
       give_back(std::move(ts));
     });
   }
-  if (cancel && cancel->load(std::memory_order_relaxed)) return {};
+  if (cancel_requested(cancel)) return {};
   double best = 0;
   for (double b : out.brightness) {
     if (std::isfinite(b)) best = std::max(best, b);
