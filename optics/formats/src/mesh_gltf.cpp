@@ -35,7 +35,9 @@ triangle_mesh load_prop_mesh(const std::string& path, const std::string& node) {
     const int k = gltf::find_node(f, node);
     out.name = f.model.nodes[std::size_t(k)].name;
     // The node's world transform less its rigid part (the prop's pose).
-    const glm::dmat4 inv_rigid = glm::inverse(prop_transform(prop_params{.pose = gltf::node_rigid_pose(f, k)}));
+    prop_params rigid;
+    rigid.pose = gltf::node_rigid_pose(f, k);
+    const glm::dmat4 inv_rigid = glm::inverse(prop_transform(rigid));
     gltf::append_subtree(f, k, inv_rigid * to_mm, out);
   }
   if (out.indices.empty()) {

@@ -43,8 +43,8 @@ path_polarization path_polarization::at_observer(const scene& s, const glm::dvec
 }
 
 void path_polarization::apply(const mueller& m, const polarization_frame& in, const polarization_frame& out) {
-  const mueller turn = reframe(out, frame);
-  for (glm::dvec4& r : rows) r = row_times(row_times(r, turn), m);
+  const mueller turned = reframed(out, frame, m);
+  for (glm::dvec4& r : rows) r = row_times(r, turned);
   frame = in;
 }
 
@@ -88,23 +88,23 @@ mueller path_polarization::plate_path_mueller(const plate_path& path) {
 
 void path_polarization::half_mirror_reflection(const half_mirror_params& hm, const part_frame& f,
                                                const glm::dvec3& k_in, const mueller* taken) {
+  // Every kind written in the light's s/p frames.
+  const polarization_frame in = polarization_frame::at_surface(k_in, f.n);
+  const polarization_frame out = polarization_frame::with_x(reflect(k_in, f.n), in.x);
   if (hm.kind == half_mirror_kind::plate) {
-    const polarization_frame in = polarization_frame::at_surface(k_in, f.n);
     const double cos_n = glm::dot(k_in, f.n);
-    const polarization_frame out = polarization_frame::with_x(reflect(k_in, f.n), in.x);
     if (taken) return apply(*taken, in, out);
     const plate_path main = plate_paths_at(hm.plate, std::abs(cos_n), cos_n < 0).reflected[0];
     const double a = hm.reflectance > 0 ? 1 / std::sqrt(hm.reflectance) : 0;
     return apply(interface_mueller(a * main.as, a * main.ap), in, out);
   }
-  const polarization_frame in = polarization_frame::about(k_in);
-  const polarized_step step = reflect_polarized(in, f.n, -1.0, 1.0);
-  if (hm.kind == half_mirror_kind::half_mirror) return apply(step.m, in, step.out);
+  const mueller mirror = interface_mueller(-1.0, 1.0);
+  if (hm.kind == half_mirror_kind::half_mirror) return apply(mirror, in, out);
   const reflective_polarizer_params& p = hm.polarizer;
   const double pass = angle_in(in, axis_on(f, p.axis_deg));
   // The branch's scalar weight (the reflectance) divided out of the polarizer's.
   const double per = hm.reflectance > 0 ? 1 / hm.reflectance : 0;
-  apply(step.m * linear_polarizer(pass, per * p.pass_reflectance, per * p.block_reflectance), in, step.out);
+  apply(mirror * linear_polarizer(pass, per * p.pass_reflectance, per * p.block_reflectance), in, out);
 }
 
 void path_polarization::half_mirror_transmission(const half_mirror_params& hm, const part_frame& f,
@@ -129,9 +129,10 @@ void path_polarization::half_mirror_transmission(const half_mirror_params& hm, c
 void path_polarization::mirror(const glm::dvec3& k_in) {
   const glm::dvec3 bisector = frame.k - k_in;
   if (glm::dot(bisector, bisector) < 1e-24) return;  // light passing straight on is not reflected
-  const polarization_frame in = polarization_frame::about(k_in);
-  const polarized_step step = reflect_polarized(in, glm::normalize(bisector), -1.0, 1.0);
-  apply(step.m, in, step.out);
+  // Written from the light's s/p frame, the mirror needs no turn into it.
+  const glm::dvec3 n = glm::normalize(bisector);
+  const polarization_frame in = polarization_frame::at_surface(k_in, n);
+  apply(interface_mueller(-1.0, 1.0), in, polarization_frame::with_x(reflect(k_in, n), in.x));
 }
 
 void path_polarization::depolarize(const glm::dvec3& k_in) {

@@ -28,22 +28,32 @@ jones adjoint(const jones& j) {
   return a;
 }
 
+// cos and sin of twice an angle: what a rotator of Stokes vectors needs.
+struct double_angle {
+  double c = 1, s = 0;
+  explicit double_angle(double angle) : c(std::cos(2 * angle)), s(std::sin(2 * angle)) {}
+  // Of a world axis seen in a frame (angle_in's angle), from its components alone: no
+  // trigonometry on the tracer's hot path.
+  double_angle(const polarization_frame& f, const glm::dvec3& axis) {
+    const double a = glm::dot(axis, f.x), b = glm::dot(axis, f.y), r = a * a + b * b;
+    if (r > 0) c = (a * a - b * b) / r, s = 2 * a * b / r;
+  }
+};
+
 // m rotator(angle) and rotator(angle) m, without the rotator's zeros (the tracer's hot path).
-mueller times_rotator(mueller m, double angle) {
-  const double c = std::cos(2 * angle), s = std::sin(2 * angle);
+mueller times_rotator(mueller m, double_angle turn) {
   for (auto& row : m.m) {
     const double a = row[1], b = row[2];
-    row[1] = a * c - b * s;
-    row[2] = a * s + b * c;
+    row[1] = a * turn.c - b * turn.s;
+    row[2] = a * turn.s + b * turn.c;
   }
   return m;
 }
-mueller rotator_times(double angle, mueller m) {
-  const double c = std::cos(2 * angle), s = std::sin(2 * angle);
+mueller rotator_times(double_angle turn, mueller m) {
   for (int k = 0; k < 4; ++k) {
     const double a = m.m[1][k], b = m.m[2][k];
-    m.m[1][k] = c * a + s * b;
-    m.m[2][k] = -s * a + c * b;
+    m.m[1][k] = turn.c * a + turn.s * b;
+    m.m[2][k] = -turn.s * a + turn.c * b;
   }
   return m;
 }
@@ -52,7 +62,7 @@ mueller rotator_times(double angle, mueller m) {
 // Jones matrix turn(-axis) diag(along, across) turn(axis), whose Mueller matrix is the product of
 // theirs (mueller_of, checked against it in tests/test_polarization.cpp).
 mueller axial_part(double axis, complex along, complex across) {
-  return rotator_times(-axis, times_rotator(interface_mueller(along, across), axis));
+  return rotator_times(double_angle(-axis), times_rotator(interface_mueller(along, across), double_angle(axis)));
 }
 
 }  // namespace
@@ -117,15 +127,7 @@ mueller mueller_of(const jones& j) {
   return out;
 }
 
-mueller rotator(double angle_rad) {
-  const double c = std::cos(2 * angle_rad), s = std::sin(2 * angle_rad);
-  mueller r = mueller::identity();
-  r.m[1][1] = c;
-  r.m[1][2] = s;
-  r.m[2][1] = -s;
-  r.m[2][2] = c;
-  return r;
-}
+mueller rotator(double angle_rad) { return times_rotator(mueller::identity(), double_angle(angle_rad)); }
 
 mueller linear_polarizer(double axis_rad, double t_pass, double t_block) {
   return axial_part(axis_rad, std::sqrt(t_pass), std::sqrt(t_block));
@@ -168,7 +170,13 @@ double angle_in(const polarization_frame& f, const glm::dvec3& axis) {
   return std::atan2(glm::dot(axis, f.y), glm::dot(axis, f.x));
 }
 
-mueller reframe(const polarization_frame& from, const polarization_frame& to) { return rotator(angle_in(from, to.x)); }
+mueller reframe(const polarization_frame& from, const polarization_frame& to) {
+  return times_rotator(mueller::identity(), double_angle(from, to.x));
+}
+
+mueller reframed(const polarization_frame& from, const polarization_frame& to, const mueller& m) {
+  return rotator_times(double_angle(from, to.x), m);
+}
 
 polarization_frame reversed(const polarization_frame& f) { return {f.x, -f.y, -f.k}; }
 
@@ -183,14 +191,14 @@ mueller reversed_path(const mueller& m) {
 polarized_step reflect_polarized(const polarization_frame& in, const glm::dvec3& n, complex rs, complex rp) {
   const polarization_frame sp = polarization_frame::at_surface(in.k, n);
   // s is across the plane of incidence, so the light leaving shares it.
-  return {times_rotator(interface_mueller(rs, rp), angle_in(in, sp.x)),
+  return {times_rotator(interface_mueller(rs, rp), double_angle(in, sp.x)),
           polarization_frame::with_x(reflect(in.k, n), sp.x)};
 }
 
 polarized_step transmit_polarized(const polarization_frame& in, const glm::dvec3& n, const glm::dvec3& k_out,
                                   complex ts, complex tp, double energy) {
   const polarization_frame sp = polarization_frame::at_surface(in.k, n);
-  return {times_rotator(interface_mueller(std::sqrt(energy) * ts, std::sqrt(energy) * tp), angle_in(in, sp.x)),
+  return {times_rotator(interface_mueller(std::sqrt(energy) * ts, std::sqrt(energy) * tp), double_angle(in, sp.x)),
           polarization_frame::with_x(k_out, sp.x)};
 }
 

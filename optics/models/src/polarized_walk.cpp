@@ -11,7 +11,7 @@ polarized_walk polarized_walk::arriving(const glm::dvec3& wi) {
 mueller polarized_walk::leaving(const glm::dvec3& wo) const {
   // A direction spread by diffraction after the last event differs a little from frame.k: its
   // frame is the one about wo turned to face frame.x as nearly as it can.
-  return reframe(frame, polarization_frame::about(wo)) * m;
+  return reframed(frame, polarization_frame::about(wo), m);
 }
 
 void polarized_walk::reflect(const glm::dvec3& n, double cos_i, std::complex<double> eta) {

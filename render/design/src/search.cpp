@@ -258,7 +258,11 @@ design_result decode_search(const design_spec& sub, const double* in) {
       t.evaluation.score = design_score(sub, t.evaluation.objective_values);
       t.evaluation.broken = broken_constraints(sub, t.evaluation.constraint_values);
     } else {
-      t = design_trial{.index = t.index, .phase = t.phase, .x = t.x};
+      design_trial fresh;
+      fresh.index = t.index;
+      fresh.phase = t.phase;
+      fresh.x = t.x;
+      t = fresh;
       try {
         evaluate_design(sub, design_scene(sub, t.x));
         throw std::logic_error("a shared search's invalid layout builds here");

@@ -76,6 +76,8 @@ double angle_in(const polarization_frame& f, const glm::dvec3& axis);
 
 // The rotator that rewrites a Stokes vector of frame `from` in frame `to` (same k).
 mueller reframe(const polarization_frame& from, const polarization_frame& to);
+// reframe(from, to) * m, without the rotator's zeros.
+mueller reframed(const polarization_frame& from, const polarization_frame& to, const mueller& m);
 
 // Reciprocity: a part met the other way. The light reversed is written in reversed(frame),
 // (x, -y, -k); a path's Mueller matrix from `in` to `out` becomes, from reversed(out) to
