@@ -129,10 +129,9 @@ void path_polarization::half_mirror_transmission(const half_mirror_params& hm, c
 void path_polarization::mirror(const glm::dvec3& k_in) {
   const glm::dvec3 bisector = frame.k - k_in;
   if (glm::dot(bisector, bisector) < 1e-24) return;  // light passing straight on is not reflected
-  // Written from the light's s/p frame, the mirror needs no turn into it.
-  const glm::dvec3 n = glm::normalize(bisector);
-  const polarization_frame in = polarization_frame::at_surface(k_in, n);
-  apply(interface_mueller(-1.0, 1.0), in, polarization_frame::with_x(reflect(k_in, n), in.x));
+  // Written from the light's s/p frame, the mirror needs no turn into it; it leaves along frame.k.
+  const polarization_frame in = polarization_frame::at_surface(k_in, glm::normalize(bisector));
+  apply(interface_mueller(-1.0, 1.0), in, polarization_frame::with_x(frame.k, in.x));
 }
 
 void path_polarization::depolarize(const glm::dvec3& k_in) {
