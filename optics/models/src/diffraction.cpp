@@ -43,41 +43,109 @@ double intensity(const aperture& a, double area, const glm::dvec2& f) {
     return area * area * amplitude * amplitude;
   }
   if (f2 * area < 1e-18) return area * area;
-  // Over each edge a -> b (d = b - a, midpoint m): the outward normal times the length is
-  // (d.y, -d.x), and the edge's integral of exp(-2 pi i f . x) is |d| exp(-2 pi i f . m) sinc(pi f . d).
-  std::complex<double> sum(0, 0);
+  // Over each edge a -> b (d = b - a): the outward normal times the length is (d.y, -d.x), and the
+  // edge's integral of exp(-2 pi i f . x) is |d| sinc(u) exp(-i pi f . (a + b)), u = pi f . d, which
+  // is |d| (E(a) - E(b)) / (2 i u) with E(x) = exp(-2 pi i f . x): one exponential per vertex.
   const std::size_t n = a.polygon.size();
+  auto vertex_wave = [&](std::size_t j) {
+    const double phase = -2 * pi * glm::dot(f, a.polygon[j % n]);
+    return std::complex<double>(std::cos(phase), std::sin(phase));
+  };
+  std::complex<double> sum(0, 0);
+  const std::complex<double> first = vertex_wave(0);
+  std::complex<double> at_p = first;
   for (std::size_t j = 0; j < n; ++j) {
-    const glm::dvec2 p = a.polygon[j], q = a.polygon[(j + 1) % n], d = q - p, m = 0.5 * (p + q);
+    const std::complex<double> at_q = j + 1 < n ? vertex_wave(j + 1) : first;
+    const glm::dvec2 d = a.polygon[(j + 1) % n] - a.polygon[j];
     const double u = pi * glm::dot(f, d);
-    const double sinc = std::abs(u) < 1e-9 ? 1.0 : std::sin(u) / u;
-    const double phase = -2 * pi * glm::dot(f, m);
-    sum += (f.x * d.y - f.y * d.x) * sinc * std::complex<double>(std::cos(phase), std::sin(phase));
+    // Near u = 0 the difference cancels: sinc(u) exp(i u) to second order instead.
+    const std::complex<double> wave = std::abs(u) < 1e-4 ? at_p * std::complex<double>(1 - u * u * (1.0 / 6 + 0.5), u)
+                                                         : (at_p - at_q) * std::complex<double>(0, -0.5 / u);
+    sum += (f.x * d.y - f.y * d.x) * wave;
+    at_p = at_q;
   }
   return std::norm(sum) / (4 * pi * pi * f2 * f2);
+}
+
+// A bound on a polygon's |F(f)|^2 from the same edge sum without its phases (|sinc u| <= min(1,
+// 1 / |u|)): no sine or cosine, and far below the sampler's radial bound beyond the central lobe,
+// so most trials are refused without evaluating F.
+double edge_bound(const aperture& a, const glm::dvec2& f) {
+  double sum = 0;
+  const std::size_t n = a.polygon.size();
+  for (std::size_t j = 0; j < n; ++j) {
+    const glm::dvec2 d = a.polygon[(j + 1) % n] - a.polygon[j];
+    const double u = pi * std::abs(glm::dot(f, d));
+    sum += std::abs(f.x * d.y - f.y * d.x) * (u > 1 ? 1 / u : 1.0);
+  }
+  const double f2 = glm::dot(f, f);
+  return sum * sum / (4 * pi * pi * f2 * f2);
+}
+
+// A uniformly distributed direction in the plane, from a point drawn in the unit disc (no sine or
+// cosine: the sampler draws about ten of them per accepted frequency).
+inline glm::dvec2 uniform_direction(pcg32& rng) {
+  while (true) {
+    const glm::dvec2 p(2 * rng.next_double() - 1, 2 * rng.next_double() - 1);
+    const double p2 = glm::dot(p, p);
+    if (p2 <= 1 && p2 > 1e-12) return p / std::sqrt(p2);
+  }
 }
 
 }  // namespace
 
 double far_field_intensity(const aperture& a, const glm::dvec2& f) { return intensity(a, a.area(), f); }
 
-glm::dvec2 sample_far_field(const aperture& a, pcg32& rng, double f_max) {
-  const double area = a.area(), perimeter = a.perimeter();
-  if (!(f_max > 0)) f_max = far_field_reach(a);
-  // The bound: area^2 within f0, (perimeter / (2 pi |f|))^2 beyond (the edge sum's magnitude is at
-  // most |f| perimeter).
-  const double f0 = std::min(perimeter / (2 * pi * area), f_max);
-  const double inner = area * area * pi * f0 * f0;
-  const double outer = f0 < f_max ? perimeter * perimeter / (2 * pi) * std::log(f_max / f0) : 0.0;
+namespace {
+
+// The circle's Airy pattern, area^2 (2 J1(x) / x)^2 with x = pi D |f|, by rejection from area^2 up to
+// x1 and area^2 4 c / x^3 beyond: x (J1^2 + Y1^2) falls with x (Nicholson's formula), so
+// J1(x)^2 <= c / x for x >= 1 with c = J1(1)^2 + Y1(1)^2, and x1 = (4 c)^(1/3) > 1 joins the two.
+glm::dvec2 sample_airy(const aperture& a, pcg32& rng, double f_max) {
+  static const double c = std::pow(std::cyl_bessel_j(1.0, 1.0), 2) + std::pow(std::cyl_neumann(1.0, 1.0), 2);
+  static const double x1 = std::cbrt(4 * c);
+  const double area = a.area(), scale = pi * a.diameter_mm;  // x = scale |f|
+  const double f1 = std::min(x1 / scale, f_max);
+  // Masses of the two parts of the bound over the plane (in units of area^2).
+  const double inner = pi * f1 * f1;
+  const double outer = f1 < f_max ? 8 * pi * c / (scale * scale * scale) * (1 / f1 - 1 / f_max) : 0.0;
   while (true) {
     const bool in = rng.next_double() * (inner + outer) < inner;
     const double u = rng.next_double();
-    const double r = in ? f0 * std::sqrt(u) : f0 * std::pow(f_max / f0, u);
-    const double angle = 2 * pi * rng.next_double();
-    const glm::dvec2 f(r * std::cos(angle), r * std::sin(angle));
-    const double bound = r <= f0 ? area * area : std::pow(perimeter / (2 * pi * r), 2);
+    const double r = in ? f1 * std::sqrt(u) : 1 / (1 / f1 - u * (1 / f1 - 1 / f_max));
+    const glm::dvec2 f = r * uniform_direction(rng);
+    const double x = scale * r;
+    const double bound = r <= f1 ? area * area : area * area * 4 * c / (x * x * x);
     if (rng.next_double() * bound < intensity(a, area, f)) return f;
   }
+}
+
+// A polygon's |F|^2 by rejection from area^2 within f0 and (perimeter / (2 pi |f|))^2 beyond (the
+// edge sum's magnitude is at most |f| perimeter), the edge bound refusing most trials first.
+glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max) {
+  const double area = a.area(), perimeter = a.perimeter();
+  const double f0 = std::min(perimeter / (2 * pi * area), f_max);
+  const double inner = area * area * pi * f0 * f0;
+  const double log_reach = f0 < f_max ? std::log(f_max / f0) : 0.0;
+  const double outer = perimeter * perimeter / (2 * pi) * log_reach;
+  while (true) {
+    const bool in = rng.next_double() * (inner + outer) < inner;
+    const double u = rng.next_double();
+    const double r = in ? f0 * std::sqrt(u) : f0 * std::exp(u * log_reach);
+    const glm::dvec2 f = r * uniform_direction(rng);
+    const double edge_mean = perimeter / (2 * pi * r);
+    const double bound = r <= f0 ? area * area : edge_mean * edge_mean;
+    const double v = rng.next_double() * bound;
+    if (v >= edge_bound(a, f)) continue;
+    if (v < intensity(a, area, f)) return f;
+  }
+}
+
+}  // namespace
+
+glm::dvec2 sample_far_field(const aperture& a, pcg32& rng, double f_max) {
+  if (!(f_max > 0)) f_max = far_field_reach(a);
+  return a.polygon.empty() ? sample_airy(a, rng, f_max) : sample_polygon_far_field(a, rng, f_max);
 }
 
 std::optional<glm::dvec3> diffracted(const glm::dvec3& w, const glm::dvec2& f, double wavelength_mm) {
