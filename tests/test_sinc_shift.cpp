@@ -23,6 +23,18 @@ using namespace airr;
 
 namespace {
 
+// Sinc-shift parameters at R = 300 mm: one a and mu for every angle, or a and mu over theta_deg.
+sinc_shift_params lobe_params(std::vector<double> a_per_mm, std::vector<double> mu, double c_mm,
+                              std::vector<double> theta_deg = {}) {
+  sinc_shift_params p;
+  p.theta_deg = std::move(theta_deg);
+  p.a_per_mm = std::move(a_per_mm);
+  p.mu = std::move(mu);
+  p.c_mm = c_mm;
+  p.reference_distance_mm = 300.0;
+  return p;
+}
+
 // Integral of sinc^2 over [y0, y1] by composite Simpson: an independent reference.
 double sinc2_integral(double y0, double y1) {
   const int n = 2000;
@@ -105,8 +117,7 @@ TEST(SincLobe, DensityIntegratesToOne) {
 }
 
 TEST(SincShift, NeverReturnsMoreEnergyThanItReceives) {
-  const sinc_shift_retro model(
-      {.theta_deg = {}, .a_per_mm = {0.05}, .mu = {0.9}, .c_mm = 0.0, .reference_distance_mm = 300.0}, nullptr);
+  const sinc_shift_retro model(lobe_params({0.05}, {0.9}, 0.0), nullptr);
   for (double theta : {0.0, 30.0, 60.0, 85.0}) {
     const double t = theta * std::numbers::pi / 180;
     const glm::dvec3 wi(std::sin(t), 0, std::cos(t));
@@ -132,11 +143,7 @@ TEST(SincShift, NeverReturnsMoreEnergyThanItReceives) {
 // the samples of the model itself, across the shift table's rows, with a per-angle a and mu, and
 // for light from below the sheet; so does the default preparation of any other model.
 TEST(SincShift, AtIncidenceSamplesAsTheModelDoes) {
-  const sinc_shift_retro model({.theta_deg = {0, 20, 40},
-                                .a_per_mm = {0.5, 0.3, 0.2},
-                                .mu = {0.9, 0.8, 0.6},
-                                .c_mm = 3.0,
-                                .reference_distance_mm = 300.0},
+  const sinc_shift_retro model(lobe_params({0.5, 0.3, 0.2}, {0.9, 0.8, 0.6}, 3.0, {0, 20, 40}),
                                cached_shift_table(default_shift_table_path()));
   const ideal_retro ideal(0.7);
   for (double theta : {0.0, 7.5, 33.0, 80.0, 120.0}) {
@@ -160,8 +167,7 @@ TEST(SincShift, AtIncidenceSamplesAsTheModelDoes) {
 // (a basis built here), absorbed samples in a bin of their own, expected counts from integrating
 // pdf over each bin. A grazing wi and a wide lobe put a good share below the sheet.
 TEST(SincShift, SampledDirectionsFollowTheModelsPdfByChiSquare) {
-  const sinc_shift_retro model(
-      {.theta_deg = {}, .a_per_mm = {0.01}, .mu = {0.7}, .c_mm = 0.0, .reference_distance_mm = 300.0}, nullptr);
+  const sinc_shift_retro model(lobe_params({0.01}, {0.7}, 0.0), nullptr);
   const double theta = 60 * std::numbers::pi / 180;
   const glm::dvec3 wi(std::sin(theta), 0, std::cos(theta));
   const glm::dvec3 e1 = glm::normalize(glm::cross(glm::dvec3(0, 1, 0), wi)), e2 = glm::cross(wi, e1);
@@ -300,7 +306,12 @@ TEST(Presets, BadPresetsGiveClearErrors) {
 // and not its 30 deg row; the index round-trips through the preset file.
 TEST(Presets, ShiftIndexReadsTheShiftTableAtTheAngleInside) {
   test::temp_dir dir;
-  sheet_preset p{.name = "in glass", .a_per_mm = {1000}, .mu = {1}, .c_mm = 1, .shift_index = 1.5};
+  sheet_preset p;
+  p.name = "in glass";
+  p.a_per_mm = {1000};
+  p.mu = {1};
+  p.c_mm = 1;
+  p.shift_index = 1.5;
   save_preset(p, dir.file("glass.json"));
   EXPECT_DOUBLE_EQ(load_preset(dir.file("glass.json")).shift_index, 1.5);
   EXPECT_DOUBLE_EQ(load_preset("rf-ay").shift_index, 1.0);

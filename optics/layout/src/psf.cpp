@@ -115,10 +115,12 @@ static double add_sheet_samples(const psf_chief_ray& chief, const retro_model& m
       polarized ? std::optional(chief_path_to_sheet(*polarized, chief)) : std::nullopt;
   // The lobe and shift samples stratify each other across the PSF's samples (a rotated R6
   // sequence, as the tracer's pixels use); the rest comes from the per-sample generator.
+  // Every sample meets the sheet at wi: the model prepares for it once.
+  const std::unique_ptr<const retro_at_incidence> at_wi = model.at_incidence(wi);
   const std::vector<psf_samples> parts = sample_in_blocks<psf_samples>(
       p.samples, p.seed, 0, 0x5eedu, p.stratified,
       [&](const std::array<double, 6>&, const retro_samples& u, psf_samples& part) {
-        const retro_sample rs = polarized ? model.sample_polarized(wi, u) : model.sample(wi, u);
+        const retro_sample rs = polarized ? model.sample_polarized(wi, u) : at_wi->sample(u);
         if (!(rs.weight > 0) || !rs.retroreflected) return;
         const auto delta = psf_landing_offset(chief, rs);
         if (!delta) return;

@@ -13,9 +13,11 @@ double sinc(double x) { return std::abs(x) < 1e-8 ? 1.0 - x * x / 6.0 : std::sin
 sinc_lobe::sinc_lobe() {
   const int n = sinc_lobe_table_size;
   cdf_.resize(n);
+  tan_start_.resize(n);
   double sum = 0;
   for (int j = 0; j < n; ++j) {
     const double delta = half_pi * j / n;
+    tan_start_[std::size_t(j)] = std::tan(delta);
     const double c = std::cos(delta);
     const double s = sinc(std::tan(delta));
     sum += s * s / (c * c);
@@ -38,8 +40,11 @@ double sinc_lobe::sample_tan_delta(double k, double u_cell, double u_jitter) con
   const int b = std::clamp(int(u_cell * guide_size), 0, guide_size - 1);
   const auto first = cdf_.begin() + guide_[b], last = cdf_.begin() + guide_[b + 1];
   const auto j = std::min<std::size_t>(std::upper_bound(first, last, u_cell) - cdf_.begin(), cdf_.size() - 1);
-  const double delta1 = half_pi * (double(j) + u_jitter) / double(cdf_.size());
-  return std::tan(delta1) / k;
+  const double cell = half_pi / double(cdf_.size());
+  if (j + 1 == cdf_.size()) return std::tan(cell * (double(j) + u_jitter)) / k;
+  // tan(start + r) by the addition formula, tan r = r + r^3 / 3 to double precision (r < 6e-5).
+  const double rest = cell * u_jitter, tan_rest = rest + rest * rest * rest / 3, t = tan_start_[j];
+  return (t + tan_rest) / (1 - t * tan_rest) / k;
 }
 
 double sinc_lobe::pdf(double delta, double k) {

@@ -24,7 +24,8 @@ class sinc_lobe {
 
  private:
   sinc_lobe();
-  std::vector<double> cdf_;  // cdf_[j] = sum of weights of cells < j+1
+  std::vector<double> cdf_;        // cdf_[j] = sum of weights of cells < j+1
+  std::vector<double> tan_start_;  // tan of each cell's first angle
   // guide_[b]: the first cell whose cdf_ exceeds b / guide_size, so that a lookup searches only
   // between two neighbouring entries (the same cell as a search of the whole table).
   static constexpr int guide_size = 4096;
