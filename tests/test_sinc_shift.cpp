@@ -10,6 +10,7 @@
 #include "airr/core/error.hpp"
 #include "airr/core/geometry.hpp"
 #include "airr/core/random.hpp"
+#include "airr/core/table_search.hpp"
 #include "airr/layout/psf.hpp"
 #include "airr/layout/sheet_models.hpp"
 #include "airr/models/preset.hpp"
@@ -364,5 +365,23 @@ TEST(Presets, RfAnBlursMoreThanRfAyAtEveryTilt) {
     const double ay = blur_r50(preset_scene("rf-ay", 150, tilt)), an = blur_r50(preset_scene("rf-an", 150, tilt));
     std::printf("tilt %4.0f deg: r50 RF-Ay %.4f mm, RF-AN %.4f mm\n", tilt, ay, an);
     EXPECT_GT(an, ay) << "tilt " << tilt;
+  }
+}
+
+// The samplers' table search gives std::upper_bound's index: tables with repeated values, values
+// below, between, on and above the entries, every length from 0 to 40.
+TEST(TableSearch, FirstGreaterIsUpperBound) {
+  pcg32 rng(3, 5);
+  for (std::size_t n = 0; n <= 40; ++n) {
+    std::vector<double> table(n);
+    double v = 0;
+    for (double& t : table) t = v += rng.next_double() < 0.3 ? 0.0 : rng.next_double();
+    std::vector<double> xs = {-1.0, v + 1.0};
+    for (double t : table) xs.insert(xs.end(), {t, t - 1e-12, t + 1e-12});
+    for (int k = 0; k < 20; ++k) xs.push_back(rng.next_double() * (v + 0.5));
+    for (double x : xs) {
+      const auto expected = std::size_t(std::upper_bound(table.begin(), table.end(), x) - table.begin());
+      EXPECT_EQ(first_greater(table.data(), n, x), expected) << "n " << n << ", x " << x;
+    }
   }
 }

@@ -11,6 +11,7 @@
 #include "airr/core/error.hpp"
 #include "airr/core/files.hpp"
 #include "airr/core/json_reader.hpp"
+#include "airr/core/table_search.hpp"
 
 namespace airr {
 
@@ -31,8 +32,8 @@ constexpr double row_sum_tolerance = 1e-6;
 
 // Index of the bin whose cumulative range holds u (cumulative values end at exactly 1).
 int bin_from_cdf(const std::vector<double>& cdf, double u) {
-  const auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
-  if (it != cdf.end()) return int(it - cdf.begin());
+  const std::size_t above = first_greater(cdf.data(), cdf.size(), u);
+  if (above < cdf.size()) return int(above);
   // u >= 1: the last bin with any probability.
   const auto first_full = std::lower_bound(cdf.begin(), cdf.end(), cdf.back());
   return int(first_full - cdf.begin());

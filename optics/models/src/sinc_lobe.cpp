@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "airr/core/table_search.hpp"
+
 namespace airr {
 
 static constexpr double half_pi = std::numbers::pi / 2;
@@ -38,8 +40,8 @@ const sinc_lobe& sinc_lobe::instance() {
 double sinc_lobe::sample_tan_delta(double k, double u_cell, double u_jitter) const {
   // The answer lies between guide_[b] and guide_[b + 1] (inclusive) for u_cell in [b, b + 1) / guide_size.
   const int b = std::clamp(int(u_cell * guide_size), 0, guide_size - 1);
-  const auto first = cdf_.begin() + guide_[b], last = cdf_.begin() + guide_[b + 1];
-  const auto j = std::min<std::size_t>(std::upper_bound(first, last, u_cell) - cdf_.begin(), cdf_.size() - 1);
+  const std::size_t first = std::size_t(guide_[b]), last = std::size_t(guide_[b + 1]);
+  const std::size_t j = std::min(first + first_greater(cdf_.data() + first, last - first, u_cell), cdf_.size() - 1);
   const double cell = half_pi / double(cdf_.size());
   if (j + 1 == cdf_.size()) return std::tan(cell * (double(j) + u_jitter)) / k;
   // tan(start + r) by the addition formula, tan r = r + r^3 / 3 to double precision (r < 6e-5).
