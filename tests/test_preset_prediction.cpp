@@ -26,11 +26,12 @@ std::string sheet_path(const std::string& name) { return asset_dir() + "/sheets/
 
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
 
-// Mean MTF of the explicit sheet and of `preset` at `tilts`, with the bench's own measurement.
-std::vector<analysis::prediction_agreement> agreement(const sheet_description& sheet, const sheet_preset& preset,
-                                                      const std::vector<double>& tilts = {0, 10, 20, 30}) {
+// Mean MTF of the explicit sheet and of each preset at `tilts`, with the bench's own measurement.
+std::vector<std::vector<analysis::prediction_agreement>> agreement(const sheet_description& sheet,
+                                                                   const std::vector<sheet_preset>& presets,
+                                                                   const std::vector<double>& tilts = {0, 10, 20, 30}) {
   const analysis::synthesis_params bench_settings = analysis::prediction_params{}.synthesis;
-  return analysis::compare_prediction(sheet, preset, analysis::synthesis_bench(scene{}), tilts, bench_settings);
+  return analysis::compare_predictions(sheet, presets, analysis::synthesis_bench(scene{}), tilts, bench_settings);
 }
 
 }  // namespace
@@ -117,7 +118,8 @@ void expect_prediction_agrees(const std::string& sheet_name, const std::string& 
   EXPECT_EQ(predicted.provenance["fit"]["settings"]["a_matches"], "mean_mtf");
 
   const sheet_preset shipped = load_preset(shipped_name);
-  const auto ours = agreement(sheet, predicted), theirs = agreement(sheet, shipped);
+  const auto both = agreement(sheet, {predicted, shipped});
+  const auto &ours = both[0], &theirs = both[1];
   double worst_shipped = 0;
   std::printf("%8s %13s %13s %13s %17s\n", "tilt_deg", "explicit", "predicted", ("shipped " + shipped_name).c_str(),
               "brightness ratio");
@@ -147,7 +149,8 @@ TEST(PresetPrediction, PredictedPresetAgreesWithTheExplicitSheet) {
   EXPECT_NEAR(predicted.c_mm, edge, 0.05 * edge);
   EXPECT_FALSE(predicted.shift_table.empty());
 
-  for (const auto& g : agreement(sheet, predicted, {2.5, 17.5, 27.5, 32.5, 33.5, 37.5, 42.5})) {
+  const auto between = agreement(sheet, {predicted}, {2.5, 17.5, 27.5, 32.5, 33.5, 37.5, 42.5});
+  for (const auto& g : between[0]) {
     std::printf("between tilts: %5g deg explicit %.4f predicted %.4f\n", g.tilt_deg, g.explicit_mean_mtf,
                 g.predicted_mean_mtf);
     EXPECT_NEAR(g.predicted_mean_mtf, g.explicit_mean_mtf, 0.015) << "tilt " << g.tilt_deg;

@@ -98,37 +98,53 @@ fit_result predict_preset(const sheet_description& sheet, const scene& bench, co
   return r;
 }
 
-std::vector<prediction_agreement> compare_prediction(const sheet_description& sheet, const sheet_preset& preset,
-                                                     const scene& bench, const std::vector<double>& tilts_deg,
-                                                     const synthesis_params& p, const item_share& share) {
+std::vector<std::vector<prediction_agreement>> compare_predictions(const sheet_description& sheet,
+                                                                   const std::vector<sheet_preset>& presets,
+                                                                   const scene& bench,
+                                                                   const std::vector<double>& tilts_deg,
+                                                                   const synthesis_params& p, const item_share& share) {
   scene setup = bench;
   for (auto& s : setup.retroreflectors) {
     s.model = sheet.model;
     rebase_model_paths(s.model, sheet.base_dir, setup.base_dir);
   }
   const psf_params pp{.samples = p.samples, .seed = p.seed};
-  // Per tilt, the explicit sheet's and the preset's mean MTF and brightness.
-  const std::vector<double> v = run_items(share, tilts_deg.size(), 4, [&](std::size_t i, double* o) {
+  // Per tilt, the explicit sheet's mean MTF and brightness, then each preset's.
+  const std::size_t stride = 2 + 2 * presets.size();
+  const std::vector<double> v = run_items(share, tilts_deg.size(), stride, [&](std::size_t i, double* o) {
     const double t = tilts_deg[i];
     const scene truth = measurement_layout(setup, t, 150);
     const psf_samples a = sample_psf(truth, make_sheet_models(truth), pp);
-    const scene model =
-        fit_scene(setup, t, 150, interpolate_by_angle(preset.theta_deg, preset.a_per_mm, t), preset.c_mm,
-                  interpolate_by_angle(preset.theta_deg, preset.mu, t), preset.shift_index, preset.shift_table);
-    const psf_samples b = sample_psf(model, make_sheet_models(model), pp);
     o[0] = bench_mean_mtf(a, p.lsf_window_mm);
-    o[1] = bench_mean_mtf(b, p.lsf_window_mm);
-    o[2] = a.brightness();
-    o[3] = b.brightness();
+    o[1] = a.brightness();
+    for (std::size_t k = 0; k < presets.size(); ++k) {
+      const sheet_preset& preset = presets[k];
+      const scene model =
+          fit_scene(setup, t, 150, interpolate_by_angle(preset.theta_deg, preset.a_per_mm, t), preset.c_mm,
+                    interpolate_by_angle(preset.theta_deg, preset.mu, t), preset.shift_index, preset.shift_table);
+      const psf_samples b = sample_psf(model, make_sheet_models(model), pp);
+      o[2 + 2 * k] = bench_mean_mtf(b, p.lsf_window_mm);
+      o[3 + 2 * k] = b.brightness();
+    }
   });
-  std::vector<prediction_agreement> out;
-  for (std::size_t i = 0; i < tilts_deg.size(); ++i)
-    out.push_back({.tilt_deg = tilts_deg[i],
-                   .explicit_mean_mtf = v[4 * i],
-                   .predicted_mean_mtf = v[4 * i + 1],
-                   .explicit_brightness = v[4 * i + 2],
-                   .predicted_brightness = v[4 * i + 3]});
+  std::vector<std::vector<prediction_agreement>> out(presets.size());
+  for (std::size_t k = 0; k < presets.size(); ++k) {
+    for (std::size_t i = 0; i < tilts_deg.size(); ++i) {
+      const double* row = v.data() + stride * i;
+      out[k].push_back({.tilt_deg = tilts_deg[i],
+                        .explicit_mean_mtf = row[0],
+                        .predicted_mean_mtf = row[2 + 2 * k],
+                        .explicit_brightness = row[1],
+                        .predicted_brightness = row[3 + 2 * k]});
+    }
+  }
   return out;
+}
+
+std::vector<prediction_agreement> compare_prediction(const sheet_description& sheet, const sheet_preset& preset,
+                                                     const scene& bench, const std::vector<double>& tilts_deg,
+                                                     const synthesis_params& p, const item_share& share) {
+  return compare_predictions(sheet, {preset}, bench, tilts_deg, p, share).front();
 }
 
 }  // namespace airr::analysis

@@ -51,5 +51,9 @@ struct prediction_agreement {
 std::vector<prediction_agreement> compare_prediction(const sheet_description& sheet, const sheet_preset& preset,
                                                      const scene& bench, const std::vector<double>& tilts_deg,
                                                      const synthesis_params& p, const item_share& share = {});
+// The same for several presets, the explicit sheet measured once for all: [k] is presets[k]'s.
+std::vector<std::vector<prediction_agreement>> compare_predictions(
+    const sheet_description& sheet, const std::vector<sheet_preset>& presets, const scene& bench,
+    const std::vector<double>& tilts_deg, const synthesis_params& p, const item_share& share = {});
 
 }  // namespace airr::analysis
