@@ -116,7 +116,7 @@ static double add_sheet_samples(const psf_chief_ray& chief, const retro_model& m
   // The lobe and shift samples stratify each other across the PSF's samples (a rotated R6
   // sequence, as the tracer's pixels use); the rest comes from the per-sample generator.
   // Every sample meets the sheet at wi: the model prepares for it once.
-  const std::unique_ptr<const retro_at_incidence> at_wi = model.at_incidence(wi);
+  const std::unique_ptr<const retro_at_incidence> at_wi = polarized ? nullptr : model.at_incidence(wi);
   const std::vector<psf_samples> parts = sample_in_blocks<psf_samples>(
       p.samples, p.seed, 0, 0x5eedu, p.stratified,
       [&](const std::array<double, 6>&, const retro_samples& u, psf_samples& part) {

@@ -21,7 +21,7 @@ sinc_lobe::sinc_lobe() {
     const double delta = half_pi * j / n;
     tan_start_[std::size_t(j)] = std::tan(delta);
     const double c = std::cos(delta);
-    const double s = sinc(std::tan(delta));
+    const double s = sinc(tan_start_[std::size_t(j)]);
     sum += s * s / (c * c);
     cdf_[j] = sum;
   }
