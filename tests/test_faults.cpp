@@ -21,6 +21,7 @@
 #include "airr/core/assets.hpp"
 #include "airr/core/files.hpp"
 #include "airr/core/json_reader.hpp"
+#include "airr/formats/design_spec.hpp"
 #include "airr/formats/gltf_layout.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/models/preset.hpp"
@@ -425,4 +426,37 @@ TEST(Faults, AnEditBeyondTheProcesssMemoryIsRefusedAndTheLastImageStays) {
   EXPECT_EQ(st.session->snapshot().error, "");
   EXPECT_EQ(st.session->snapshot().width, 40);
   st.session->stop();
+}
+
+// Under an address-space limit, the designer's background jobs end in one line saying what ran out:
+// a tolerance run refused by its memory check before its first layout, and a job whose allocation
+// fails past any check (a 4 GB block with 1 GB to spare).
+TEST(Faults, BackgroundJobsOutOfMemorySayWhatRanOut) {
+  const scene base = load_scene(default_scene_path());
+  const design_spec spec = parse_design_spec(
+      R"({"format": "airr-design", "version": 1, "eyes_mm": [[0, 0, 450]],
+          "objectives": [{"metric": "r50_mm", "goal": "minimise"}],
+          "tolerances": [{"key": "half_mirror.pose.pitch_deg", "sd": 0.3}],
+          "search": {"psf_samples": 100000000}})",
+      "spec", base);
+  const address_space_limit limit(1'000'000'000ULL);
+  const auto wait_for_end = [](const auto& job) {
+    for (int i = 0; i < 400 && job.running(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(25));
+    return job.error();
+  };
+  const ui::design_job tolerance(spec, ui::design_job::kind::tolerance);
+  const std::string refused = wait_for_end(tolerance);
+  EXPECT_EQ(refused.rfind("tolerance: ", 0), 0) << refused;
+  EXPECT_NE(refused.find(" at once of 100000000 samples needs about "), std::string::npos) << refused;
+  EXPECT_NE(refused.find("ulimit -v"), std::string::npos) << refused;
+  EXPECT_FALSE(tolerance.tolerances());
+
+  const ui::background_job<double, std::size_t> greedy("viewing zone", [](const auto&) -> std::optional<std::size_t> {
+    std::vector<char> block(std::size_t(4) << 30);
+    asm volatile("" : : "g"(block.data()) : "memory");  // the block escapes: its allocation stays
+    return block.size();
+  });
+  const std::string failed = wait_for_end(greedy);
+  EXPECT_EQ(failed.rfind("viewing zone: out of memory (an allocation failed; this process may take", 0), 0) << failed;
+  EXPECT_FALSE(greedy.result());
 }

@@ -224,6 +224,47 @@ TEST(ResourceLimits, ASweepBeyondTheProcesssMemoryIsRefusedBeforeItStarts) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("s.csv")));
 }
 
+// An optimisation or tolerance run whose PSFs at once (one a thread, the spec's psf_samples each)
+// would not fit is refused before its first layout, with nothing written; a small one runs.
+TEST(ResourceLimits, DesignRunsBeyondTheProcesssMemoryAreRefusedBeforeTheyStart) {
+  test::temp_dir dir;
+  auto spec = [&](std::uint64_t psf_samples) {
+    nlohmann::json j = {
+        {"format", "airr-design"},
+        {"version", 1},
+        {"scene", default_scene_path()},
+        {"eyes_mm", {{0, 0, 450}, {20, 0, 450}}},
+        {"variables", {{{"key", "floating_distance_mm"}, {"min", 100}, {"max", 140}}}},
+        {"objectives", {{{"metric", "mean_mtf"}, {"goal", "maximise"}}}},
+        {"tolerances", {{{"key", "half_mirror.pose.pitch_deg"}, {"sd", 0.3}}}},
+        {"tolerance", {{"samples", 10}, {"seed", 1}}},
+        {"search", {{"seed", 1}, {"global_evaluations", 2}, {"local_evaluations", 0}, {"psf_samples", psf_samples}}}};
+    const std::string path = dir.file("spec_" + std::to_string(psf_samples) + ".json");
+    write_file_atomic(path, j.dump());
+    return path;
+  };
+  const std::string big = spec(100'000'000), small = spec(2000);
+  const std::string cap = "ulimit -v 4000000; " + std::string(AIRR_CLI);
+  const auto optimise = test::run_command(cap + " optimise " + big + " --threads 2 -o " + dir.file("best.json"));
+  test::expect_one_line_error(optimise, {"optimise: 2 PSFs at once of 100000000 samples needs about 13", "ulimit -v"});
+  EXPECT_EQ(optimise.exit_code, 1) << optimise.out;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("best.json")));
+  const auto tolerance = test::run_command(cap + " tolerance " + big + " --threads 2 -o " + dir.file("tol.csv"));
+  test::expect_one_line_error(tolerance,
+                              {"tolerance: 2 PSFs at once of 100000000 samples needs about 13", "ulimit -v"});
+  EXPECT_EQ(tolerance.exit_code, 1) << tolerance.out;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("tol.csv")));
+  // One thread holds one PSF: half the need.
+  const auto one = test::run_command(cap + " tolerance " + big + " --threads 1 -o " + dir.file("tol.csv"));
+  test::expect_one_line_error(one, {"tolerance: 1 PSF at once of 100000000 samples needs about 6", "ulimit -v"});
+  const auto small_run = test::run_command(cap + " tolerance " + small + " --threads 2 -o " + dir.file("tol.csv"));
+  EXPECT_EQ(small_run.exit_code, 0) << small_run.out;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("tol.csv")));
+  const auto small_search = test::run_command(cap + " optimise " + small + " --threads 2 -o " + dir.file("best.json"));
+  EXPECT_EQ(small_search.exit_code, 0) << small_search.out;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("best.json")));
+}
+
 // A zone pass whose workers' PSFs would not fit in any machine is refused before its first eye.
 TEST(ResourceLimits, AZonePassBeyondTheMachinesMemoryIsRefused) {
   const scene s = load_scene(default_scene_path());

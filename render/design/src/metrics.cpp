@@ -8,7 +8,9 @@
 #include <map>
 #include <optional>
 
+#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
 
 #include "airr/core/error.hpp"
 #include "airr/formats/mesh_gltf.hpp"
@@ -18,6 +20,7 @@
 #include "airr/layout/viewing_zone.hpp"
 #include "airr/measure/mtf_routes.hpp"
 #include "airr/measure/viewing_zone_full.hpp"
+#include "airr/render/memory_need.hpp"
 #include "airr/render/prop_hits.hpp"
 
 namespace airr {
@@ -140,6 +143,24 @@ std::vector<std::string> broken_constraints(const design_spec& spec, const std::
                        (c.min && v < *c.min ? " < min " + number_text(*c.min) : " > max " + number_text(*c.max)));
   }
   return broken;
+}
+
+void check_design_memory(const design_spec& spec, const std::string& what, std::size_t layouts) {
+  auto takes_psf = [](design_metric m) {
+    return metric_at_eye(m) && m != design_metric::visible_fraction && m != design_metric::stray_light;
+  };
+  const bool psfs = std::any_of(spec.objectives.begin(), spec.objectives.end(),
+                                [&](const design_objective& o) { return takes_psf(o.metric); }) ||
+                    std::any_of(spec.constraints.begin(), spec.constraints.end(),
+                                [&](const design_constraint& c) { return takes_psf(c.metric); });
+  if (!psfs) return;
+  const std::size_t threads =
+      std::min({std::size_t(tbb::this_task_arena::max_concurrency()),
+                tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)});
+  const std::size_t at_once = std::max<std::size_t>(1, std::min(threads, layouts * design_eyes(spec).size()));
+  check_memory_need(what + ": " + std::to_string(at_once) + (at_once == 1 ? " PSF" : " PSFs") + " at once of " +
+                        std::to_string(spec.search.psf_samples) + " samples",
+                    measuring_process_bytes + at_once * psf_memory_need(spec.search.psf_samples));
 }
 
 design_evaluation evaluate_design(const design_spec& spec, const scene& s) {

@@ -367,6 +367,7 @@ design_result search_front(const design_spec& spec, const std::function<void(con
 
 design_result optimise_design(const design_spec& spec, const std::function<void(const design_progress&)>& progress,
                               const std::atomic<bool>* cancel, const item_share& share) {
+  check_design_memory(spec, "optimise", 1);
   const int budget = spec.search.global_evaluations + spec.search.local_evaluations;
   design_result r = spec.front.points > 0 ? search_front(spec, progress, cancel, share)
                                           : search_once(spec, progress, cancel, 0, budget, "");

@@ -83,6 +83,10 @@ tolerance_result run_tolerance(const design_spec& spec, const scene& nominal,
                                const std::function<void(int, int)>& progress, const std::atomic<bool>* cancel,
                                const item_share& share) {
   if (spec.tolerances.empty()) throw input_error(spec.path + ": tolerances: none given");
+  // Shared among an MPI job's ranks, a batch is large enough to keep many ranks busy between
+  // exchanges.
+  const std::size_t batch_size = share ? 1024 : 16;
+  check_design_memory(spec, "tolerance", batch_size);
   std::vector<double> nominal_values, sizes;
   for (const design_tolerance& t : spec.tolerances) {
     nominal_values.push_back(scene_number(nominal, t.key));
@@ -114,9 +118,6 @@ tolerance_result run_tolerance(const design_spec& spec, const scene& nominal,
     return e;
   };
   int passing = 0;
-  // Shared among an MPI job's ranks, a batch is large enough to keep many ranks busy between
-  // exchanges.
-  const std::size_t batch_size = share ? 1024 : 16;
   for (std::size_t first = 0; first < draws.size(); first += batch_size) {
     if (cancel_requested(cancel)) {
       out.cancelled = true;

@@ -29,7 +29,7 @@ job::work design_work(const design_spec& spec, design_job::kind k) {
 }  // namespace
 
 design_job::design_job(const design_spec& spec, kind k)
-    : background_job(design_work(spec, k), 5), spec_(spec), kind_(k) {}
+    : background_job(k == kind::optimise ? "optimise" : "tolerance", design_work(spec, k), 5), spec_(spec), kind_(k) {}
 
 std::optional<design_result> design_job::optimised() const {
   const auto r = result();

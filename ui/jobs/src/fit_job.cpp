@@ -25,12 +25,14 @@ job::work fit_measurements(const std::string& data_dir) {
 
 }  // namespace
 
-fit_job::fit_job(const std::string& data_dir) : background_job(fit_measurements(data_dir)), dir_(data_dir) {}
+fit_job::fit_job(const std::string& data_dir) : background_job("fit", fit_measurements(data_dir)), dir_(data_dir) {}
 
 fit_job::fit_job(const sheet_description& sheet, const std::string& data_dir, const analysis::prediction_params& p)
-    : background_job([sheet, data_dir, p](const context& ctx) -> std::optional<analysis::fit_result> {
-        return analysis::predict_preset(sheet, analysis::synthesis_bench(scene{}), data_dir, p, reporting(ctx));
-      }),
+    : background_job("prediction",
+                     [sheet, data_dir, p](const context& ctx) -> std::optional<analysis::fit_result> {
+                       return analysis::predict_preset(sheet, analysis::synthesis_bench(scene{}), data_dir, p,
+                                                       reporting(ctx));
+                     }),
       dir_(data_dir) {}
 
 }  // namespace airr::ui

@@ -3,6 +3,7 @@
 // observer placed there, looking at the aerial image's centre) the visible fraction and the model
 // PSF's mean MTF, MTF50, r50 and brightness, over the eyes their mean or minimum; and the device's
 // bounding box and how far its parts cut its props.
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -41,6 +42,12 @@ std::vector<std::string> broken_constraints(const design_spec& spec, const std::
 // Evaluates s (a layout the spec's variables made) on the spec's metrics; the model PSFs are
 // seeded by the spec, so equal layouts score equally whatever the threads.
 design_evaluation evaluate_design(const design_spec& spec, const scene& s);
+
+// Refuses, before anything is measured, a run of `what` (optimise, tolerance) that evaluates
+// `layouts` layouts side by side and cannot hold its model PSFs: one a thread while eyes are
+// measured, each of the spec's psf_samples (input_error "<what>: N PSFs at once of M samples needs
+// about ..."). Nothing is refused when no metric takes a PSF.
+void check_design_memory(const design_spec& spec, const std::string& what, std::size_t layouts);
 
 // How far a constraint is broken (0 when it holds), in its metric's units.
 double constraint_violation(const design_constraint& c, double value);

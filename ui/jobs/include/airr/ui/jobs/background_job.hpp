@@ -10,6 +10,7 @@
 #include <string>
 #include <thread>
 
+#include "airr/render/memory_need.hpp"
 #include "airr/render/render_session.hpp"
 
 namespace airr::ui {
@@ -25,9 +26,10 @@ class background_job {
   // Returns the result, or nothing when it stopped early; what it throws becomes the job's error.
   using work = std::function<std::optional<Result>(const context&)>;
 
-  // `nice` > 0 lowers the thread's priority by that much (the window comes first).
-  explicit background_job(work w, int nice = 0) : start_(std::chrono::steady_clock::now()) {
-    worker_ = std::thread([this, w = std::move(w), nice] {
+  // `name` says what ran out when an allocation fails ("fit: out of memory ..."); `nice` > 0
+  // lowers the thread's priority by that much (the window comes first).
+  background_job(std::string name, work w, int nice = 0) : start_(std::chrono::steady_clock::now()) {
+    worker_ = std::thread([this, name = std::move(name), w = std::move(w), nice] {
       if (nice > 0) lower_thread_priority(nice);
       const context ctx{[this](const Progress& p) {
                           std::lock_guard lock(mutex_);
@@ -38,6 +40,10 @@ class background_job {
         std::optional<Result> r = w(ctx);
         std::lock_guard lock(mutex_);
         result_ = std::move(r);
+      } catch (const std::bad_alloc&) {
+        const std::string message = out_of_memory_message(name);
+        std::lock_guard lock(mutex_);
+        error_ = message;
       } catch (const std::exception& e) {
         std::lock_guard lock(mutex_);
         error_ = e.what();
