@@ -386,6 +386,7 @@ struct address_space_limit {
 // memory check), and a session made to take one anyway says it ran out of memory: both keep the
 // last image, and the next edit that fits renders.
 TEST(Faults, AnEditBeyondTheProcesssMemoryIsRefusedAndTheLastImageStays) {
+  AIRR_SKIP_WHEN_ADDRESS_SPACE_RESERVED();
   const scene small = test::uniform_source_scene(50, 32);
   ui::studio st;
   st.keep_recovery = false;
@@ -432,6 +433,7 @@ TEST(Faults, AnEditBeyondTheProcesssMemoryIsRefusedAndTheLastImageStays) {
 // a tolerance run refused by its memory check before its first layout, and a job whose allocation
 // fails past any check (a 4 GB block with 1 GB to spare).
 TEST(Faults, BackgroundJobsOutOfMemorySayWhatRanOut) {
+  AIRR_SKIP_WHEN_ADDRESS_SPACE_RESERVED();
   const scene base = load_scene(default_scene_path());
   const design_spec spec = parse_design_spec(
       R"({"format": "airr-design", "version": 1, "eyes_mm": [[0, 0, 450]],

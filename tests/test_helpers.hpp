@@ -19,6 +19,16 @@
 
 namespace airr::test {
 
+// Sanitizers reserve terabytes of address space up front, so a test that caps it (ulimit -v,
+// RLIMIT_AS) skips itself under them.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+inline constexpr bool address_space_reserved = true;
+#else
+inline constexpr bool address_space_reserved = false;
+#endif
+#define AIRR_SKIP_WHEN_ADDRESS_SPACE_RESERVED() \
+  if (::airr::test::address_space_reserved) GTEST_SKIP() << "a sanitizer reserves the address space this test caps"
+
 // A retroreflection's named samples, all drawn from one generator.
 inline retro_samples random_retro_samples(pcg32& rng) {
   retro_samples u;

@@ -23,11 +23,7 @@ using namespace airr;
 
 namespace {
 
-#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
-constexpr const char* memory_cap = "";  // sanitizers reserve terabytes of address space
-#else
-constexpr const char* memory_cap = "ulimit -v 4000000; ";
-#endif
+constexpr const char* memory_cap = test::address_space_reserved ? "" : "ulimit -v 4000000; ";
 
 test::command_result run_capped(const std::string& args) {
   return test::run_command(std::string(memory_cap) + AIRR_CLI + " " + args);
@@ -197,6 +193,7 @@ TEST(ResourceLimits, LibraryMessagesDoNotLeakAroundTheErrorLine) {
 // address-space limit: refused before it starts with one line naming the need and the limit
 // (it used to abort with std::bad_alloc after 18 s); a small render under the same limit runs.
 TEST(ResourceLimits, ARenderBeyondTheProcesssMemoryIsRefusedBeforeItStarts) {
+  AIRR_SKIP_WHEN_ADDRESS_SPACE_RESERVED();
   test::temp_dir dir;
   const std::string airr = std::string(AIRR_CLI) + " render " + default_scene_path() + " --spp 1 --components";
   const auto big = test::run_command("ulimit -v 8000000; " + airr +
@@ -212,6 +209,7 @@ TEST(ResourceLimits, ARenderBeyondTheProcesssMemoryIsRefusedBeforeItStarts) {
 
 // A sweep whose points at once would not fit is refused before it measures; a small one runs.
 TEST(ResourceLimits, ASweepBeyondTheProcesssMemoryIsRefusedBeforeItStarts) {
+  AIRR_SKIP_WHEN_ADDRESS_SPACE_RESERVED();
   test::temp_dir dir;
   const std::string sweep = std::string(AIRR_CLI) + " sweep " + default_scene_path() +
                             " --psf --vary tilt=0:10:10 --threads 2 -o " + dir.file("s.csv");
@@ -227,6 +225,7 @@ TEST(ResourceLimits, ASweepBeyondTheProcesssMemoryIsRefusedBeforeItStarts) {
 // An optimisation or tolerance run whose PSFs at once (one a thread, the spec's psf_samples each)
 // would not fit is refused before its first layout, with nothing written; a small one runs.
 TEST(ResourceLimits, DesignRunsBeyondTheProcesssMemoryAreRefusedBeforeTheyStart) {
+  AIRR_SKIP_WHEN_ADDRESS_SPACE_RESERVED();
   test::temp_dir dir;
   auto spec = [&](std::uint64_t psf_samples) {
     nlohmann::json j = {
