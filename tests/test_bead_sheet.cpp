@@ -44,7 +44,9 @@ TEST(BeadSheet, NoLightIsLostByALosslessMirrorSheet) {
                                            bead_cell_point(g, {rng.next_double(), rng.next_double()}), rng);
       sum += p.weight;
       lost += p.lost;
-      if (!p.lost) EXPECT_GT(p.wo.z, 0.0);
+      if (!p.lost) {
+        EXPECT_GT(p.wo.z, 0.0);
+      }
     }
     std::printf("theta %g: returned %.4f, lost %.0f of %d\n", theta, sum / n, lost, n);
     EXPECT_NEAR(sum / n, 1.0, 0.005) << theta;

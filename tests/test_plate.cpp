@@ -34,13 +34,21 @@ std::pair<double, double> fresnel_rs_rp(double theta_deg, double n) {
   return {rs * rs, rp * rp};
 }
 
+// An uncoated plate of that thickness and index.
+plate_params plate_of(double thickness_mm, double index) {
+  plate_params p;
+  p.thickness_mm = thickness_mm;
+  p.index = index;
+  return p;
+}
+
 double intensity_s(const plate_path& p) { return std::norm(p.as); }
 double intensity_p(const plate_path& p) { return std::norm(p.ap); }
 
 }  // namespace
 
 TEST(Plate, AnUncoatedFaceReflectsAsTheFresnelEquationsSay) {
-  const plate_params glass{.thickness_mm = 3, .index = 1.5};
+  const plate_params glass = plate_of(3, 1.5);
   for (double theta = 0; theta <= 80; theta += 5) {
     const auto [rs, rp] = fresnel_rs_rp(theta, 1.5);
     for (bool front : {true, false}) {
@@ -60,7 +68,7 @@ TEST(Plate, AnUncoatedFaceReflectsAsTheFresnelEquationsSay) {
 // transmitted for each of s and p (Born and Wolf 7.6), and the far face's first reflection (the
 // double image) lies 2 tan(theta_t) plate thicknesses along the face from the near one's.
 TEST(Plate, ItsPathsAddUpAsAnIncoherentSlabs) {
-  const plate_params glass{.thickness_mm = 3, .index = 1.5};
+  const plate_params glass = plate_of(3, 1.5);
   for (double theta = 0; theta <= 80; theta += 10) {
     const auto [rs, rp] = fresnel_rs_rp(theta, 1.5);
     const plate_paths paths = plate_paths_at(glass, std::cos(radians(theta)), false);
@@ -90,7 +98,7 @@ TEST(Plate, ItsPathsAddUpAsAnIncoherentSlabs) {
 // passes the rest; a plate whose near face is coated so and far face is not shows the glass's
 // own Fresnel reflection as its double image.
 TEST(Plate, CoatingsReflectWhatTheyAreGiven) {
-  plate_params p{.thickness_mm = 2, .index = 1.52};
+  plate_params p = plate_of(2, 1.52);
   p.back = {.kind = coating_kind::partial_mirror, .rs = 0.6, .rp = 0.4, .ts = 0.3, .tp = 0.5, .phase_deg = 30};
   p.front = {.kind = coating_kind::anti_reflection, .residual = 0.01};
   const plate_paths at_back = plate_paths_at(p, std::cos(radians(45)), false);
@@ -111,7 +119,7 @@ TEST(Plate, ItRoundTripsThroughTheSceneFileAndSet) {
   test::temp_dir dir;
   scene s = test::uniform_source_scene(20);
   s.half_mirror.kind = half_mirror_kind::plate;
-  s.half_mirror.plate = {.thickness_mm = 4, .index = 1.6};
+  s.half_mirror.plate = plate_of(4, 1.6);
   s.half_mirror.plate.back = {.kind = coating_kind::partial_mirror, .rs = 0.55, .rp = 0.45, .ts = 0.4, .tp = 0.5};
   s.half_mirror.plate.front = {.kind = coating_kind::anti_reflection, .residual = 0.005};
   derive_half_mirror_light(s.half_mirror);

@@ -223,7 +223,10 @@ TEST(SceneJson, PropsRoundTripAndBadValuesNameTheProp) {
   p.surface = prop_surface::diffuse;
   p.albedo = {0.1, 0.2, 0.3};
   p.visible = false;
-  s.props = {p, prop_params{.name = "plain", .mesh = "hood.glb"}};
+  prop_params plain;
+  plain.name = "plain";
+  plain.mesh = "hood.glb";
+  s.props = {p, plain};
   save_scene(s, dir.file("s.json"));
   const scene back = load_scene(dir.file("s.json"));
   EXPECT_EQ(back.props, s.props);
