@@ -286,8 +286,12 @@ TEST(Conventions, ModelsSendNothingBackForLightFromBehindTheSheet) {
   const retro_sample front = ideal.sample({0.6, 0, 0.8}, {});
   expect_vec(front.wo, {0.6, 0, 0.8}, 0);
   EXPECT_EQ(front.weight, 0.8);
-  const sinc_shift_retro sinc(
-      {.theta_deg = {}, .a_per_mm = {0.5}, .mu = {0.9}, .c_mm = 0.0, .reference_distance_mm = 300.0}, nullptr);
+  sinc_shift_params lobe;
+  lobe.a_per_mm = {0.5};
+  lobe.mu = {0.9};
+  lobe.c_mm = 0.0;
+  lobe.reference_distance_mm = 300.0;
+  const sinc_shift_retro sinc(lobe, nullptr);
   pcg32 rng(5, 1);
   for (const glm::dvec3& wi : {glm::dvec3(0.6, 0, -0.8), glm::dvec3(0, 0, -1), glm::dvec3(1, 0, 0)}) {
     EXPECT_EQ(ideal.sample(wi, {}).weight, 0.0);

@@ -97,6 +97,30 @@ TEST(EverySheet, TracerAgreesWithTheModelForBothSheetsAndEachAlone) {
   }
 }
 
+// The kiosk as shipped emits by its LCD's profile (lcd_typical.csv): the model PSF's brightness
+// counts it in each sample's direction as the tracer does (without, the model read 7% above the
+// render), and so does the model image.
+TEST(EverySheet, TheDisplaysEmissionProfileDimsTheModelAsItDimsTheRender) {
+  scene s = load_scene(asset_dir() + "/scenes/two_sheet_kiosk.json");
+  s.source.image.clear();
+  s.observer.width = s.observer.height = 96;
+  ASSERT_FALSE(s.source.emission_profile.empty());
+  scene lambertian = s;
+  lambertian.source.emission_profile.clear();
+  const double model = psf_brightness(s) * s.source.intensity;
+  const double model_lambertian = psf_brightness(lambertian) * s.source.intensity;
+  const double traced = traced_aerial_at_centre(s, 64);
+  std::printf("kiosk with its profile: traced aerial %.5f, model %.5f (%+.2f%%), model without the profile %.5f\n",
+              traced, model, 100 * (traced / model - 1), model_lambertian);
+  EXPECT_LT(model, 0.97 * model_lambertian) << "the profile dims the aerial image";
+  EXPECT_NEAR(traced, model, 0.02 * model);
+  const auto m =
+      compute_layout_model_image(s, make_sheet_models(s), nullptr, model_image_params::for_image(96, 96, true));
+  ASSERT_TRUE(m);
+  const glm::dvec2 c = camera_project(make_camera(s), aerial_image_center(s));
+  EXPECT_NEAR(m->image.at(int(c.x), int(c.y))[1], model, 0.03 * model);
+}
+
 TEST(EverySheet, ModelImageAndFirstLookAddTheSheets) {
   const scene both = kiosk(64);
   const retro_model_list models = make_sheet_models(both);

@@ -48,7 +48,8 @@ TEST(PlateRender, TheFarFacesImageFormsWherePlateGeometryPutsIt) {
   const double pitch_mm = 0.1;
   s.observer.fov_deg = degrees(2 * std::atan(80 * pitch_mm / s.observer.distance_mm));
   s.half_mirror.kind = half_mirror_kind::plate;
-  s.half_mirror.plate = {.thickness_mm = 3, .index = 1.5};
+  s.half_mirror.plate.thickness_mm = 3;
+  s.half_mirror.plate.index = 1.5;
   const coating_params mirror{.kind = coating_kind::partial_mirror, .rs = 0.5, .rp = 0.5, .ts = 0.5, .tp = 0.5};
   const coating_params clear{.kind = coating_kind::anti_reflection};
 

@@ -113,7 +113,7 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
   const auto t0 = std::chrono::steady_clock::now();
   const ideal_parts parts(s, sheet);
   const int w = parts.cam.width, h = parts.cam.height;
-  const std::shared_ptr<const emission_profile> emission = scene_emission(s);
+  const std::shared_ptr<const emission_profile> emission = scene_emission_profile(s);
 
   auto m = std::make_shared<model_image>();
   m->model = std::move(model);

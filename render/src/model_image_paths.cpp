@@ -32,9 +32,7 @@ static pixel_path pixel_ideal(const ideal_parts& parts, const emission_profile* 
   const auto path = trace_ideal(parts, x, y);
   if (!path) return {};
   pixel_path out{true, path->display, path->wi, 1.0};
-  if (emission) {
-    out.profile = emission->at(degrees(std::acos(std::min(1.0, -glm::dot(path->towards_display, parts.src.n)))));
-  }
+  out.profile = emission_at(emission, parts.src, path->towards_display);
   return out;
 }
 
@@ -103,11 +101,6 @@ std::vector<pixel_path> pixel_paths(const ideal_parts& parts, const emission_pro
     }
   });
   return cancel_requested(cancel) ? std::vector<pixel_path>{} : out;
-}
-
-std::shared_ptr<const emission_profile> scene_emission(const scene& s) {
-  if (s.source.emission_profile.empty()) return nullptr;
-  return load_emission_profile(resolve_scene_path(s, s.source.emission_profile));
 }
 
 std::vector<model_pixel> map_pixels(const std::vector<pixel_path>& paths, const grid_mapping (&maps)[2],

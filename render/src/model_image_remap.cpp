@@ -52,7 +52,7 @@ image_rgb remap_model_image(const model_image& from, const scene& s, const model
   for (const model_bin& b : from.bins) {
     if (!bin_still_holds(s, parts, b, from.sheet)) return {};
   }
-  const std::shared_ptr<const emission_profile> emission = scene_emission(s);
+  const std::shared_ptr<const emission_profile> emission = scene_emission_profile(s);
   const std::vector<pixel_path> paths = pixel_paths(parts, emission.get(), p, cancel);
   if (paths.empty()) return {};
   std::vector<model_pixel> pixels = map_pixels(paths, kept->maps, from.grids[model_tail], w, h, p.threads);

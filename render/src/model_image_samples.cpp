@@ -35,10 +35,11 @@ static std::optional<grid_offset> sample_offset(const model_image& m, const mode
                                                 const retro_samples& u, double& weight) {
   const retro_sample rs = b.sampler->sample(u);
   if (!(rs.weight > 0) || !rs.retroreflected) return std::nullopt;
-  const auto delta = psf_landing_offset(b.chief, rs);
-  if (!delta) return std::nullopt;
+  const auto landing = psf_landing_of(b.chief, rs);
+  if (!landing) return std::nullopt;
+  const glm::dvec3& delta = landing->offset;
   const glm::dvec2 mm =
-      glm::dvec2(glm::dot(*delta, b.chief.src.u), glm::dot(*delta, b.chief.src.v)) + b.jitter_mm * (jitter - 0.5);
+      glm::dvec2(glm::dot(delta, b.chief.src.u), glm::dot(delta, b.chief.src.v)) + b.jitter_mm * (jitter - 0.5);
   weight = rs.weight * m.hm_factor;
   for (int g : {model_fine, model_tail}) {
     const model_grid& grid = m.grids[g];

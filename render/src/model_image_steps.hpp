@@ -61,9 +61,6 @@ struct pixel_path {
 std::vector<pixel_path> pixel_paths(const ideal_parts& parts, const emission_profile* emission,
                                     const model_image_params& p, const std::atomic<bool>* cancel);
 
-// The scene's emission profile (null: Lambertian).
-std::shared_ptr<const emission_profile> scene_emission(const scene& s);
-
 // The display's radiance on a grid of at most max_texels on its longer side (area-averaged down
 // from the texture; uniform: a grid of that size).
 cv::Mat display_texels(const scene& s, const image_rgb* display, int max_texels);

@@ -49,10 +49,7 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   }
   const std::string tex = resolve_scene_path(s, s.source.image);
   std::shared_ptr<const image_rgb> texture = tex.empty() ? nullptr : cached_image_pixels(tex);
-  std::shared_ptr<const emission_profile> emission;
-  if (!s.source.emission_profile.empty()) {
-    emission = load_emission_profile(resolve_scene_path(s, s.source.emission_profile));
-  }
+  std::shared_ptr<const emission_profile> emission = scene_emission_profile(s);
   if (models.size() != s.retroreflectors.size()) models = make_sheet_models(s);
 
   if (embree) ts.embree = std::move(embree);
@@ -260,7 +257,7 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
 
       if (part == part_source) {
         if (cos_n < 0) {
-          const float profile = ts.emission ? float(ts.emission->at(degrees(std::acos(std::min(1.0, -cos_n))))) : 1.0f;
+          const float profile = float(emission_at(ts.emission.get(), f, p.dir));
           if constexpr (with_polarization) {
             radiance[component_of(p)] +=
                 p.throughput * profile * source_radiance(ts, part_local(f, hit)) * p.pol.emitted(ts.layout.source, f);

@@ -72,6 +72,16 @@ part_frame pose_frame(const pose& p, double width_mm, double height_mm) {
   return f;
 }
 
+std::shared_ptr<const emission_profile> scene_emission_profile(const scene& s) {
+  if (s.source.emission_profile.empty()) return nullptr;
+  return load_emission_profile(resolve_scene_path(s, s.source.emission_profile));
+}
+
+double emission_at(const emission_profile* profile, const part_frame& display, const glm::dvec3& towards_display) {
+  if (!profile) return 1.0;
+  return profile->at(degrees(std::acos(std::clamp(-glm::dot(towards_display, display.n), -1.0, 1.0))));
+}
+
 part_frame source_frame(const scene& s) { return pose_frame(s.source.pose, s.source.width_mm, s.source.height_mm); }
 
 part_frame source_panel_frame(const scene& s) {

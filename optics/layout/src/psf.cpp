@@ -68,14 +68,15 @@ psf_chief_ray chief_ray_through(const scene& s, const glm::dvec3& aerial_point, 
   return c;
 }
 
-std::optional<glm::dvec3> psf_landing_offset(const psf_chief_ray& c, const retro_sample& rs) {
+std::optional<psf_landing> psf_landing_of(const psf_chief_ray& c, const retro_sample& rs) {
   const glm::dvec3 dir = to_world(c.rr, rs.wo);
   const glm::dvec3 origin = c.sheet_point + rs.shift_mm.x * c.rr.u + rs.shift_mm.y * c.rr.v;
   const auto at_hm = hit_part(c.hm, origin, dir);
   if (!at_hm) return std::nullopt;
-  const auto at_source = hit_part(c.src, *at_hm, c.by_reflection ? dir : reflect(dir, c.hm.n), false);
+  const glm::dvec3 towards_display = c.by_reflection ? dir : reflect(dir, c.hm.n);
+  const auto at_source = hit_part(c.src, *at_hm, towards_display, false);
   if (!at_source) return std::nullopt;
-  return *at_source - c.ideal;
+  return psf_landing{*at_source - c.ideal, towards_display};
 }
 
 // The chief path's polarization from the observer to the sheet, the same for every sample.
@@ -106,9 +107,12 @@ static double chief_path_polarization(const scene& s, const psf_chief_ray& c, pa
 }
 
 // Samples one sheet through its chief ray into `out` (which keeps what it holds); returns the
-// sheet's brightness. `polarized`: the scene, when it polarizes.
+// sheet's brightness. Each sample carries the display's emission profile in the direction it left
+// the display (`emission`, null when Lambertian), as the tracer weights its paths. `polarized`: the
+// scene, when it polarizes.
 static double add_sheet_samples(const psf_chief_ray& chief, const retro_model& model, const psf_params& p,
-                                double hm_factor, psf_samples& out, const scene* polarized) {
+                                double hm_factor, const emission_profile* emission, psf_samples& out,
+                                const scene* polarized) {
   const part_frame& src = chief.src;
   const glm::dvec3 wi = chief.wi;
   const std::optional<path_polarization> to_sheet =
@@ -122,12 +126,12 @@ static double add_sheet_samples(const psf_chief_ray& chief, const retro_model& m
       [&](const std::array<double, 6>&, const retro_samples& u, psf_samples& part) {
         const retro_sample rs = polarized ? model.sample_polarized(wi, u) : at_wi->sample(u);
         if (!(rs.weight > 0) || !rs.retroreflected) return;
-        const auto delta = psf_landing_offset(chief, rs);
-        if (!delta) return;
+        const auto landing = psf_landing_of(chief, rs);
+        if (!landing) return;
         // The image of a point shows where rays land relative to the ideal point,
         // point-mirrored; source (u, v) map to aerial (x, y).
-        part.offset_mm.emplace_back(-glm::dot(*delta, src.u), -glm::dot(*delta, src.v));
-        part.weight.push_back(rs.weight * hm_factor *
+        part.offset_mm.emplace_back(-glm::dot(landing->offset, src.u), -glm::dot(landing->offset, src.v));
+        part.weight.push_back(rs.weight * hm_factor * emission_at(emission, src, landing->towards_display) *
                               (polarized ? chief_path_polarization(*polarized, chief, *to_sheet, rs) : 1.0));
       });
   double sum = 0;
@@ -158,7 +162,7 @@ psf_samples sample_sheet_psf(const scene& s, std::size_t sheet, const retro_mode
   out.offset_mm.reserve(p.samples);
   out.weight.reserve(p.samples);
   const double brightness = add_sheet_samples(chief, model, p, s.half_mirror.reflectance * s.half_mirror.transmittance,
-                                              out, scene_polarizes(s) ? &s : nullptr);
+                                              scene_emission_profile(s).get(), out, scene_polarizes(s) ? &s : nullptr);
   out.sheets.push_back(share_of(chief, brightness));
   return out;
 }
@@ -170,6 +174,7 @@ psf_samples sample_psf(const scene& s, const retro_model_list& models, const psf
   out.launched = p.samples;
   std::string first_error;
   bool reached = false;
+  const std::shared_ptr<const emission_profile> emission = scene_emission_profile(s);
   for (std::size_t i = 0; i < models.size(); ++i) {
     std::optional<psf_chief_ray> chief;
     try {
@@ -185,8 +190,8 @@ psf_samples sample_psf(const scene& s, const retro_model_list& models, const psf
       reached = true;
     }
     const double brightness =
-        add_sheet_samples(*chief, *models[i], p, s.half_mirror.reflectance * s.half_mirror.transmittance, out,
-                          scene_polarizes(s) ? &s : nullptr);
+        add_sheet_samples(*chief, *models[i], p, s.half_mirror.reflectance * s.half_mirror.transmittance,
+                          emission.get(), out, scene_polarizes(s) ? &s : nullptr);
     out.sheets.push_back(share_of(*chief, brightness));
   }
   if (!reached) throw input_error(first_error);

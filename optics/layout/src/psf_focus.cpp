@@ -49,7 +49,7 @@ void trace_one(const sheet_path& sp, const retro_model& model, const glm::dvec3&
   const glm::dvec3 emitted = sp.by_reflection ? d_in : reflect(d_in, sp.hm.n);
   const double cos_display = glm::dot(emitted, sp.src.n);
   if (cos_display <= 0) return;
-  const double profile = sp.emission ? sp.emission->at(degrees(std::acos(std::min(1.0, cos_display)))) : 1.0;
+  const double profile = emission_at(sp.emission.get(), sp.src, -emitted);
 
   const retro_sample rs = model.sample(-to_local(sp.rr, d_in), u);
   if (!(rs.weight > 0) || !rs.retroreflected) return;
@@ -74,8 +74,7 @@ std::optional<double> add_sheet_bundle(const scene& s, std::size_t sheet, const 
   sp.display_point = b.aerial_point - 2.0 * glm::dot(b.aerial_point - sp.hm.center, sp.hm.n) * sp.hm.n;
   sp.by_reflection = sheet_seen_by_reflection(s, sheet);
   sp.hm_factor = s.half_mirror.reflectance * s.half_mirror.transmittance;
-  if (!s.source.emission_profile.empty())
-    sp.emission = load_emission_profile(resolve_scene_path(s, s.source.emission_profile));
+  sp.emission = scene_emission_profile(s);
   if (!inside_part(sp.src, part_local(sp.src, sp.display_point))) {
     why = "the aerial point's display point is off the display";
     return std::nullopt;

@@ -2,6 +2,7 @@
 // Where the parts of an AIRR layout are, as rectangles in world space (mm), where the aerial image
 // forms, and the observer's camera.
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -9,6 +10,7 @@
 
 #include "airr/core/geometry.hpp"
 #include "airr/layout/scene.hpp"
+#include "airr/models/emission_profile.hpp"
 
 namespace airr {
 
@@ -21,6 +23,11 @@ pose pose_from_rotation(const glm::dmat3& r, const glm::dvec3& center);
 
 // Maps a prop's mesh (millimetres, in its own frame) into the world: its pose times its scale.
 glm::dmat4 prop_transform(const prop_params& p);
+
+// The display's emission profile (read once per file), or null when it is Lambertian; and the
+// profile's value for light leaving the display along `towards_display` reversed (1 without one).
+std::shared_ptr<const emission_profile> scene_emission_profile(const scene& s);
+double emission_at(const emission_profile* profile, const part_frame& display, const glm::dvec3& towards_display);
 
 // The display's emitting area, and the whole panel including its bezel.
 part_frame source_frame(const scene& s);

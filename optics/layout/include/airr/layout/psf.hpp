@@ -81,8 +81,12 @@ struct psf_chief_ray {
 psf_chief_ray chief_ray_through(const scene& s, const glm::dvec3& aerial_point, std::size_t sheet = 0);
 
 // Where one retroreflected sample lands on the display plane, relative to the ideal point (world
-// mm); empty when it misses the half mirror on the way back.
-std::optional<glm::dvec3> psf_landing_offset(const psf_chief_ray& c, const retro_sample& rs);
+// mm), and the direction it arrives in; empty when it misses the half mirror on the way back.
+struct psf_landing {
+  glm::dvec3 offset{0};
+  glm::dvec3 towards_display{0};
+};
+std::optional<psf_landing> psf_landing_of(const psf_chief_ray& c, const retro_sample& rs);
 
 // The PSF of one sheet, each sheet reached by its own path. Throws input_error when the chief
 // ray through `aerial_point` misses a part.
