@@ -56,8 +56,7 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const std::exception& e) {
     // An allocation that failed past the commands' own memory checks is said as such.
-    const std::string message =
-        dynamic_cast<const std::bad_alloc*>(&e) ? airr::out_of_memory_message(argc > 1 ? argv[1] : "airr") : e.what();
+    const std::string message = airr::failure_message(e, argc > 1 ? argv[1] : "airr");
     if (job.size == 1) {
       std::fprintf(stderr, "error: %s\n", message.c_str());
       return 1;

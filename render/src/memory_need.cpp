@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
+#include <new>
 #include <sstream>
 
 #include "airr/core/error.hpp"
@@ -98,6 +99,10 @@ std::string out_of_memory_message(const std::string& what) {
   return what + ": out of memory (an allocation failed" +
          (a.source.empty() ? std::string(")")
                            : "; this process may take " + gigabytes(double(a.bytes)) + " more, " + a.source + ")");
+}
+
+std::string failure_message(const std::exception& e, const std::string& what) {
+  return dynamic_cast<const std::bad_alloc*>(&e) ? out_of_memory_message(what) : e.what();
 }
 
 }  // namespace airr

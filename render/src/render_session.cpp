@@ -312,15 +312,6 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const accumul
   changed_.notify_all();
 }
 
-namespace {
-
-// What a failed edit or wave says: an allocation that failed as running out of memory.
-std::string failure_text(const std::exception& e) {
-  return dynamic_cast<const std::bad_alloc*>(&e) ? out_of_memory_message("render") : e.what();
-}
-
-}  // namespace
-
 void render_session::run() {
   while (true) {
     try {
@@ -331,7 +322,7 @@ void render_session::run() {
       // last image, and the worker waits for the next edit instead of ending the process.
       std::unique_lock lock(mutex_);
       snapshot_.generation = generation_;
-      snapshot_.error = failure_text(e);
+      snapshot_.error = failure_message(e, "render");
       changed_.notify_all();
       changed_.wait(lock, [&] { return stopping_ || pending_; });
       if (stopping_) return;
@@ -407,7 +398,7 @@ void render_session::run_loop() {
         try {
           build_tracer_scene(scene_, device_, s, std::move(models));
         } catch (const std::exception& e) {
-          error = failure_text(e);
+          error = failure_message(e, "render");
         }
         reset_sums();
         spp = rays = 0;

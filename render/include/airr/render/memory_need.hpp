@@ -3,6 +3,7 @@
 // still take, so that a render too large for the machine (or for the process's limit) is refused
 // with one line instead of failing half-way.
 #include <cstdint>
+#include <exception>
 #include <string>
 
 #include "airr/layout/scene.hpp"
@@ -43,5 +44,8 @@ void check_memory_need(const std::string& what, std::uint64_t need);
 // One line for an allocation that failed after the checks let a job start: what ran out, and what
 // the process may still take.
 std::string out_of_memory_message(const std::string& what);
+
+// What a failed job says: the out-of-memory line for a failed allocation, else the exception's text.
+std::string failure_message(const std::exception& e, const std::string& what);
 
 }  // namespace airr

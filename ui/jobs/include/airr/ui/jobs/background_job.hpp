@@ -40,13 +40,10 @@ class background_job {
         std::optional<Result> r = w(ctx);
         std::lock_guard lock(mutex_);
         result_ = std::move(r);
-      } catch (const std::bad_alloc&) {
-        const std::string message = out_of_memory_message(name);
+      } catch (const std::exception& e) {
+        const std::string message = failure_message(e, name);
         std::lock_guard lock(mutex_);
         error_ = message;
-      } catch (const std::exception& e) {
-        std::lock_guard lock(mutex_);
-        error_ = e.what();
       }
       seconds_ = elapsed();
       running_ = false;
