@@ -11,8 +11,16 @@ namespace airr::model_image_steps {
 
 namespace {
 
+// Kept for the process's life and destroyed with it (a clean exit leaves nothing allocated).
 struct plans {
   fftwf_plan forward = nullptr, inverse = nullptr;
+  plans() = default;
+  plans(const plans&) = delete;
+  plans& operator=(const plans&) = delete;
+  ~plans() {
+    if (forward) fftwf_destroy_plan(forward);
+    if (inverse) fftwf_destroy_plan(inverse);
+  }
 };
 
 std::mutex planner;
@@ -23,13 +31,13 @@ const plans& plans_for(int width, int height) {
   static std::map<std::pair<int, int>, plans> kept;
   const std::lock_guard lock(planner);
   plans& p = kept[{width, height}];
-  if (!p.forward) {
+  if (!p.forward || !p.inverse) {  // new, or a failed plan before
     const std::size_t reals = std::size_t(width) * height, complexes = std::size_t(height) * (width / 2 + 1);
     fft_buffer<float> r = real_buffer(reals);
     fft_buffer<std::complex<float>> c = complex_buffer(complexes);
     auto* cc = reinterpret_cast<fftwf_complex*>(c.data.get());
-    p.forward = fftwf_plan_dft_r2c_2d(height, width, r.data.get(), cc, FFTW_ESTIMATE);
-    p.inverse = fftwf_plan_dft_c2r_2d(height, width, cc, r.data.get(), FFTW_ESTIMATE);
+    if (!p.forward) p.forward = fftwf_plan_dft_r2c_2d(height, width, r.data.get(), cc, FFTW_ESTIMATE);
+    if (!p.inverse) p.inverse = fftwf_plan_dft_c2r_2d(height, width, cc, r.data.get(), FFTW_ESTIMATE);
     if (!p.forward || !p.inverse) throw std::bad_alloc();
   }
   return p;
