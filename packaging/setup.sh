@@ -12,6 +12,7 @@ packages=(
   libglfw3-dev libimgui-dev libgl-dev libgl1-mesa-dri xvfb xauth x11-xserver-utils fonts-dejavu-core
   libgtest-dev libgmock-dev clang-format python3
   python3-dev pybind11-dev python3-numpy python3-pytest blender
+  libocct-data-exchange-dev libocct-modeling-algorithms-dev freecad
   librsvg2-bin help2man file desktop-file-utils procps slurm-wlm munge
 )
 if [ "${1:-}" = "--fuzz" ]; then packages+=(clang libclang-rt-14-dev); fi

@@ -10,7 +10,9 @@
 #include <string>
 
 #include "airr/core/assets.hpp"
+#include "airr/core/files.hpp"
 #include "airr/formats/gltf_layout.hpp"
+#include "airr/formats/prop_mesh.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/measure/mtf_routes.hpp"
@@ -159,6 +161,31 @@ TEST(DesignerNumbers, DroppedGltfBecomesAPropOrOpensAsALayout) {
   EXPECT_EQ(st.doc_path, dir.file("layout.glb")) << st.status;
   ASSERT_EQ(st.doc.props.size(), 1u);
   EXPECT_EQ(st.doc.props[0].mesh, "layout.glb");
+  st.session->stop();
+}
+
+// A CAD housing dropped on the window (a STEP file) becomes a prop, tessellated at the default
+// tolerance, with the colour the file gives; a damaged one leaves the layout as it was and says why.
+TEST(DesignerNumbers, DroppedStepFileBecomesAProp) {
+  test::temp_dir dir;
+  ui::studio st;
+  st.keep_recovery = false;
+  st.session_options = {.threads = 1, .target_spp = 1};
+  ui::studio_start(st, test::uniform_source_scene(50, 32), "");
+  const std::string box = AIRR_TEST_DATA_DIR "/step/box_coloured.stp";
+  ui::studio_drop_file(st, box);
+  ASSERT_EQ(st.doc.props.size(), 1u) << st.status;
+  EXPECT_EQ(st.doc.props[0].name, "box_coloured");
+  EXPECT_EQ(st.doc.props[0].surface, prop_surface::material);
+  const auto mesh = prop_mesh(st.doc, st.doc.props[0]);
+  EXPECT_NE(st.status.find(std::to_string(mesh->indices.size() / 3) + " triangles"), std::string::npos) << st.status;
+  ASSERT_EQ(mesh->materials.size(), 1u);
+  EXPECT_NEAR(mesh->materials[0].base_color.b, 0.6038, 1e-3);  // the file's 0.8, made linear
+
+  write_file_atomic(dir.file("broken.step"), "ISO-10303-21;\nHEADER;\nENDSEC;\n");
+  ui::studio_drop_file(st, dir.file("broken.step"));
+  EXPECT_EQ(st.doc.props.size(), 1u);
+  EXPECT_NE(st.status.find("broken.step"), std::string::npos) << st.status;
   st.session->stop();
 }
 

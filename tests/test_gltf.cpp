@@ -12,6 +12,7 @@
 #include "airr/core/assets.hpp"
 #include "airr/core/error.hpp"
 #include "airr/formats/mesh_gltf.hpp"
+#include "airr/formats/prop_mesh.hpp"
 #include "airr/layout/layout.hpp"
 #include "gltf_builder.hpp"
 #include "test_helpers.hpp"

@@ -11,7 +11,7 @@
 #include "airr/core/assets.hpp"
 #include "airr/core/error.hpp"
 #include "airr/formats/gltf_layout.hpp"
-#include "airr/formats/mesh_gltf.hpp"
+#include "airr/formats/prop_mesh.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
 #include "gltf_builder.hpp"
@@ -91,7 +91,7 @@ void expect_same_frame(const part_frame& a, const part_frame& b, const std::stri
 }
 
 std::vector<glm::dvec3> prop_world(const scene& s, const prop_params& p) {
-  const auto mesh = cached_prop_mesh(resolve_scene_path(s, p.mesh), p.node);
+  const auto mesh = prop_mesh(s, p);
   std::vector<glm::dvec3> out;
   const glm::dmat4 xf = prop_transform(p);
   for (std::uint32_t i : mesh->indices) out.push_back(glm::dvec3(xf * glm::dvec4(glm::dvec3(mesh->positions[i]), 1.0)));

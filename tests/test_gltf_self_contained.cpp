@@ -16,6 +16,7 @@
 #include "airr/formats/gltf_layout.hpp"
 #include "airr/formats/image.hpp"
 #include "airr/formats/mesh_gltf.hpp"
+#include "airr/formats/prop_mesh.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "glb_file.hpp"
 #include "gltf_builder.hpp"

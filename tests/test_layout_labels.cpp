@@ -5,7 +5,7 @@
 
 #include "airr/core/assets.hpp"
 #include "airr/core/error.hpp"
-#include "airr/formats/mesh_gltf.hpp"
+#include "airr/formats/prop_mesh.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/ui/views/layout_projection.hpp"
 #include "label_overlap.hpp"
@@ -25,8 +25,7 @@ const ImVec2 canvases[] = {{358, 184}, {700, 350}, {300, 420}};
 
 test::label_overlaps measure(const scene& s, projection proj, ImVec2 canvas) {
   std::vector<mesh_bounds> bounds;
-  for (const prop_params& p : s.props)
-    bounds.push_back(bounds_of(*cached_prop_mesh(resolve_scene_path(s, p.mesh), p.node)));
+  for (const prop_params& p : s.props) bounds.push_back(bounds_of(*prop_mesh(s, p)));
   const ImVec2 at(40, 30);
   const projection_view v = compute_projection(s, bounds, proj, at, canvas, 15.0f, text_size);
   std::vector<std::pair<std::string, test::rect4>> labels;

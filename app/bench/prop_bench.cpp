@@ -15,6 +15,7 @@
 #include <tbb/parallel_for.h>
 
 #include "airr/formats/mesh_gltf.hpp"
+#include "airr/formats/prop_mesh.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/viewing_zone.hpp"
 #include "airr/render/prop_hits.hpp"

@@ -5,7 +5,7 @@
 #include <memory>
 #include <mutex>
 
-#include "airr/formats/mesh_gltf.hpp"
+#include "airr/formats/prop_mesh.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/render/embree_scene.hpp"
 
@@ -56,7 +56,7 @@ prop_hit_function scene_prop_hits(const scene& s) {
   std::vector<glm::dmat4> transforms;
   for (const auto& p : s.props) {
     if (!p.visible) continue;
-    auto mesh = cached_prop_mesh(resolve_scene_path(s, p.mesh), p.node);
+    auto mesh = prop_mesh(s, p);
     const std::string key = prop_mesh_key(p, mesh.get());
     meshes.push_back({key, std::move(mesh)});
     transforms.push_back(prop_transform(p));

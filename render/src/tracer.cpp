@@ -8,6 +8,7 @@
 #include "airr/core/error.hpp"
 #include "airr/core/low_discrepancy.hpp"
 #include "airr/core/random.hpp"
+#include "airr/formats/prop_mesh.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/path_polarization.hpp"
 #include "tracer_path.hpp"
@@ -27,7 +28,7 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   std::vector<tracer_scene::prop> props;
   for (const auto& p : s.props) {
     if (!p.visible) continue;
-    props.push_back({p, cached_prop_mesh(resolve_scene_path(s, p.mesh), p.node), pose_rotation(p.pose)});
+    props.push_back({p, prop_mesh(s, p), pose_rotation(p.pose)});
   }
   // A prototype's key names its file, and for props the loaded mesh (a changed file is a new one).
   std::vector<std::string> keys;

@@ -18,7 +18,8 @@
 #include "airr/formats/design_spec.hpp"
 #include "airr/formats/gltf_layout.hpp"
 #include "airr/formats/image.hpp"
-#include "airr/formats/mesh_gltf.hpp"
+#include "airr/formats/mesh_step.hpp"
+#include "airr/formats/prop_mesh.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/formats/sheet_json.hpp"
 #include "airr/models/preset.hpp"
@@ -100,6 +101,11 @@ bool gltf(std::string_view bytes) {
     gltf_layout_document(path);
   });
   return mesh || layout;
+}
+
+bool step(std::string_view bytes) {
+  const std::string path = write_input("fuzz.step", bytes);
+  return expecting_input_errors([&] { load_step_mesh(path, "", 0.5); });
 }
 
 bool preset(std::string_view bytes) {
@@ -236,6 +242,7 @@ bool run(const std::string& target, std::string_view bytes) {
   if (target == "partial") return partial(bytes);
   if (target == "render_shard") return render_shard(bytes);
   if (target == "scene_set") return scene_set(bytes);
+  if (target == "step") return step(bytes);
   throw std::invalid_argument("no fuzz target named " + target);
 }
 

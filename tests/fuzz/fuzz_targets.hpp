@@ -25,11 +25,12 @@ bool render_shard(std::string_view bytes);
 // A Python value set on a scene (Scene.set): the key on the first line, then the value as the
 // module passes it on (strings as they are, True/False, nan/inf, numbers and lists as JSON).
 bool scene_set(std::string_view bytes);
+bool step(std::string_view bytes);  // STEP housings, tessellated at 0.5 mm
 
 // Every target's name.
-inline constexpr const char* targets[] = {"scene_json", "gltf",         "preset",   "sheet_json", "shift_table",
-                                          "fit_json",   "csv",          "image",    "onnx",       "design_spec",
-                                          "partial",    "render_shard", "scene_set"};
+inline constexpr const char* targets[] = {"scene_json", "gltf",         "preset",    "sheet_json", "shift_table",
+                                          "fit_json",   "csv",          "image",     "onnx",       "design_spec",
+                                          "partial",    "render_shard", "scene_set", "step"};
 
 // Runs one target by name (one of `targets`, else std::invalid_argument): whether the loader read
 // the input.

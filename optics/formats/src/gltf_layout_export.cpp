@@ -8,7 +8,7 @@
 #include "airr/core/error.hpp"
 #include "airr/core/files.hpp"
 #include "airr/formats/gltf_layout.hpp"
-#include "airr/formats/mesh_gltf.hpp"
+#include "airr/formats/prop_mesh.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
 #include "gltf_images.hpp"
@@ -300,7 +300,7 @@ void export_gltf_layout(const scene& original, const std::string& path) {
 
   for (std::size_t i = 0; i < s.props.size(); ++i) {
     const prop_params& p = s.props[i];
-    const auto mesh = cached_prop_mesh(resolve_scene_path(s, p.mesh), p.node);
+    const auto mesh = prop_mesh(s, p);
     json fields = {{"role", "prop"},
                    {"name", p.name},
                    {"surface", prop_surface_names[int(p.surface)]},

@@ -22,7 +22,7 @@ triangle_mesh load_gltf_mesh(const std::string& path) {
   return out;
 }
 
-triangle_mesh load_prop_mesh(const std::string& path, const std::string& node) {
+triangle_mesh load_gltf_prop_mesh(const std::string& path, const std::string& node) {
   const gltf::file f = gltf::read(path);
   triangle_mesh out;
   const glm::dmat4 to_mm = glm::scale(glm::dmat4(1.0), glm::dvec3(gltf::mm_per_metre));
@@ -45,18 +45,6 @@ triangle_mesh load_prop_mesh(const std::string& path, const std::string& node) {
   }
   return out;
 }
-
-std::shared_ptr<const triangle_mesh> cached_prop_mesh(const std::string& path, const std::string& node) {
-  static file_cache<triangle_mesh> cache;
-  return cache.get(path + "#" + node, path,
-                   [&] { return std::make_shared<const triangle_mesh>(load_prop_mesh(path, node)); });
-}
-
-// Models below this library read mesh files through core's hook (a sheet's unit cell).
-[[maybe_unused]] static const bool mesh_reader_installed = [] {
-  install_mesh_file_reader([](const std::string& path) { return cached_prop_mesh(path, ""); });
-  return true;
-}();
 
 pose gltf_node_rigid_pose(const std::string& path, const std::string& node) {
   const gltf::file f = gltf::read(path);

@@ -7,7 +7,7 @@
 #include <utility>
 
 #include "airr/core/error.hpp"
-#include "airr/formats/mesh_gltf.hpp"
+#include "airr/formats/prop_mesh.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/models/emission_profile.hpp"
 #include "airr/models/preset.hpp"
@@ -143,6 +143,7 @@ void validate_scene(const scene& s, const std::string& origin) {
     c.range(where + ".scale", p.scale, 1e-6, 1e6);
     c.pose(where + ".pose", p.pose);
     for (double a : p.albedo) c.range(where + ".albedo", a, 0, 1);
+    c.range(where + ".tessellation_mm", p.tessellation_mm, 1e-4, 100);
   }
   const observer_params& o = s.observer;
   c.range("observer.azimuth_deg", o.azimuth_deg, -360, 360);
@@ -203,7 +204,7 @@ retro_model_list check_scene(const scene& s, const std::string& origin) {
   if (!s.source.emission_profile.empty()) load_emission_profile(resolve_scene_path(s, s.source.emission_profile));
   for (std::size_t i = 0; i < s.props.size(); ++i) {
     try {
-      cached_prop_mesh(resolve_scene_path(s, s.props[i].mesh), s.props[i].node);
+      prop_mesh(s, s.props[i]);
     } catch (const input_error& e) {
       throw input_error(origin + ": props[" + std::to_string(i) + "]: " + e.what());
     }

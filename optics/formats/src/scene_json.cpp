@@ -71,7 +71,8 @@ static json prop_to_json(const prop_params& p) {
           {"pose", pose_to_json(p.pose)},
           {"surface", prop_surface_names[int(p.surface)]},
           {"albedo", p.albedo},
-          {"visible", p.visible}};
+          {"visible", p.visible},
+          {"tessellation_mm", p.tessellation_mm}};
 }
 
 static const char* placement_name(observer_placement p) { return p == observer_placement::orbit ? "orbit" : "look_at"; }
@@ -182,6 +183,7 @@ static void read_prop(json_reader r, prop_params& p) {
   read_enum(r, "surface", p.surface, std::array{"absorber", "diffuse", "mirror", "material"});
   r.numbers("albedo", p.albedo);
   r.boolean("visible", p.visible);
+  r.number("tessellation_mm", p.tessellation_mm);
   r.finish();
 }
 

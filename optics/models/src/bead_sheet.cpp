@@ -91,19 +91,20 @@ bead_path trace_bead_sheet(const bead_sheet_geometry& g, const glm::dvec3& wi, c
   };
   const double r = g.diameter_mm / 2;
   glm::dvec3 p(entry, 0.0), d = -wi;
-  std::optional<glm::dvec3> bead;  // the centre of the bead the light is in
+  bool in_bead = false;
+  glm::dvec3 bead(0.0);  // the centre of the bead the light is in, while it is in one
   double weight = 1;
   int entries = 0, binder = 0;
   for (int event = 0; event < max_events; ++event) {
-    if (bead) {
+    if (in_bead) {
       // Across the bead to its surface: the backing below its centre, the air above.
-      const glm::dvec3 o = p - *bead;
+      const glm::dvec3 o = p - bead;
       const double b = glm::dot(d, o);
       const double t = -b + std::sqrt(std::max(0.0, b * b - (glm::dot(o, o) - r * r)));
       p += t * d;
-      const glm::dvec3 n = (p - *bead) / r;  // outward
+      const glm::dvec3 n = (p - bead) / r;  // outward
       const double cos_out = glm::dot(d, n);
-      if (p.z < bead->z) {
+      if (p.z < bead.z) {
         ++out.backing_reflections;
         weight *= g.backing_reflectance;
         off_backing(n, cos_out, metal_coat_index / g.index);
@@ -119,7 +120,7 @@ bead_path trace_bead_sheet(const bead_sheet_geometry& g, const glm::dvec3& wi, c
       const glm::dvec3 leaving = glm::normalize(*refract(d, -n, g.index));
       if (light) light->refract(n, cos_out, 1 / g.index, leaving);
       d = leaving;
-      bead.reset();
+      in_bead = false;
       continue;
     }
     // In the air above the backing: a bead, the binder between the beads, or out of the top.
@@ -141,6 +142,7 @@ bead_path trace_bead_sheet(const bead_sheet_geometry& g, const glm::dvec3& wi, c
       if (light) light->refract(n, cos_in, g.index, entering);
       d = entering;
       bead = hit->centre;
+      in_bead = true;
       ++entries;
       continue;
     }

@@ -13,7 +13,7 @@
 #include <tbb/task_arena.h>
 
 #include "airr/core/error.hpp"
-#include "airr/formats/mesh_gltf.hpp"
+#include "airr/formats/prop_mesh.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/layout/psf.hpp"
 #include "airr/layout/sheet_models.hpp"
@@ -100,7 +100,7 @@ double prop_cut_length_mm(const scene& s) {
   double length = 0;
   for (const prop_params& p : s.props) {
     if (!p.visible) continue;
-    const auto mesh = cached_prop_mesh(resolve_scene_path(s, p.mesh), p.node);
+    const auto mesh = prop_mesh(s, p);
     const glm::dmat4 to_world = prop_transform(p);
     // Fixed blocks of triangles summed in order: the same length on any number of threads.
     constexpr std::size_t block = 4096;

@@ -7,6 +7,7 @@
 #include <imgui_stdlib.h>
 
 #include "airr/core/assets.hpp"
+#include "airr/formats/mesh_step.hpp"
 #include "airr/formats/sheet_json.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/models/retro_model.hpp"
@@ -216,7 +217,7 @@ void observer_section(scene& s) {
 // The props: each with its visibility, name, surface, albedo, scale and pose; add and remove.
 void props_section(studio& st) {
   scene& s = st.doc;
-  if (s.props.empty()) ImGui::TextDisabled("none: drop a .glb or .gltf model on the window, or add one");
+  if (s.props.empty()) ImGui::TextDisabled("none: drop a glTF or STEP model on the window, or add one");
   std::optional<std::size_t> remove;
   for (std::size_t i = 0; i < s.props.size(); ++i) {
     prop_params& p = s.props[i];
@@ -246,7 +247,11 @@ void props_section(studio& st) {
           for (int k = 0; k < 3; ++k) p.albedo[std::size_t(k)] = std::clamp(double(c[k]), 0.0, 1.0);
         }
       }
-      edit_number("scale", p.scale, 0.01, 10, "", "%.3f", "on top of glTF's metres to millimetres");
+      edit_number("scale", p.scale, 0.01, 10, "", "%.3f", "on top of the file's unit to millimetres");
+      if (is_step_path(p.mesh)) {
+        edit_number("tessellation", p.tessellation_mm, 0.001, 5, "mm", "%.3f",
+                    "the farthest a triangle may stray from the CAD surface it stands for");
+      }
       edit_pose(p.pose, 1000, "props." + std::to_string(i));
       if (ImGui::Button("remove this prop")) remove = i;
       ImGui::TreePop();
@@ -254,9 +259,9 @@ void props_section(studio& st) {
     ImGui::PopID();
   }
   if (remove) s.props.erase(s.props.begin() + std::ptrdiff_t(*remove));
-  if (s.props.size() < std::size_t(max_props) && ImGui::Button("add a prop (glTF)...")) {
-    st.dialog.request(file_purpose::add_prop, false, "Add a glTF model as a prop", st.settings.last_dir,
-                      {".glb", ".gltf"});
+  if (s.props.size() < std::size_t(max_props) && ImGui::Button("add a prop (glTF, STEP)...")) {
+    st.dialog.request(file_purpose::add_prop, false, "Add a glTF or STEP model as a prop", st.settings.last_dir,
+                      {".glb", ".gltf", ".step", ".stp"});
   }
 }
 

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "airr/core/assets.hpp"
+#include "airr/formats/prop_mesh.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/render/memory_need.hpp"
 
@@ -30,7 +31,7 @@ static void keep_prop_meshes(studio& st, const scene& s) {
   for (const auto& p : s.props) {
     std::shared_ptr<const triangle_mesh> m;
     try {
-      m = cached_prop_mesh(resolve_scene_path(s, p.mesh), p.node);
+      m = prop_mesh(s, p);
     } catch (const std::exception&) {
     }
     const auto kept = std::find(st.prop_meshes.begin(), st.prop_meshes.end(), m);

@@ -7,7 +7,8 @@
 #include "airr/core/error.hpp"
 #include "airr/formats/gltf_layout.hpp"
 #include "airr/formats/image.hpp"
-#include "airr/formats/mesh_gltf.hpp"
+#include "airr/formats/mesh_step.hpp"
+#include "airr/formats/prop_mesh.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/render/memory_need.hpp"
 #include "airr/render/render_metadata.hpp"
@@ -86,6 +87,10 @@ bool studio_export_gltf(studio& st, const std::string& path) {
 void studio_drop_file(studio& st, const std::string& path) {
   std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (is_step_path(path)) {
+    studio_add_prop(st, path);  // a CAD housing
+    return;
+  }
   if (is_gltf_path(path)) {
     // A file with parts in it is a layout to open; any other model is a prop.
     bool layout = false;

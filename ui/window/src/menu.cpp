@@ -99,8 +99,9 @@ void draw_menu(studio& st) {
       st.dialog.request(file_purpose::export_render, true, "Export render (.exr or .png)", start_dir(st),
                         {".exr", ".png"}, "render.exr");
     }
-    if (ImGui::MenuItem("Add prop (glTF)...")) {
-      st.dialog.request(file_purpose::add_prop, false, "Add a glTF model as a prop", start_dir(st), {".glb", ".gltf"});
+    if (ImGui::MenuItem("Add prop (glTF, STEP)...")) {
+      st.dialog.request(file_purpose::add_prop, false, "Add a glTF or STEP model as a prop", start_dir(st),
+                        {".glb", ".gltf", ".step", ".stp"});
     }
     if (ImGui::MenuItem("Export layout (glTF)...")) {
       st.dialog.request(file_purpose::export_gltf, true, "Export the layout as glTF (.glb or .gltf)", start_dir(st),

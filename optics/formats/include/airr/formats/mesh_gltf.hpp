@@ -1,7 +1,6 @@
 #pragma once
 // Triangle meshes in glTF 2.0 files (.gltf with external or data-URI buffers, or .glb): the part
 // geometry of a layout and the props placed around it.
-#include <memory>
 #include <string>
 
 #include "airr/core/mesh.hpp"
@@ -14,16 +13,12 @@ namespace airr {
 // the file and the node or accessor at fault.
 triangle_mesh load_gltf_mesh(const std::string& path);
 
-// A prop's mesh: the triangles of `node` (its name, or "#index") and its descendants, or of the
-// whole default scene when `node` is empty, leaving out nodes with a part's role (gltf_layout.hpp)
-// and their descendants, in millimetres (glTF's metres x 1000) in the node's own
-// frame, that is its world transform less the rotation and translation that
-// gltf_node_rigid_pose gives (a prop's pose), with every triangle's material.
-triangle_mesh load_prop_mesh(const std::string& path, const std::string& node);
-
-// load_prop_mesh, cached by path, node, modification time and size (a large housing is read once
-// however many analyses and views ask for it).
-std::shared_ptr<const triangle_mesh> cached_prop_mesh(const std::string& path, const std::string& node);
+// A prop's mesh from a glTF file (prop_mesh.hpp reads any prop): the triangles of `node` (its
+// name, or "#index") and its descendants, or of the whole default scene when `node` is empty,
+// leaving out nodes with a part's role (gltf_layout.hpp) and their descendants, in millimetres
+// (glTF's metres x 1000) in the node's own frame, that is its world transform less the rotation
+// and translation that gltf_node_rigid_pose gives (a prop's pose), with every triangle's material.
+triangle_mesh load_gltf_prop_mesh(const std::string& path, const std::string& node);
 
 // The rigid part of a node's world transform, in millimetres: the pose whose rotation is the
 // nearest rotation to the node's (scale and shear go into its mesh) and whose centre is the node's

@@ -103,17 +103,22 @@ enum class prop_surface { absorber, diffuse, mirror, material };
 inline constexpr const char* prop_surface_names[] = {"absorber", "diffuse", "mirror", "material"};
 
 // A model placed in the layout: a housing, a hood, a baffle, a frame. It blocks and scatters light
-// in the tracer and blocks it in the viewing-zone analysis. The mesh is read in glTF's metres and
-// placed in millimetres, times `scale`, in the frame of its pose (no size: the mesh has its own).
+// in the tracer and blocks it in the viewing-zone analysis. The mesh is read in millimetres (glTF's
+// metres x 1000; a STEP file's own unit converted) and placed, times `scale`, in the frame of its
+// pose (no size: the mesh has its own).
 struct prop_params {
   std::string name;
-  std::string mesh;  // glTF or GLB file relative to the scene file
-  std::string node;  // a node of the file (its name, or "#index") with its descendants; empty: all
+  std::string mesh;  // glTF, GLB or STEP file relative to the scene file
+  // A node of the file (glTF: its name, or "#index"; STEP: a product's name) with its descendants;
+  // empty: all.
+  std::string node;
   double scale = 1.0;
   airr::pose pose;
   prop_surface surface = prop_surface::absorber;
   std::array<double, 3> albedo{0.5, 0.5, 0.5};  // linear RGB, for diffuse and mirror
   bool visible = true;                          // a hidden prop takes no part in renders or analyses
+  // STEP files: the farthest a triangle may stray from the surface it stands for (chordal tolerance).
+  double tessellation_mm = 0.05;
 
   bool operator==(const prop_params&) const = default;
 };
