@@ -129,7 +129,9 @@ TEST(StepHousing, TheHolesRimStaysWithinTheTessellationTolerance) {
     EXPECT_LE(sagitta, tolerance + 1e-6) << tolerance << " mm: " << angles.size() << " rim points";
     // Open CASCADE's angular limit (0.5 rad) may ask for more points than a coarse tolerance.
     EXPECT_GE(angles.size(), previous) << tolerance;
-    if (tolerance == 0.01) EXPECT_GT(angles.size(), rim_points_at_1mm);
+    if (tolerance == 0.01) {
+      EXPECT_GT(angles.size(), rim_points_at_1mm);
+    }
     if (tolerance == 1.0) rim_points_at_1mm = angles.size();
     previous = angles.size();
     // Inside the polygon the rim's chords make: open; just outside the circle: the wall.

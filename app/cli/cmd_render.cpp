@@ -1,5 +1,5 @@
 // airr render SCENE -o OUT.exr|OUT.png [--spp N] [--seed S] [--components | --component NAME]
-//             [--stokes] [--set key=value ...] [--shard i/N]
+//             [--layer NAME=EXPR ...] [--stokes] [--set key=value ...] [--shard i/N]
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -31,6 +31,7 @@ void add_render_command(CLI::App& app) {
     bool stokes = false;
     std::string component;
     std::string shard;
+    std::vector<std::string> layers;
   };
   auto opt = std::make_shared<options>();
   auto* cmd = app.add_subcommand("render", "Render a scene to EXR (linear) or PNG (sRGB)");
@@ -49,6 +50,10 @@ void add_render_command(CLI::App& app) {
                   "Write one component instead of the whole image: aerial, direct, reflection or rest")
       ->check(CLI::IsMember({"aerial", "direct", "reflection", "rest"}))
       ->excludes(layers);
+  cmd->add_option("--layer", opt->layers,
+                  "EXR: also write the light of the paths a path expression selects as a layer NAME, e.g. "
+                  "--layer 'aerial0=D H:r S0:retro H:t E' (repeatable; the paths none selects go to a layer "
+                  "'unmatched'; docs/path-expressions.md)");
   cmd->add_flag("--stokes", opt->stokes,
                 "EXR: also write the Stokes parameters of the light reaching the observer (before its polarizer) as "
                 "layers S0, S1, S2, S3 and their degree of polarization, dop")
@@ -71,8 +76,22 @@ void add_render_command(CLI::App& app) {
       if (!opt->component.empty() || !opt->shard.empty() || job.size > 1)
         throw airr::input_error("--stokes: renders the whole image in one process, without --component or --shard");
     }
+    std::shared_ptr<const airr::path_layers> path_layers;
+    if (!opt->layers.empty()) {
+      if (!opt->out.ends_with(".exr")) throw airr::input_error(opt->out + ": --layer needs an EXR output (layers)");
+      if (!opt->shard.empty() || job.size > 1)
+        throw airr::input_error("--layer: renders the whole image in one process, without --shard");
+      path_layers = std::make_shared<const airr::path_layers>(airr::parse_layer_arguments(opt->layers, s));
+      for (const auto& l : path_layers->layers) {
+        for (const char* name : {"aerial", "direct", "reflection", "rest", "S0", "S1", "S2", "S3", "dop"}) {
+          if (l.name == name && (opt->components || opt->stokes))
+            throw airr::input_error("--layer " + l.name + ": that name is taken by --components or --stokes");
+        }
+      }
+    }
     std::optional<airr::shard_index> shard;  // this process's rows go to a shard file
-    airr::session_params params{.threads = opt->threads, .target_spp = opt->spp, .components = split};
+    airr::session_params params{
+        .threads = opt->threads, .target_spp = opt->spp, .components = split, .layers = path_layers};
     if (!opt->shard.empty()) {
       if (job.size > 1) throw airr::input_error("--shard: not under mpirun or srun, whose ranks split the render");
       shard = airr::parse_shard(opt->shard, "--shard");
@@ -112,6 +131,9 @@ void add_render_command(CLI::App& app) {
     std::vector<airr::image_layer> layers;
     for (int k = 0; k < int(parts.size()) && opt->components; ++k)
       layers.push_back({airr::component_names[k], &parts[k]});
+    std::vector<airr::image_rgb> path_images;
+    for (std::size_t k = 0; k < snap.layer_names.size(); ++k) path_images.push_back(snap.layer_image(k));
+    for (std::size_t k = 0; k < path_images.size(); ++k) layers.push_back({snap.layer_names[k], &path_images[k]});
     airr::image_rgb image = snap.image();
     if (job.size > 1) {
       image = gather_rows(image, params.first_row, params.end_row);
@@ -125,6 +147,9 @@ void add_render_command(CLI::App& app) {
     }
     airr::image_metadata meta = airr::render_metadata(s, snap, exposure);
     if (!opt->component.empty()) meta["airr:component"] = opt->component;
+    if (path_layers) {
+      for (const auto& l : path_layers->layers) meta["airr:layer:" + l.name] = l.expression.text();
+    }
     if (shard) {
       airr::render_image whole{image, {}, meta};
       for (const auto& l : layers) whole.layers.emplace_back(l.name, *l.image);

@@ -68,8 +68,10 @@ memory_allowance process_memory_allowance() {
 }
 
 std::uint64_t render_memory_need(const scene& s, const session_params& p) {
-  return std::uint64_t(fixed_bytes) +
-         traced_pixels_memory_need(std::uint64_t(s.observer.width) * std::uint64_t(s.observer.height), p.components);
+  const std::uint64_t pixels = std::uint64_t(s.observer.width) * std::uint64_t(s.observer.height);
+  // A path-expression layer: its double sums, the snapshot's floats and the image written of them.
+  const std::uint64_t layers = p.layers ? pixels * 60 * p.layers->count() : 0;
+  return std::uint64_t(fixed_bytes) + traced_pixels_memory_need(pixels, p.components) + layers;
 }
 
 std::uint64_t traced_pixels_memory_need(std::uint64_t pixels, bool components) {

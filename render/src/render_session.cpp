@@ -18,48 +18,9 @@
 
 namespace airr {
 
-image_rgb render_snapshot::image() const {
-  image_rgb img;
-  img.width = width;
-  img.height = height;
-  if (rgb)
-    img.rgb = *rgb;
-  else
-    img.rgb.assign(std::size_t(width) * height * 3, 0.0f);
-  return img;
-}
-
-image_rgb render_snapshot::component_image(int component) const {
-  image_rgb img;
-  if (!components || component < 0 || component >= component_count) return img;
-  img.width = width;
-  img.height = height;
-  img.rgb.resize(std::size_t(width) * height * 3);
-  for (std::size_t i = 0; i < std::size_t(width) * height; ++i) {
-    std::copy_n(components->data() + 3 * (component_count * i + std::size_t(component)), 3, img.rgb.data() + 3 * i);
-  }
-  return img;
-}
-
-std::vector<image_rgb> render_snapshot::component_images() const {
-  std::vector<image_rgb> out;
-  for (int k = 0; k < component_count && components; ++k) out.push_back(component_image(k));
-  return out;
-}
-
-std::vector<float> render_snapshot::even_rgb() const {
-  if (!rgb || !odd_rgb || spp < 2) return {};
-  // Samples 0 .. spp-1: spp / 2 odd-numbered ones, the rest even-numbered.
-  const double odd_n = double(spp / 2), even_n = double(spp - spp / 2);
-  std::vector<float> even(rgb->size());
-  for (std::size_t i = 0; i < even.size(); ++i) {
-    even[i] = float((double(spp) * (*rgb)[i] - odd_n * (*odd_rgb)[i]) / even_n);
-  }
-  return even;
-}
-
 render_session::render_session(const scene& s, session_params p) : params_(p), target_spp_(p.target_spp) {
   scene_.stokes = p.stokes;
+  scene_.layers = p.layers;
   build_tracer_scene(scene_, device_, s);
   update_model_image(scene_, params_.build_cancel, params_.quick_model_image);
   snapshot_.width = scene_.camera.width;
@@ -146,24 +107,6 @@ render_snapshot render_session::wait_for(std::uint64_t gen, std::uint64_t spp,
   return snapshot_;
 }
 
-double model_image_weight(const std::vector<float>& model, const std::vector<float>& rgb, const std::vector<float>* odd,
-                          std::uint64_t spp) {
-  if (spp < 2 || !odd || model.size() != rgb.size() || odd->size() != rgb.size()) return 1;
-  const double n = double(spp), n_odd = double(spp / 2), n_even = n - n_odd;
-  double halves2 = 0, distance2 = 0;
-  for (std::size_t i = 0; i < rgb.size(); ++i) {
-    const double even = (n * rgb[i] - n_odd * (*odd)[i]) / n_even;
-    halves2 += (double((*odd)[i]) - even) * (double((*odd)[i]) - even);
-    distance2 += (double(rgb[i]) - model[i]) * (double(rgb[i]) - model[i]);
-  }
-  // var(odd - even) = sigma^2 (1 / n_odd + 1 / n_even); var(mean) = sigma^2 / n.
-  const double noise2 = halves2 / (n * (1 / n_odd + 1 / n_even));
-  const double error2 = std::max(0.0, distance2 - noise2);
-  if (!(noise2 + error2 > 0)) return 1;  // the same images
-  const double w = noise2 / (noise2 + error2);
-  return w < 1e-3 ? 0.0 : w > 1 - 1e-3 ? 1.0 : w;
-}
-
 void render_session::show_best() {
   const bool have_model = model_shown_ && model_generation_ == snapshot_.generation;
   const double w =
@@ -181,17 +124,6 @@ void render_session::show_best() {
     for (std::size_t i = 0; i < mix->size(); ++i) (*mix)[i] = float(w * model[i] + (1 - w) * traced[i]);
     snapshot_.shown = std::move(mix);
   }
-}
-
-std::string estimate_name(const render_snapshot& snap) {
-  const std::string model = snap.first_look ? "model image (first look)" : "model image";
-  if (snap.model_image && snap.spp > 0 && snap.model_weight < 1) {
-    return "tracer at " + std::to_string(snap.spp) + " spp with the " + model + " (" +
-           std::to_string(int(std::lround(100 * snap.model_weight))) + "%)";
-  }
-  if (snap.model_image) return model;
-  if (snap.preview) return "tracer (preview)";
-  return "tracer at " + std::to_string(snap.spp) + " spp";
 }
 
 render_snapshot render_session::wait_until(const std::function<bool(const render_snapshot&)>& ready) const {
@@ -222,7 +154,8 @@ bool render_session::render_wave(std::uint64_t first, std::uint64_t count, accum
     if (params_.background_priority) lower_thread_priority();
     std::uint64_t local = 0;
     if (!trace_rows(scene_, y0, y1, first, count, acc.sums, cancel_, local, &acc.odd_sums,
-                    params_.components ? &acc.component_sums : nullptr, &acc.predictions)) {
+                    params_.components ? &acc.component_sums : nullptr, &acc.predictions,
+                    params_.layers ? &acc.layer_sums : nullptr)) {
       complete = false;
     }
     total_rays += local;
@@ -294,6 +227,25 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const accumul
       }
     }
   }
+  std::shared_ptr<std::vector<float>> layers;
+  std::vector<std::string> layer_names;
+  if (!acc.layer_sums.empty()) {
+    const std::size_t n = scene_.layers->count();
+    const std::uint64_t variate = model_layers(scene_);
+    for (std::size_t k = 0; k < n; ++k) layer_names.push_back(scene_.layers->name(k));
+    layers = std::make_shared<std::vector<float>>(acc.layer_sums.size());
+    for (std::size_t p = 0; p < sums.size() / 3; ++p) {
+      for (std::size_t k = 0; k < n; ++k) {
+        const bool modelled = variate >> k & 1;
+        for (int c = 0; c < 3; ++c) {
+          const std::size_t i = 3 * (n * p + k) + std::size_t(c);
+          const std::size_t j = 3 * p + std::size_t(c);
+          const double v = (acc.layer_sums[i] - (modelled ? predicted[j] : 0.0)) * inv;
+          (*layers)[i] = float(v + (model && modelled ? (*model)[j] : 0.0f));
+        }
+      }
+    }
+  }
   std::lock_guard lock(mutex_);
   if (gen != generation_) return;  // an edit arrived meanwhile: this result is stale
   snapshot_.generation = gen;
@@ -305,6 +257,8 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const accumul
   snapshot_.odd_rgb = std::move(odd);
   show_best();
   snapshot_.components = std::move(components);
+  snapshot_.layers = std::move(layers);
+  snapshot_.layer_names = std::move(layer_names);
   snapshot_.preview = false;
   snapshot_.edit_seconds = seconds_since_edit();
   snapshot_.rays = rays;
@@ -364,6 +318,7 @@ void render_session::run_loop() {
     acc.sums.assign(std::size_t(scene_.camera.width) * scene_.camera.height * 3, 0.0);
     acc.odd_sums = acc.sums;
     acc.component_sums.assign(params_.components ? component_count * acc.sums.size() : 0, 0.0);
+    acc.layer_sums.assign(scene_.layers ? scene_.layers->count() * acc.sums.size() : 0, 0.0);
     acc.predictions = {acc.sums, acc.sums};
   };
   {

@@ -112,6 +112,7 @@ void render_session::publish_preview(std::uint64_t gen, std::vector<float> rgb, 
   snapshot_.shown = std::move(shared);
   snapshot_.odd_rgb.reset();
   snapshot_.components.reset();
+  snapshot_.layers.reset();
   snapshot_.rays = 0;
   snapshot_.seconds = 0;
   changed_.notify_all();

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include "airr/core/error.hpp"
 #include "airr/core/low_discrepancy.hpp"
@@ -26,9 +27,10 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
                                           resolve_scene_path(s, s.half_mirror.mesh)};
   for (const auto& r : s.retroreflectors) part_meshes.push_back(resolve_scene_path(s, r.mesh));
   std::vector<tracer_scene::prop> props;
-  for (const auto& p : s.props) {
+  for (std::size_t i = 0; i < s.props.size(); ++i) {
+    const prop_params& p = s.props[i];
     if (!p.visible) continue;
-    props.push_back({p, prop_mesh(s, p), pose_rotation(p.pose)});
+    props.push_back({p, prop_mesh(s, p), pose_rotation(p.pose), std::uint16_t(i)});
   }
   // A prototype's key names its file, and for props the loaded mesh (a changed file is a new one).
   std::vector<std::string> keys;
@@ -67,6 +69,7 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   ts.first_prop = unsigned(ts.frames.size());
   ts.source_area = source_frame(s);
   ts.camera = make_camera(s);
+  if (ts.layers) ts.layers = std::make_shared<const path_layers>(ts.layers->bound(s));
   ts.model.reset();  // it no longer matches the layout
   std::vector<glm::dmat4> transforms;
   for (const auto& f : ts.frames) transforms.push_back(part_transform(f));
@@ -115,6 +118,7 @@ static glm::vec3 source_radiance(const tracer_scene& ts, const glm::dvec2& local
 using tracer_path::component_of;
 using tracer_path::meet_plate;
 using tracer_path::meet_thin_half_mirror;
+using tracer_path::no_label;
 using tracer_path::no_polarization;
 using tracer_path::path_stack;
 using tracer_path::path_state;
@@ -154,8 +158,40 @@ static sample_numbers draw_sample_numbers(const tracer_scene& ts, int px, int py
 static camera_ray first_ray(const tracer_scene& ts, int px, int py, const sample_numbers& n);
 
 // `first`: the camera ray; `first_hit`: its hit when it was traced already (in a stream), else null.
+// Where a labelled path's light goes: to each of ts.layers' layers that selects its label. A
+// label's selection is remembered, as a render meets few distinct labels and matching every
+// expression again is most of what layers cost.
+struct layer_sink {
+  const path_layers& layers;
+  glm::vec3* radiance;  // layers.count() of them
+  struct remembered {
+    path_label label;
+    std::uint64_t selected = 0;
+  };
+  std::array<remembered, 64> seen{};
+
+  void add(const path_label& l, const glm::vec3& L) {
+    std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the events
+    for (int i = 0; i < l.count; ++i) {
+      const path_event& e = l.events[std::size_t(i)];
+      h = (h ^ (std::uint64_t(e.kind) | std::uint64_t(e.taken) << 8 | std::uint64_t(e.front) << 9 |
+                std::uint64_t(e.index) << 10)) *
+          1099511628211ull;
+    }
+    remembered& r = seen[h % seen.size()];
+    if (r.selected == 0 || r.label.count != l.count ||
+        !std::equal(l.events.begin(), l.events.begin() + l.count, r.label.events.begin())) {
+      r.label = l;
+      r.selected = layers.select(l);
+    }
+    for (std::size_t k = 0; k < layers.count(); ++k)
+      if (r.selected >> k & 1) radiance[k] += L;
+  }
+};
+
+// `layers`, when given, gets the radiance of each of ts.layers' layers.
 static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, const camera_ray& first,
-                                     const RTCRayHit* first_hit, std::uint64_t& rays);
+                                     const RTCRayHit* first_hit, std::uint64_t& rays, layer_sink* layers = nullptr);
 
 static glm::vec3 total(const component_radiance& c) { return c[0] + c[1] + c[2] + c[3]; }
 
@@ -169,10 +205,17 @@ glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sam
   return total(trace_path(ts, n, first_ray(ts, px, py, n), nullptr, rays));
 }
 
+// With `layers`, the prediction is taken from the layers `variate_layers` too.
 static component_radiance estimate_from(const tracer_scene& ts, int px, int py, const sample_numbers& n,
-                                        const camera_ray& first, const RTCRayHit* first_hit, std::uint64_t& rays) {
-  component_radiance c = trace_path(ts, n, first, first_hit, rays);
-  if (ts.model) c[component_aerial] -= model_prediction(*ts.model, px, py, n.jitter, n.first_retro);
+                                        const camera_ray& first, const RTCRayHit* first_hit, std::uint64_t& rays,
+                                        layer_sink* layers = nullptr, std::uint64_t variate_layers = 0) {
+  component_radiance c = trace_path(ts, n, first, first_hit, rays, layers);
+  if (ts.model) {
+    const glm::vec3 g = model_prediction(*ts.model, px, py, n.jitter, n.first_retro);
+    c[component_aerial] -= g;
+    for (std::size_t k = 0; layers && k < ts.layers->count(); ++k)
+      if (variate_layers >> k & 1) layers->radiance[k] -= g;
+  }
   return c;
 }
 
@@ -199,11 +242,12 @@ static camera_ray first_ray(const tracer_scene& ts, int px, int py, const sample
 
 // Scatters the path at a prop (a mirror reflection, or a Lambertian bounce drawn from the path's
 // generator), both sides alike; false when the prop absorbs it.
-template <class Polarization>
-static bool scatter_at_prop(const tracer_scene::prop& prop, const RTCRayHit& rh, path_state<Polarization>& p,
+template <class Polarization, class Label>
+static bool scatter_at_prop(const tracer_scene::prop& prop, const RTCRayHit& rh, path_state<Polarization, Label>& p,
                             pcg32& rng) {
   const surface_response s = prop_surface_of(prop.params, *prop.mesh, rh.hit.primID);
   if (s.kind == prop_surface::absorber) return false;
+  p.label.push({path_event_kind::prop, false, false, prop.index});
   // Embree gives the normal in the mesh's frame; the prop's scale is uniform.
   glm::dvec3 n = glm::normalize(prop.rotation * glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
   if (glm::dot(n, p.dir) > 0) n = -n;
@@ -221,21 +265,22 @@ static bool scatter_at_prop(const tracer_scene::prop& prop, const RTCRayHit& rh,
   return true;
 }
 
-template <class Polarization>
+template <class Polarization, class Label>
 static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n, const camera_ray& first,
-                                        const RTCRayHit* first_hit, std::uint64_t& rays) {
+                                        const RTCRayHit* first_hit, std::uint64_t& rays, layer_sink* layers) {
   constexpr bool with_polarization = polarized<Polarization>;
   pcg32& rng = n.rng;
   const auto& hm = ts.layout.half_mirror;
 
-  path_stack<Polarization> stack;
+  path_stack<Polarization, Label> stack;
   stack.paths[stack.pending++] = {first.origin, first.dir, glm::vec3(1.0f), 0};
+  stack.paths[0].label.push({path_event_kind::eye});
   if constexpr (with_polarization)
     stack.paths[0].pol = path_polarization::at_observer(ts.layout, ts.camera.right, ts.camera.up, first.dir, ts.stokes);
   component_radiance radiance{};
 
   while (stack.pending > 0) {
-    path_state<Polarization> p = stack.paths[--stack.pending];
+    path_state<Polarization, Label> p = stack.paths[--stack.pending];
     for (; p.depth < ts.layout.render.max_depth; ++p.depth) {
       RTCRayHit rh;
       if (p.depth == 0 && first_hit) {
@@ -259,11 +304,16 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
       if (part == part_source) {
         if (cos_n < 0) {
           const float profile = float(emission_at(ts.emission.get(), f, p.dir));
+          glm::vec3 L;
           if constexpr (with_polarization) {
-            radiance[component_of(p)] +=
-                p.throughput * profile * source_radiance(ts, part_local(f, hit)) * p.pol.emitted(ts.layout.source, f);
+            L = p.throughput * profile * source_radiance(ts, part_local(f, hit)) * p.pol.emitted(ts.layout.source, f);
           } else {
-            radiance[component_of(p)] += p.throughput * profile * source_radiance(ts, part_local(f, hit));
+            L = p.throughput * profile * source_radiance(ts, part_local(f, hit));
+          }
+          radiance[component_of(p)] += L;
+          if constexpr (std::is_same_v<Label, path_label>) {
+            p.label.push({path_event_kind::display});
+            layers->add(p.label, L);
           }
         }
         break;  // the display absorbs what it does not emit; its back emits nothing
@@ -294,6 +344,7 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
       }
       p.origin = hit + rs.shift_mm.x * f.u + rs.shift_mm.y * f.v;
       p.throughput *= glm::vec3(rs.channels) * float(rs.weight);
+      p.label.push({path_event_kind::sheet, rs.retroreflected, false, std::uint16_t(part - part_first_sheet)});
       if (rs.retroreflected) {
         ++p.retroreflections;
       } else {
@@ -305,9 +356,35 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
 }
 
 static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, const camera_ray& first,
-                                     const RTCRayHit* first_hit, std::uint64_t& rays) {
-  return ts.polarized ? trace_path_as<path_polarization>(ts, n, first, first_hit, rays)
-                      : trace_path_as<no_polarization>(ts, n, first, first_hit, rays);
+                                     const RTCRayHit* first_hit, std::uint64_t& rays, layer_sink* layers) {
+  if (layers) {
+    return ts.polarized ? trace_path_as<path_polarization, path_label>(ts, n, first, first_hit, rays, layers)
+                        : trace_path_as<no_polarization, path_label>(ts, n, first, first_hit, rays, layers);
+  }
+  return ts.polarized ? trace_path_as<path_polarization, no_label>(ts, n, first, first_hit, rays, nullptr)
+                      : trace_path_as<no_polarization, no_label>(ts, n, first, first_hit, rays, nullptr);
+}
+
+std::uint64_t model_layers(const tracer_scene& ts) {
+  if (!ts.layers || !ts.model) return 0;
+  std::uint64_t mask = ~std::uint64_t(0);
+  for (const auto& sheet : ts.model->sheets) {
+    if (sheet->bins.empty()) continue;
+    const psf_chief_ray& c = sheet->bins.front().chief;
+    // The modelled path, traced from the eye: to the half mirror along the camera's ray, to the
+    // sheet, back to the half mirror and on to the display.
+    const bool eye_side_front = glm::dot(c.camera_dir, c.hm.n) < 0;
+    const bool display_side_front = glm::dot(c.ideal - c.sheet_point, c.hm.n) < 0;
+    path_label l;
+    l.push({path_event_kind::eye});
+    l.push({path_event_kind::half_mirror, c.by_reflection, c.by_reflection == eye_side_front, 0});
+    l.push({path_event_kind::sheet, true, false, std::uint16_t(c.sheet)});
+    l.push({path_event_kind::half_mirror, !c.by_reflection, !c.by_reflection == display_side_front, 0});
+    l.push({path_event_kind::display});
+    mask &= ts.layers->select(l);
+  }
+  const std::uint64_t unmatched = std::uint64_t(1) << ts.layers->layers.size();
+  return mask == ~std::uint64_t(0) || mask == 0 ? unmatched : mask;
 }
 
 static void add_prediction(const tracer_scene& ts, int x, int y, std::uint64_t i, const sample_numbers& n,
@@ -315,8 +392,15 @@ static void add_prediction(const tracer_scene& ts, int x, int y, std::uint64_t i
 
 bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
                 std::vector<double>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays,
-                std::vector<double>* odd_sums, std::vector<double>* component_sums, prediction_sums* predictions) {
+                std::vector<double>* odd_sums, std::vector<double>* component_sums, prediction_sums* predictions,
+                std::vector<double>* layer_sums) {
   const int w = ts.camera.width;
+  if (!ts.layers) layer_sums = nullptr;
+  const std::size_t layer_count = layer_sums ? ts.layers->count() : 0;
+  const std::uint64_t variate_layers = predictions ? 0 : model_layers(ts);
+  std::array<glm::vec3, max_path_layers + 1> layer_radiance;
+  std::optional<layer_sink> sink;
+  if (layer_sums) sink.emplace(*ts.layers, layer_radiance.data());
   std::vector<std::array<double, 6>> rotations(std::size_t(w), std::array<double, 6>{});
   std::array<sample_numbers, camera_stream> numbers;
   std::array<camera_ray, camera_stream> camera_rays;
@@ -342,9 +426,12 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
           double* odd = odd_sums ? odd_sums->data() + 3 * (std::size_t(y) * w + x) : nullptr;
           const sample_numbers& numbers_k = numbers[std::size_t(k)];
           const camera_ray& ray_k = camera_rays[std::size_t(k)];
-          const component_radiance c = predictions
-                                           ? trace_path(ts, numbers_k, ray_k, &hits[std::size_t(k)], rays)
-                                           : estimate_from(ts, x, y, numbers_k, ray_k, &hits[std::size_t(k)], rays);
+          layer_sink* layers_out = sink ? &*sink : nullptr;
+          if (layers_out) std::fill_n(layer_radiance.data(), layer_count, glm::vec3(0.0f));
+          const component_radiance c =
+              predictions
+                  ? trace_path(ts, numbers_k, ray_k, &hits[std::size_t(k)], rays, layers_out)
+                  : estimate_from(ts, x, y, numbers_k, ray_k, &hits[std::size_t(k)], rays, layers_out, variate_layers);
           if (predictions && ts.model) add_prediction(ts, x, y, i, numbers_k, *predictions);
           const glm::vec3 L = total(c);
           if (component_sums) {
@@ -353,6 +440,14 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
               comp[3 * j] += c[std::size_t(j)].x;
               comp[3 * j + 1] += c[std::size_t(j)].y;
               comp[3 * j + 2] += c[std::size_t(j)].z;
+            }
+          }
+          if (layer_sums) {
+            double* lay = layer_sums->data() + 3 * layer_count * (std::size_t(y) * w + x);
+            for (std::size_t j = 0; j < layer_count; ++j) {
+              lay[3 * j] += layer_radiance[j].x;
+              lay[3 * j + 1] += layer_radiance[j].y;
+              lay[3 * j + 2] += layer_radiance[j].z;
             }
           }
           acc[0] += L.x;

@@ -7,6 +7,7 @@
 #include "airr/core/geometry.hpp"
 #include "airr/core/random.hpp"
 #include "airr/layout/path_polarization.hpp"
+#include "airr/render/path_label.hpp"
 #include "airr/render/tracer.hpp"
 
 namespace airr {
@@ -18,9 +19,14 @@ inline constexpr int max_half_mirror_splits = 3;
 namespace tracer_path {
 
 struct no_polarization {};
+// The label of a path that is not asked for its events.
+struct no_label {
+  void push(const path_event&) {}
+};
 
 // `Polarization`: path_polarization when the scene polarizes, else nothing (the path as it was).
-template <class Polarization>
+// `Label`: path_label when layers are asked for, else nothing.
+template <class Polarization, class Label>
 struct path_state {
   glm::dvec3 origin;
   glm::dvec3 dir;
@@ -34,13 +40,14 @@ struct path_state {
   // numbers at its first sheet, as the control variate predicts every sheet with them.
   bool first_retro_used = false;
   [[no_unique_address]] Polarization pol{};
+  [[no_unique_address]] Label label{};
 };
 
 template <class Polarization>
 inline constexpr bool polarized = std::is_same_v<Polarization, path_polarization>;
 
-template <class Polarization>
-image_component component_of(const path_state<Polarization>& p) {
+template <class Polarization, class Label>
+image_component component_of(const path_state<Polarization, Label>& p) {
   if (p.retroreflections > 0) return component_aerial;
   if (p.prop_scatterings > 0 || p.sheet_scatterings > 0) return component_rest;
   if (p.mirror_reflections == 0) return component_direct;
@@ -48,26 +55,31 @@ image_component component_of(const path_state<Polarization>& p) {
 }
 
 // The paths split off and still to trace.
-template <class Polarization>
+template <class Polarization, class Label>
 struct path_stack {
-  path_state<Polarization> paths[max_half_mirror_splits + 1];
+  path_state<Polarization, Label> paths[max_half_mirror_splits + 1];
   int pending = 0, splits_left = max_half_mirror_splits;
 };
 
 // The thin half mirror (a plain one or a reflective polarizer) met at `hit`: `p` goes on through
 // it, its reflection split off onto the stack while splits are left; after that one branch is
 // chosen. False when nothing goes on.
-template <class Polarization>
+template <class Polarization, class Label>
 bool meet_thin_half_mirror(const half_mirror_params& hm, const part_frame& f, const glm::dvec3& hit,
-                           path_state<Polarization>& p, path_stack<Polarization>& stack, pcg32& rng) {
+                           path_state<Polarization, Label>& p, path_stack<Polarization, Label>& stack, pcg32& rng) {
   constexpr bool with_polarization = polarized<Polarization>;
   const double hm_total = hm.reflectance + hm.transmittance;
   if (hm_total <= 0) return false;
   const glm::dvec3 reflected = reflect(p.dir, f.n);
+  // The traced ray comes from the front (the normal's side): reflected light arrived there.
+  const bool from_front = glm::dot(p.dir, f.n) < 0;
+  const path_event reflection{path_event_kind::half_mirror, true, from_front, 0};
+  const path_event transmission{path_event_kind::half_mirror, false, !from_front, 0};
   p.origin = hit;
   if (stack.splits_left > 0) {
     --stack.splits_left;
-    path_state<Polarization> r = p;
+    path_state<Polarization, Label> r = p;
+    r.label.push(reflection);
     r.dir = reflected;
     r.throughput *= float(hm.reflectance);
     ++r.depth;
@@ -75,9 +87,12 @@ bool meet_thin_half_mirror(const half_mirror_params& hm, const part_frame& f, co
     if constexpr (with_polarization) r.pol.half_mirror_reflected(hm, f, reflected);
     stack.paths[stack.pending++] = r;
     p.throughput *= float(hm.transmittance);
+    p.label.push(transmission);
     if constexpr (with_polarization) p.pol.half_mirror_passed(hm, f);
   } else {
-    if (rng.next_double() * hm_total < hm.reflectance) {
+    const bool reflect_it = rng.next_double() * hm_total < hm.reflectance;
+    p.label.push(reflect_it ? reflection : transmission);
+    if (reflect_it) {
       p.dir = reflected;
       ++p.mirror_reflections;
       if constexpr (with_polarization) p.pol.half_mirror_reflected(hm, f, reflected);
@@ -93,9 +108,9 @@ bool meet_thin_half_mirror(const half_mirror_params& hm, const part_frame& f, co
 // transmitted families split or chosen by their totals, and within a family one path chosen by
 // its share (so its Mueller matrix is divided by its own weight, the family's scalar weight
 // applied); the light leaves the plate's face where that path leaves it.
-template <class Polarization>
-bool meet_plate(const half_mirror_params& hm, const part_frame& f, const glm::dvec3& hit, path_state<Polarization>& p,
-                path_stack<Polarization>& stack, pcg32& rng) {
+template <class Polarization, class Label>
+bool meet_plate(const half_mirror_params& hm, const part_frame& f, const glm::dvec3& hit,
+                path_state<Polarization, Label>& p, path_stack<Polarization, Label>& stack, pcg32& rng) {
   const double cos_n = glm::dot(p.dir, f.n);
   const double cos_i = std::abs(cos_n);
   if (cos_i < 1e-9) return false;  // along the plate: it meets an edge
@@ -108,13 +123,15 @@ bool meet_plate(const half_mirror_params& hm, const part_frame& f, const glm::dv
   const glm::dvec3 along = tangent_length > 1e-12 ? tangent / tangent_length : glm::dvec3(0);
   const glm::dvec3 across = (cos_n < 0 ? -t : t) * f.n;  // near face to far face
 
-  const auto take = [&](path_state<Polarization>& q, bool reflected, double weight) {
+  const auto take = [&](path_state<Polarization, Label>& q, bool reflected, double weight) {
     const auto& family = reflected ? paths.reflected : paths.transmitted;
     const double total = reflected ? paths.reflected_total : paths.transmitted_total;
     double u = rng.next_double() * total;
     std::size_t k = 0;
     while (k + 1 < family.size() && u >= family[k].weight) u -= family[k++].weight;
     q.origin = entry + family[k].advance * t * along + (reflected ? glm::dvec3(0) : across);
+    // As at the thin half mirror: reflected light arrived on the traced ray's side.
+    q.label.push({path_event_kind::half_mirror, reflected, reflected == (cos_n < 0), std::uint16_t(k)});
     if (reflected) {
       q.dir = reflect(q.dir, f.n);
       ++q.mirror_reflections;
@@ -133,7 +150,7 @@ bool meet_plate(const half_mirror_params& hm, const part_frame& f, const glm::dv
   if (!(all > 0)) return false;
   if (stack.splits_left > 0) {
     --stack.splits_left;
-    path_state<Polarization> r = p;
+    path_state<Polarization, Label> r = p;
     ++r.depth;
     if (paths.reflected_total > 0) {
       take(r, true, paths.reflected_total);

@@ -24,6 +24,7 @@
 #include "airr/formats/sheet_json.hpp"
 #include "airr/models/preset.hpp"
 #include "airr/models/shift_table.hpp"
+#include "airr/render/path_expression.hpp"
 #include "airr/render/render_shards.hpp"
 #include "cluster/partial_file.hpp"
 
@@ -106,6 +107,27 @@ bool gltf(std::string_view bytes) {
 bool step(std::string_view bytes) {
   const std::string path = write_input("fuzz.step", bytes);
   return expecting_input_errors([&] { load_step_mesh(path, "", 0.5); });
+}
+
+bool path_expression(std::string_view bytes) {
+  return expecting_input_errors([&] {
+    scene s;
+    s.props.resize(1);
+    s.props[0].name = "hood";
+    const auto e = airr::path_expression::parse(bytes).bound(s, false);
+    // Labels of every kind of event, and one as long as a path may be.
+    path_label aerial, longest;
+    for (const path_event ev :
+         {path_event{path_event_kind::eye}, path_event{path_event_kind::half_mirror, false, true, 0},
+          path_event{path_event_kind::sheet, true, false, 0}, path_event{path_event_kind::half_mirror, true, true, 1},
+          path_event{path_event_kind::prop, false, false, 0}, path_event{path_event_kind::display}})
+      aerial.push(ev);
+    for (int i = 0; i < max_path_events; ++i)
+      longest.push({i == 0 ? path_event_kind::eye : path_event_kind::half_mirror, bool(i & 1), bool(i & 2), 0});
+    e.matches(aerial);
+    e.matches(longest);
+    e.matches(path_label{});
+  });
 }
 
 bool preset(std::string_view bytes) {
@@ -243,6 +265,7 @@ bool run(const std::string& target, std::string_view bytes) {
   if (target == "render_shard") return render_shard(bytes);
   if (target == "scene_set") return scene_set(bytes);
   if (target == "step") return step(bytes);
+  if (target == "path_expression") return path_expression(bytes);
   throw std::invalid_argument("no fuzz target named " + target);
 }
 

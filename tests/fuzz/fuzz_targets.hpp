@@ -26,11 +26,13 @@ bool render_shard(std::string_view bytes);
 // module passes it on (strings as they are, True/False, nan/inf, numbers and lists as JSON).
 bool scene_set(std::string_view bytes);
 bool step(std::string_view bytes);  // STEP housings, tessellated at 0.5 mm
+// A path expression (docs/path-expressions.md), matched against a few labels when it parses.
+bool path_expression(std::string_view bytes);
 
 // Every target's name.
 inline constexpr const char* targets[] = {"scene_json", "gltf",         "preset",    "sheet_json", "shift_table",
                                           "fit_json",   "csv",          "image",     "onnx",       "design_spec",
-                                          "partial",    "render_shard", "scene_set", "step"};
+                                          "partial",    "render_shard", "scene_set", "step",       "path_expression"};
 
 // Runs one target by name (one of `targets`, else std::invalid_argument): whether the loader read
 // the input.

@@ -42,6 +42,9 @@ struct session_params {
   // Also accumulate the image's components (tracer.hpp, component_names), for snapshots'
   // component_image.
   bool components = false;
+  // Also accumulate these path-expression layers (and the paths none selects), for snapshots'
+  // layer_image.
+  std::shared_ptr<const path_layers> layers = nullptr;
   // The rows traced, [first_row, end_row) (end_row 0: to the last), e.g. one shard of a render
   // split across processes; the other rows hold the model image's value alone. A pixel's estimate
   // does not depend on which rows are traced with it.
@@ -80,8 +83,14 @@ struct render_snapshot {
   // With session_params::components, component_count RGB triples per pixel adding up to rgb
   // (null otherwise, and in previews).
   std::shared_ptr<const std::vector<float>> components;
+  // With session_params::layers, their names (the unmatched paths' last) and as many RGB triples per
+  // pixel (null otherwise, and in previews).
+  std::vector<std::string> layer_names;
+  std::shared_ptr<const std::vector<float>> layers;
 
   image_rgb image() const;
+  // Layer k (of layer_names) as an image; empty without layers.
+  image_rgb layer_image(std::size_t k) const;
   // One component (tracer.hpp's image_component) as an image; empty without components.
   image_rgb component_image(int component) const;
   // All of them, in image_component order (empty without components).
@@ -136,7 +145,7 @@ class render_session {
   // One generation's running sums (trace_rows): the samples' radiance, odd samples alone, by
   // component, and the model image's predictions of them apart.
   struct accumulation {
-    std::vector<double> sums, odd_sums, component_sums;
+    std::vector<double> sums, odd_sums, component_sums, layer_sums;
     prediction_sums predictions;
   };
   void run();  // run_loop, and what it throws said in the snapshot

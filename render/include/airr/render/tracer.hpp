@@ -17,6 +17,7 @@
 #include "airr/models/retro_model.hpp"
 #include "airr/render/embree_scene.hpp"
 #include "airr/render/layout_model_image.hpp"
+#include "airr/render/path_expression.hpp"
 
 namespace airr {
 
@@ -34,6 +35,7 @@ struct tracer_scene {
     prop_params params;
     std::shared_ptr<const triangle_mesh> mesh;
     glm::dmat3 rotation{1.0};  // turns the mesh's normals into the world's
+    std::uint16_t index = 0;   // among the scene's props (hidden ones included): its path events'
   };
   std::vector<prop> props;
   unsigned first_prop = part_first_sheet;
@@ -50,6 +52,9 @@ struct tracer_scene {
   // the light reaching the observer, before its polarizer, in the image's frame (x its right, y
   // its up); traced with polarization and without the control variate.
   int stokes = -1;
+  // The layers trace_rows keeps apart when asked (null: none), bound to the layout's props on
+  // every build.
+  std::shared_ptr<const path_layers> layers;
 };
 
 // Builds (or, given the previous state, updates in place: meshes and textures are reused when
@@ -102,6 +107,12 @@ glm::vec3 estimate_sample(const tracer_scene& ts, int px, int py, std::uint64_t 
 component_radiance estimate_components(const tracer_scene& ts, int px, int py, std::uint64_t sample_index,
                                        const std::array<double, 6>& rotation, std::uint64_t& rays);
 
+// The layers (bit k: ts.layers' layer k, as path_layers::select) that carry the control variate:
+// those selecting every sheet's modelled path (display, half mirror, the sheet's retroreflection,
+// half mirror, eye), the unmatched layer when none does; 0 without layers or a model image. Each
+// layer stays an unbiased estimate of its own paths, and a partition of the paths keeps adding up.
+std::uint64_t model_layers(const tracer_scene& ts);
+
 // The part of the pixel's estimate that needs no samples: the model image's value (0 without one).
 glm::vec3 model_value(const tracer_scene& ts, int px, int py);
 
@@ -119,11 +130,13 @@ struct prediction_sums {
 // whose difference measures the noise), and by component into `component_sums` when given
 // (component_count RGB triples per pixel). With `predictions`, the sums are of the traced radiance
 // alone and the model image's predictions go there (the estimate: model_value plus the mean of the
-// sums less the predictions). Stops early (returns false) when `cancel` becomes true.
+// sums less the predictions). With ts.layers and `layer_sums`, also by layer (ts.layers->count()
+// RGB triples per pixel; the model's predictions, unless apart, taken from model_layers' layers).
+// Stops early (returns false) when `cancel` becomes true.
 bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
                 std::vector<double>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays,
                 std::vector<double>* odd_sums = nullptr, std::vector<double>* component_sums = nullptr,
-                prediction_sums* predictions = nullptr);
+                prediction_sums* predictions = nullptr, std::vector<double>* layer_sums = nullptr);
 
 // Adds the model image's predictions of samples [first, first + count) of rows [y0, y1): those
 // traced before ts.model arrived. Stops early (returns false, the sums half done) when `cancel`

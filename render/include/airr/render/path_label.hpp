@@ -1,0 +1,45 @@
+#pragma once
+// A light path's label: the events it met, from the display to the eye (docs/path-expressions.md).
+// The tracer, going backward, records them eye first; `at` reads them in the light's order.
+#include <array>
+#include <cstdint>
+#include <string>
+
+namespace airr {
+
+enum class path_event_kind : std::uint8_t { display, eye, half_mirror, sheet, prop };
+
+struct path_event {
+  path_event_kind kind = path_event_kind::display;
+  // half_mirror: reflected (else transmitted); sheet: retroreflected (else sent back otherwise).
+  bool taken = false;
+  // half_mirror: the light arrived on the face its normal points to (else the back).
+  bool front = false;
+  // half_mirror: the plate path's order (reflected: 0 the near face, k the far face after k - 1
+  // round trips inside; transmitted: k round trips), 0 for a thin half mirror; sheet: its index
+  // in the scene; prop: its index among the scene's props.
+  std::uint16_t index = 0;
+
+  bool operator==(const path_event&) const = default;
+};
+
+// render.max_depth interactions at most, and the display and the eye.
+inline constexpr int max_path_events = 64 + 2;
+
+struct path_label {
+  std::array<path_event, max_path_events> events{};  // in the order recorded: eye first
+  int count = 0;
+
+  void push(const path_event& e) {
+    if (count < max_path_events) events[std::size_t(count++)] = e;
+  }
+  // The i-th event the light met (0: where it started).
+  const path_event& at(int i) const { return events[std::size_t(count - 1 - i)]; }
+};
+
+// An event as path expressions write it: D, E, H:r0:front, S1:retro, P3 ...
+std::string event_text(const path_event& e);
+// The whole label, events separated by spaces, e.g. "D H:r0:back S0:retro H:t0:front E".
+std::string label_text(const path_label& l);
+
+}  // namespace airr
