@@ -341,3 +341,22 @@ TEST(PathLayers, RenderWritesEachLayerWithItsExpression) {
                               {"the layer x is named twice"});
   EXPECT_FALSE(std::filesystem::exists(bad));
 }
+
+// The aerial image's one path class, written exactly (its faces too), carries the control variate:
+// it is the aerial component to the bit, and nothing is left unmatched by it and the rest.
+TEST(PathLayers, TheModelledPathsExactLabelCarriesTheControlVariate) {
+  scene s = looking_down();
+  s.observer.elevation_deg = 0;
+  s.observer.fov_deg = 14;
+  path_layers layers;
+  layers.layers.push_back({"exact", path_expression::parse("D H:r0:back S0:retro H:t0:back E")});
+  layers.layers.push_back(component_layers().layers.front());
+  const render_snapshot snap = render_layers(s, layers, false, 8);
+  ASSERT_TRUE(snap.layers);
+  const image_rgb exact = snap.layer_image(0), aerial = snap.layer_image(1);
+  double energy = 0;
+  for (float v : exact.rgb) energy += v;
+  EXPECT_GT(energy, 0);
+  EXPECT_TRUE(std::equal(exact.rgb.begin(), exact.rgb.end(), aerial.rgb.begin(),
+                         [](float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }));
+}

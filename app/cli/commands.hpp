@@ -25,6 +25,7 @@ void add_viewzone_command(CLI::App& app);
 void add_export_gltf_command(CLI::App& app);
 void add_merge_command(CLI::App& app);
 void add_gain_command(CLI::App& app);
+void add_ghosts_command(CLI::App& app);
 // Every command above (the program's, and a merge's run of a shard's command line).
 void add_commands(CLI::App& app);
 

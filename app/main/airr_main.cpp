@@ -28,6 +28,7 @@ void add_commands(CLI::App& app) {
   add_export_gltf_command(app);
   add_merge_command(app);
   add_gain_command(app);
+  add_ghosts_command(app);
 }
 
 int main(int argc, char** argv) {

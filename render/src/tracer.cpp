@@ -158,37 +158,6 @@ static sample_numbers draw_sample_numbers(const tracer_scene& ts, int px, int py
 static camera_ray first_ray(const tracer_scene& ts, int px, int py, const sample_numbers& n);
 
 // `first`: the camera ray; `first_hit`: its hit when it was traced already (in a stream), else null.
-// Where a labelled path's light goes: to each of ts.layers' layers that selects its label. A
-// label's selection is remembered, as a render meets few distinct labels and matching every
-// expression again is most of what layers cost.
-struct layer_sink {
-  const path_layers& layers;
-  glm::vec3* radiance;  // layers.count() of them
-  struct remembered {
-    path_label label;
-    std::uint64_t selected = 0;
-  };
-  std::array<remembered, 64> seen{};
-
-  void add(const path_label& l, const glm::vec3& L) {
-    std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the events
-    for (int i = 0; i < l.count; ++i) {
-      const path_event& e = l.events[std::size_t(i)];
-      h = (h ^ (std::uint64_t(e.kind) | std::uint64_t(e.taken) << 8 | std::uint64_t(e.front) << 9 |
-                std::uint64_t(e.index) << 10)) *
-          1099511628211ull;
-    }
-    remembered& r = seen[h % seen.size()];
-    if (r.selected == 0 || r.label.count != l.count ||
-        !std::equal(l.events.begin(), l.events.begin() + l.count, r.label.events.begin())) {
-      r.label = l;
-      r.selected = layers.select(l);
-    }
-    for (std::size_t k = 0; k < layers.count(); ++k)
-      if (r.selected >> k & 1) radiance[k] += L;
-  }
-};
-
 // `layers`, when given, gets the radiance of each of ts.layers' layers.
 static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, const camera_ray& first,
                                      const RTCRayHit* first_hit, std::uint64_t& rays, layer_sink* layers = nullptr);
@@ -374,7 +343,9 @@ std::uint64_t model_layers(const tracer_scene& ts) {
     // The modelled path, traced from the eye: to the half mirror along the camera's ray, to the
     // sheet, back to the half mirror and on to the display.
     const bool eye_side_front = glm::dot(c.camera_dir, c.hm.n) < 0;
-    const bool display_side_front = glm::dot(c.ideal - c.sheet_point, c.hm.n) < 0;
+    // The sheet sends the light straight back the way the camera's ray came to it.
+    const glm::dvec3 to_sheet = c.by_reflection ? reflect(c.camera_dir, c.hm.n) : c.camera_dir;
+    const bool display_side_front = glm::dot(-to_sheet, c.hm.n) < 0;
     path_label l;
     l.push({path_event_kind::eye});
     l.push({path_event_kind::half_mirror, c.by_reflection, c.by_reflection == eye_side_front, 0});
@@ -463,6 +434,23 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
     }
   }
   return true;
+}
+
+void census_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
+                 std::map<std::string, glm::dvec3>& light, const std::atomic<bool>& cancel, std::uint64_t& rays) {
+  static const path_layers none;
+  glm::vec3 unmatched;
+  layer_sink sink{none, &unmatched};
+  sink.census = &light;
+  for (int y = y0; y < y1 && !cancel.load(std::memory_order_relaxed); ++y) {
+    for (int x = 0; x < ts.camera.width; ++x) {
+      const std::array<double, 6> rotation = pixel_sequence_rotation(ts, x, y);
+      for (std::uint64_t i = first; i < first + count; ++i) {
+        const sample_numbers n = draw_sample_numbers(ts, x, y, i, rotation);
+        trace_path(ts, n, first_ray(ts, x, y, n), nullptr, rays, &sink);
+      }
+    }
+  }
 }
 
 static void add_prediction(const tracer_scene& ts, int x, int y, std::uint64_t i, const sample_numbers& n,

@@ -1,5 +1,9 @@
 #pragma once
 // A path's state in the tracer and the half mirror it meets (private to tracer.cpp).
+#include <algorithm>
+#include <array>
+#include <map>
+#include <string>
 #include <type_traits>
 
 #include <glm/glm.hpp>
@@ -165,4 +169,38 @@ bool meet_plate(const half_mirror_params& hm, const part_frame& f, const glm::dv
 }
 
 }  // namespace tracer_path
+
+// Where a labelled path's light goes: to each of ts.layers' layers that selects its label. A
+// label's selection is remembered, as a render meets few distinct labels and matching every
+// expression again is most of what layers cost.
+struct layer_sink {
+  const path_layers& layers;
+  glm::vec3* radiance;  // layers.count() of them
+  struct remembered {
+    path_label label;
+    std::uint64_t selected = 0;
+  };
+  std::array<remembered, 64> seen{};
+  std::map<std::string, glm::dvec3>* census = nullptr;  // every label's light, when kept
+
+  void add(const path_label& l, const glm::vec3& L) {
+    if (census) (*census)[label_text(l)] += glm::dvec3(L);
+    std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the events
+    for (int i = 0; i < l.count; ++i) {
+      const path_event& e = l.events[std::size_t(i)];
+      h = (h ^ (std::uint64_t(e.kind) | std::uint64_t(e.taken) << 8 | std::uint64_t(e.front) << 9 |
+                std::uint64_t(e.index) << 10)) *
+          1099511628211ull;
+    }
+    remembered& r = seen[h % seen.size()];
+    if (r.selected == 0 || r.label.count != l.count ||
+        !std::equal(l.events.begin(), l.events.begin() + l.count, r.label.events.begin())) {
+      r.label = l;
+      r.selected = layers.select(l);
+    }
+    for (std::size_t k = 0; k < layers.count(); ++k)
+      if (r.selected >> k & 1) radiance[k] += L;
+  }
+};
+
 }  // namespace airr

@@ -13,6 +13,7 @@
 #include "airr/core/error.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/layout/sheet_models.hpp"
+#include "airr/measure/aerial_outline.hpp"
 #include "airr/measure/mtf_routes.hpp"
 #include "airr/render/memory_need.hpp"
 #include "airr/render/parallel_rows.hpp"
@@ -24,19 +25,6 @@ namespace airr {
 namespace {
 
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
-
-// Whether pixel centre (x, y) lies inside the convex quadrilateral q (either winding).
-bool inside_quad(const std::array<glm::dvec2, 4>& q, double x, double y) {
-  int sign = 0;
-  for (int i = 0; i < 4; ++i) {
-    const glm::dvec2 a = q[std::size_t(i)], b = q[std::size_t((i + 1) % 4)];
-    const double c = (b.x - a.x) * (y - a.y) - (b.y - a.y) * (x - a.x);
-    const int s = c > 0 ? 1 : c < 0 ? -1 : 0;
-    if (s != 0 && sign != 0 && s != sign) return false;
-    if (s != 0) sign = s;
-  }
-  return true;
-}
 
 struct eye_render {
   double aerial = 0, stray = 0, direct = 0;  // mean luminance of each inside the aerial outline
@@ -59,12 +47,7 @@ eye_render render_from(tracer_scene& ts, const embree_device& device, const scen
                        const std::atomic<bool>* cancel) {
   build_tracer_scene(ts, device, eye_scene, ts.retro);
   const pinhole_camera& cam = ts.camera;
-  const part_frame a = aerial_image_frame(eye_scene);
-  std::array<glm::dvec2, 4> outline;
-  int k = 0;
-  for (const auto& [x, y] : {std::pair{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}}) {
-    outline[std::size_t(k++)] = camera_project(cam, part_point(a, x * a.width, y * a.height));
-  }
+  const std::array<glm::dvec2, 4> outline = aerial_outline(eye_scene, cam);
   const int w = cam.width, h = cam.height;
   std::vector<double> sums(std::size_t(w) * h * 3, 0.0), components(component_count * sums.size(), 0.0);
   const std::atomic<bool> never{false};

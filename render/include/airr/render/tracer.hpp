@@ -4,7 +4,9 @@
 #include <array>
 #include <atomic>
 #include <cstdint>
+#include <map>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -137,6 +139,12 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
                 std::vector<double>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays,
                 std::vector<double>* odd_sums = nullptr, std::vector<double>* component_sums = nullptr,
                 prediction_sums* predictions = nullptr, std::vector<double>* layer_sums = nullptr);
+
+// The light (RGB, summed over the samples) of every distinct path label that samples
+// [first, first + count) of rows [y0, y1) met, keyed by label_text (a path expression selecting
+// exactly that label): a census of the light paths, without the control variate.
+void census_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
+                 std::map<std::string, glm::dvec3>& light, const std::atomic<bool>& cancel, std::uint64_t& rays);
 
 // Adds the model image's predictions of samples [first, first + count) of rows [y0, y1): those
 // traced before ts.model arrived. Stops early (returns false, the sums half done) when `cancel`
