@@ -11,6 +11,7 @@
 
 #include "airr/core/error.hpp"
 #include "airr/render/memory_need.hpp"
+#include "airr/render/path_expression.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/render/tracer.hpp"
 #include "py_arrays.hpp"
@@ -25,12 +26,24 @@ namespace airr::python {
 namespace {
 
 py::object render(const py_scene& ps, std::uint64_t spp, std::optional<std::uint64_t> seed, bool components,
-                  int threads, py::object progress) {
+                  std::optional<py::dict> layers, int threads, py::object progress) {
   if (spp < 1 || spp > (1u << 24))
     throw input_error("render: spp must be in [1, 16777216] (is " + std::to_string(spp) + ")");
   if (threads < 0 || threads > 1024) throw input_error("render: threads must be in [0, 1024]");
   scene s = ps.current();
   if (seed) s.seed = *seed;
+  // The layers as `airr render --layer NAME=EXPR` takes them, in the dict's order.
+  std::shared_ptr<const path_layers> path_layers;
+  if (layers) {
+    std::vector<std::string> arguments;
+    for (const auto& [name, expression] : *layers) {
+      const std::string n = py::str(name), e = py::str(expression);
+      if (components && (n == "aerial" || n == "direct" || n == "reflection" || n == "rest"))
+        throw input_error("render: the layer " + n + " is named as a component");
+      arguments.push_back(n + "=" + e);
+    }
+    path_layers = std::make_shared<const airr::path_layers>(parse_layer_arguments(arguments, s));
+  }
   python_job job(std::move(progress));
   render_snapshot snap;
   {
@@ -39,8 +52,11 @@ py::object render(const py_scene& ps, std::uint64_t spp, std::optional<std::uint
     // session is built on another thread (its opening model image takes a second or more) while
     // this one watches for Ctrl+C, which cancels the build.
     std::atomic<bool> build_cancel{false};
-    const session_params params{
-        .threads = threads, .target_spp = spp, .components = components, .build_cancel = &build_cancel};
+    const session_params params{.threads = threads,
+                                .target_spp = spp,
+                                .components = components,
+                                .layers = path_layers,
+                                .build_cancel = &build_cancel};
     check_render_memory(s, params);  // refused before anything is allocated
     auto building = std::async(std::launch::async, [&] { return std::make_unique<render_session>(s, params); });
     while (building.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready)
@@ -53,11 +69,13 @@ py::object render(const py_scene& ps, std::uint64_t spp, std::optional<std::uint
   }
   job.finish();
   py::array_t<float> image = to_array(snap.image());
-  if (!components) return image;
+  if (!components && !path_layers) return image;
   py::dict parts;
-  const std::vector<image_rgb> layers = snap.component_images();
-  for (int k = 0; k < component_count && k < int(layers.size()); ++k)
-    parts[component_names[k]] = to_array(layers[std::size_t(k)]);
+  const std::vector<image_rgb> split = snap.component_images();
+  for (int k = 0; components && k < component_count && k < int(split.size()); ++k)
+    parts[component_names[k]] = to_array(split[std::size_t(k)]);
+  for (std::size_t k = 0; k < snap.layer_names.size(); ++k)
+    parts[py::str(snap.layer_names[k])] = to_array(snap.layer_image(k));
   return py::make_tuple(image, parts);
 }
 
@@ -65,13 +83,17 @@ py::object render(const py_scene& ps, std::uint64_t spp, std::optional<std::uint
 
 void add_render_functions(py::module_& m) {
   m.def("render", &render, py::arg("scene"), py::kw_only(), py::arg("spp") = 64, py::arg("seed") = py::none(),
-        py::arg("components") = false, py::arg("threads") = 0, py::arg("progress") = py::none(),
+        py::arg("components") = false, py::arg("layers") = py::none(), py::arg("threads") = 0,
+        py::arg("progress") = py::none(),
         R"(Render the scene with the tracer, as `airr render` does.
 
 Returns the linear image as a float32 array of shape (height, width, 3): the same pixels `airr
 render SCENE -o out.exr --spp N [--seed S]` writes for the same scene. With components=True
 returns (image, components), components a dict of the image's parts ("aerial", "direct",
-"reflection", "rest"), arrays of the same shape that add up to the image.
+"reflection", "rest"), arrays of the same shape that add up to the image. With layers, a dict
+{name: path expression} (docs/path-expressions.md), as `airr render --layer NAME=EXPR`: returns
+(image, parts), parts holding each layer's light and "unmatched" (the paths no layer selects),
+and the components when asked too; a bad expression raises ValueError pointing at the character.
 
 spp: samples per pixel. seed: overrides the scene's seed. threads: worker threads (0: all
 cores). progress: called with the fraction done (0 to 1, increasing); an exception it raises

@@ -32,6 +32,16 @@ def test_components_add_up_to_the_image(small_scene):
     assert parts["aerial"].max() > 0
 
 
+def test_path_expression_layers_partition_the_image(small_scene):
+    image, parts = airr.render(small_scene, spp=2, seed=1,
+                               layers={"aerial0": "D .* S0:retro .* E", "others": "D [^S0:retro]* E"})
+    assert list(parts) == ["aerial0", "others", "unmatched"]
+    assert np.allclose(parts["aerial0"] + parts["others"], image, rtol=1e-5, atol=1e-6)
+    assert parts["aerial0"].max() > 0 and parts["unmatched"].max() == 0
+    with pytest.raises(ValueError, match="at character 5"):
+        airr.render(small_scene, spp=1, layers={"x": "D H:q E"})
+
+
 BAD_SETS = [
     ("bogus.key", "1"),
     ("retroreflectors.0.pose.pitch_deg", "abc"),

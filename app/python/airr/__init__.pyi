@@ -25,10 +25,14 @@ class Scene:
 
 @overload
 def render(scene: Scene, *, spp: int = 64, seed: Optional[int] = None, components: Literal[False] = False,
-           threads: int = 0, progress: Progress = None) -> npt.NDArray[np.float32]: ...
+           layers: None = None, threads: int = 0, progress: Progress = None) -> npt.NDArray[np.float32]: ...
 @overload
 def render(scene: Scene, *, spp: int = 64, seed: Optional[int] = None, components: Literal[True],
-           threads: int = 0, progress: Progress = None
+           layers: Optional[dict[str, str]] = None, threads: int = 0, progress: Progress = None
+           ) -> tuple[npt.NDArray[np.float32], dict[str, npt.NDArray[np.float32]]]: ...
+@overload
+def render(scene: Scene, *, spp: int = 64, seed: Optional[int] = None, components: bool = False,
+           layers: dict[str, str], threads: int = 0, progress: Progress = None
            ) -> tuple[npt.NDArray[np.float32], dict[str, npt.NDArray[np.float32]]]: ...
 def psf(scene: Scene, *, samples: int = 100000, pixel: bool = True, max_lp_per_mm: float = 2.0, points: int = 101,
         image_pixels: int = 129, extent_mm: Optional[float] = None) -> dict[str, object]: ...
