@@ -360,3 +360,27 @@ TEST(PathLayers, TheModelledPathsExactLabelCarriesTheControlVariate) {
   EXPECT_TRUE(std::equal(exact.rgb.begin(), exact.rgb.end(), aerial.rgb.begin(),
                          [](float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }));
 }
+
+// Shards of a render with layers merge into the one-process render's layers, bit for bit.
+TEST(PathLayers, ShardsOfALayeredRenderMergeIntoTheWhole) {
+  test::temp_dir dir;
+  const std::string scene = test::scene_file(dir, [](nlohmann::json& j) {
+    j["observer"]["width"] = 24;
+    j["observer"]["height"] = 20;
+  });
+  const std::string layers = " --spp 2 --seed 5 --layer 'a0=D .* S0:retro .* E' --layer 'rest=D [^S0:retro]* E'";
+  ASSERT_EQ(test::run_cli("render " + scene + " -o " + dir.file("whole.exr") + layers).exit_code, 0);
+  for (const char* shard : {"0/2", "1/2"}) {
+    const auto r = test::run_cli("render " + scene + " -o " + dir.file(std::string("s") + shard[0] + ".exr") + layers +
+                                 " --shard " + shard);
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+  }
+  const auto m = test::run_cli("merge " + dir.file("s0.exr") + " " + dir.file("s1.exr") + " -o " + dir.file("m.exr"));
+  ASSERT_EQ(m.exit_code, 0) << m.out;
+  for (const char* name : {"a0", "rest", "unmatched"}) {
+    const image_rgb whole = load_image_layer(dir.file("whole.exr"), name),
+                    merged = load_image_layer(dir.file("m.exr"), name);
+    EXPECT_EQ(whole.rgb, merged.rgb) << name;
+  }
+  EXPECT_EQ(read_image_metadata(dir.file("m.exr")).at("airr:layer:a0"), "D .* S0:retro .* E");
+}

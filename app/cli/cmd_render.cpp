@@ -79,8 +79,6 @@ void add_render_command(CLI::App& app) {
     std::shared_ptr<const airr::path_layers> path_layers;
     if (!opt->layers.empty()) {
       if (!opt->out.ends_with(".exr")) throw airr::input_error(opt->out + ": --layer needs an EXR output (layers)");
-      if (!opt->shard.empty() || job.size > 1)
-        throw airr::input_error("--layer: renders the whole image in one process, without --shard");
       path_layers = std::make_shared<const airr::path_layers>(airr::parse_layer_arguments(opt->layers, s));
       for (const auto& l : path_layers->layers) {
         for (const char* name : {"aerial", "direct", "reflection", "rest", "S0", "S1", "S2", "S3", "dop"}) {
@@ -138,6 +136,7 @@ void add_render_command(CLI::App& app) {
     if (job.size > 1) {
       image = gather_rows(image, params.first_row, params.end_row);
       for (auto& p : parts) p = gather_rows(p, params.first_row, params.end_row);
+      for (auto& p : path_images) p = gather_rows(p, params.first_row, params.end_row);
       if (!job.root()) return;
     }
     if (!opt->component.empty()) {
