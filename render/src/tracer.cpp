@@ -439,7 +439,7 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
 void census_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
                  std::map<std::string, glm::dvec3>& light, const std::atomic<bool>& cancel, std::uint64_t& rays) {
   static const path_layers none;
-  glm::vec3 unmatched;
+  glm::vec3 unmatched(0.0f);  // what the census's sink adds up besides, unused
   layer_sink sink{none, &unmatched};
   sink.census = &light;
   for (int y = y0; y < y1 && !cancel.load(std::memory_order_relaxed); ++y) {

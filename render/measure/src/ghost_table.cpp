@@ -67,7 +67,7 @@ eye_view render_eye(const scene& s, const std::shared_ptr<const path_layers>& la
   return {render_to_spp(session, p.spp), make_camera(s)};
 }
 
-// Luminance-weighted centroid of layer k, in pixels (NaN when it is dark).
+// An image's luminance-weighted centroid, in pixels (NaN when it is dark).
 glm::dvec2 centroid_of(const image_rgb& img) {
   double sum = 0, sx = 0, sy = 0;
   for (int y = 0; y < img.height; ++y) {
