@@ -174,6 +174,7 @@ bool meet_plate(const half_mirror_params& hm, const part_frame& f, const glm::dv
 // label's selection is remembered, as a render meets few distinct labels and matching every
 // expression again is most of what layers cost.
 struct layer_sink {
+  layer_sink(const path_layers& l, glm::vec3* r) : layers(l), radiance(r) {}
   const path_layers& layers;
   glm::vec3* radiance;  // layers.count() of them
   struct remembered {
