@@ -75,9 +75,21 @@ void append_leaf(const XCAFPrs_DocumentNode& leaf, triangle_mesh& out,
   }
 }
 
-triangle_mesh read_step(const std::string& path, const std::string& node, double tolerance_mm) {
+// The reader's document, closed when done: the application keeps every document it made, with
+// its shapes and their tessellation, until it is closed.
+struct step_document {
   Handle(TDocStd_Document) doc;
-  XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc);
+  step_document() { XCAFApp_Application::GetApplication()->NewDocument("MDTV-XCAF", doc); }
+  ~step_document() {
+    if (!doc.IsNull() && doc->IsOpened()) XCAFApp_Application::GetApplication()->Close(doc);
+  }
+  step_document(const step_document&) = delete;
+  step_document& operator=(const step_document&) = delete;
+};
+
+triangle_mesh read_step(const std::string& path, const std::string& node, double tolerance_mm) {
+  const step_document document;
+  const Handle(TDocStd_Document)& doc = document.doc;
   STEPCAFControl_Reader reader;
   reader.SetColorMode(true);
   reader.SetNameMode(true);
