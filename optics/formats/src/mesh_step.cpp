@@ -88,8 +88,8 @@ struct step_document {
 };
 
 triangle_mesh read_step(const std::string& path, const std::string& node, double tolerance_mm) {
-  const step_document document;
-  const Handle(TDocStd_Document)& doc = document.doc;
+  step_document document;
+  Handle(TDocStd_Document)& doc = document.doc;
   STEPCAFControl_Reader reader;
   reader.SetColorMode(true);
   reader.SetNameMode(true);
