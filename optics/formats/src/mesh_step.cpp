@@ -8,11 +8,17 @@
 
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <IFSelect_ReturnStatus.hxx>
+#include <Interface_InterfaceModel.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
 #include <RWMesh_FaceIterator.hxx>
 #include <STEPCAFControl_Reader.hxx>
+#include <STEPControl_Reader.hxx>
 #include <Standard_Failure.hxx>
+#include <StepVisual_FillAreaStyle.hxx>
+#include <StepVisual_FillAreaStyleColour.hxx>
+#include <StepVisual_FillStyleSelect.hxx>
+#include <StepVisual_HArray1OfFillStyleSelect.hxx>
 #include <TDF_LabelSequence.hxx>
 #include <TDataStd_Name.hxx>
 #include <TDocStd_Document.hxx>
@@ -75,6 +81,27 @@ void append_leaf(const XCAFPrs_DocumentNode& leaf, triangle_mesh& out,
   }
 }
 
+// Open CASCADE reads a face's colour without checking it is there: a fill colour that names none
+// would crash the reader (fuzzing found it), so such a file is refused first.
+void check_styles(STEPCAFControl_Reader& reader, const std::string& path) {
+  const Handle(Interface_InterfaceModel) model = reader.Reader().Model();
+  if (model.IsNull()) return;
+  const auto refuse = [&](int i, const char* what) {
+    throw input_error(path + ": entity " + std::to_string(i) + ", a fill style, " + what);
+  };
+  for (int i = 1; i <= model->NbEntities(); ++i) {
+    const auto colour = Handle(StepVisual_FillAreaStyleColour)::DownCast(model->Value(i));
+    if (!colour.IsNull() && colour->FillColour().IsNull()) refuse(i, "names no colour");
+    const auto style = Handle(StepVisual_FillAreaStyle)::DownCast(model->Value(i));
+    if (style.IsNull()) continue;
+    if (style->FillStyles().IsNull()) refuse(i, "has no fills");
+    for (int k = 1; k <= style->NbFillStyles(); ++k) {
+      const Handle(StepVisual_FillAreaStyleColour) fill = style->FillStylesValue(k).FillAreaStyleColour();
+      if (fill.IsNull() || fill->FillColour().IsNull()) refuse(i, "has a fill without a colour");
+    }
+  }
+}
+
 // The reader's document, closed when done: the application keeps every document it made, with
 // its shapes and their tessellation, until it is closed.
 struct step_document {
@@ -94,6 +121,7 @@ triangle_mesh read_step(const std::string& path, const std::string& node, double
   reader.SetColorMode(true);
   reader.SetNameMode(true);
   if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) throw input_error(path + ": not a readable STEP file");
+  check_styles(reader, path);
   if (!reader.Transfer(doc)) throw input_error(path + ": its shapes could not be read");
 
   const Handle(XCAFDoc_ShapeTool) shapes = XCAFDoc_DocumentTool::ShapeTool(doc->Main());
