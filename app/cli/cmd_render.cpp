@@ -1,5 +1,6 @@
 // airr render SCENE -o OUT.exr|OUT.png [--spp N] [--seed S] [--components | --component NAME]
 //             [--layer NAME=EXPR ...] [--stokes] [--set key=value ...] [--shard i/N]
+//             [--rays FILE [--rays-select EXPR] [--rays-limit N]]
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -11,6 +12,7 @@
 #include "airr/layout/layout.hpp"
 #include "airr/measure/stokes_render.hpp"
 #include "airr/render/memory_need.hpp"
+#include "airr/render/ray_file.hpp"
 #include "airr/render/render_metadata.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/render/render_shards.hpp"
@@ -18,6 +20,20 @@
 #include "cli/commands.hpp"
 #include "cli/progress_bar.hpp"
 #include "cluster/mpi_job.hpp"
+
+// The ray file: the render's paths traced again, those selected kept.
+static void write_rays(const std::string& path, const airr::scene& s, const airr::ray_file_params& p) {
+  progress_bar bar("rays");
+  const airr::ray_record r = airr::record_rays(s, p, [&](double done) {
+    bar.update(done, "");
+    return true;
+  });
+  bar.finish(std::to_string(r.paths.size()) + " paths");
+  airr::write_ray_file(path, s, p, r);
+  std::fprintf(stderr, "wrote %s (%zu paths, %zu segments; %llu paths selected%s)\n", path.c_str(), r.paths.size(),
+               r.segments.size(), static_cast<unsigned long long>(r.selected),
+               r.complete ? "" : ", the rest beyond the limit");
+}
 
 void add_render_command(CLI::App& app) {
   struct options {
@@ -32,6 +48,8 @@ void add_render_command(CLI::App& app) {
     std::string component;
     std::string shard;
     std::vector<std::string> layers;
+    std::string rays;
+    airr::ray_file_params ray_params;
   };
   auto opt = std::make_shared<options>();
   auto* cmd = app.add_subcommand("render", "Render a scene to EXR (linear) or PNG (sRGB)");
@@ -61,6 +79,13 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--shard", opt->shard,
                   "Render rows of shard i of N (0 <= i < N) alone into an EXR for airr merge (e.g. a Slurm array "
                   "task's share)");
+  cmd->add_option("--rays", opt->rays,
+                  "Also write the paths --rays-select selects, segment by segment, to a ray file (docs/ray-file.md; "
+                  "airr.read_rays reads it)");
+  cmd->add_option("--rays-select", opt->ray_params.select,
+                  "The path expression selecting the paths of the ray file (default: every path)");
+  cmd->add_option("--rays-limit", opt->ray_params.segment_limit,
+                  "The most segments the ray file holds (default 1000000); the paths kept are the first selected");
   cmd->callback([opt] {
     std::vector<airr::scene_override> overrides;
     for (const auto& s : opt->sets) overrides.push_back(airr::parse_override(s));
@@ -106,6 +131,13 @@ void add_render_command(CLI::App& app) {
                                 (shard ? " shards" : " ranks") + " for an image " + std::to_string(s.observer.height) +
                                 " rows high (at most one per row)");
       std::tie(params.first_row, params.end_row) = airr::shard_rows(*rows, s.observer.height);
+    }
+    if (!opt->rays.empty()) {
+      if (rows || opt->stokes)
+        throw airr::input_error("--rays: renders the whole image in one process, without --shard or --stokes");
+      opt->ray_params.spp = opt->spp;
+      opt->ray_params.threads = opt->threads;
+      airr::check_ray_file(opt->rays, s, opt->ray_params);
     }
     airr::check_render_memory(s, params);  // refused before anything is allocated
     airr::render_session session(s, params);
@@ -172,6 +204,7 @@ void add_render_command(CLI::App& app) {
     airr::write_image(opt->out, image, meta, exposure, layers);
     std::fprintf(stderr, "wrote %s (%dx%d, %llu spp, %.6g mm/pixel)\n", opt->out.c_str(), snap.width, snap.height,
                  static_cast<unsigned long long>(snap.spp), snap.mm_per_pixel);
+    if (!opt->rays.empty()) write_rays(opt->rays, s, opt->ray_params);
     // Rounding noise of the mirror image (1e-14 mm) printed as 0.
     const auto tidy = [](double v) { return std::abs(v) < 1e-9 ? 0.0 : v; };
     const glm::dvec3 aerial = airr::aerial_image_center(s);

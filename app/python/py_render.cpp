@@ -12,6 +12,7 @@
 #include "airr/core/error.hpp"
 #include "airr/render/memory_need.hpp"
 #include "airr/render/path_expression.hpp"
+#include "airr/render/ray_file.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/render/tracer.hpp"
 #include "py_arrays.hpp"
@@ -79,9 +80,46 @@ py::object render(const py_scene& ps, std::uint64_t spp, std::optional<std::uint
   return py::make_tuple(image, parts);
 }
 
+py::dict record_rays(const py_scene& ps, const py::object& file, std::uint64_t spp, std::optional<std::uint64_t> seed,
+                     const std::string& select, std::uint64_t limit, int threads, py::object progress) {
+  if (spp < 1 || spp > (1u << 24))
+    throw input_error("record_rays: spp must be in [1, 16777216] (is " + std::to_string(spp) + ")");
+  if (threads < 0 || threads > 1024) throw input_error("record_rays: threads must be in [0, 1024]");
+  const std::string path = py::str(py::module_::import("os").attr("fspath")(file));
+  scene s = ps.current();
+  if (seed) s.seed = *seed;
+  const ray_file_params p{.select = select, .segment_limit = limit, .spp = spp, .threads = threads};
+  check_ray_file(path, s, p);
+  python_job job(std::move(progress));
+  ray_record r;
+  {
+    py::gil_scoped_release released;
+    r = airr::record_rays(s, p, [&](double done) { return job.keep_going(done); });
+    if (!job.stopped()) write_ray_file(path, s, p, r);
+  }
+  job.finish();
+  py::dict out;
+  out["paths"] = r.paths.size();
+  out["segments"] = r.segments.size();
+  out["selected"] = r.selected;
+  out["complete"] = r.complete;
+  return out;
+}
+
 }  // namespace
 
 void add_render_functions(py::module_& m) {
+  m.def("record_rays", &record_rays, py::arg("scene"), py::arg("path"), py::kw_only(), py::arg("spp") = 64,
+        py::arg("seed") = py::none(), py::arg("select") = ".*", py::arg("limit") = 1000000, py::arg("threads") = 0,
+        py::arg("progress") = py::none(),
+        R"(Write the ray file of a render, as `airr render --rays PATH --rays-select SELECT --rays-limit LIMIT`.
+
+Traces the paths a render of the scene with the same spp and seed traces and keeps those the path
+expression `select` selects (docs/path-expressions.md), segment by segment in the light's order,
+until `limit` segments are kept; read the file with airr.read_rays (format: docs/ray-file.md).
+Returns {"paths", "segments", "selected", "complete"}: the paths and segments written, the paths
+selected, and whether every selected path was written. A bad expression, a limit out of range or
+a file the disk could not hold raises ValueError before anything is traced.)");
   m.def("render", &render, py::arg("scene"), py::kw_only(), py::arg("spp") = 64, py::arg("seed") = py::none(),
         py::arg("components") = false, py::arg("layers") = py::none(), py::arg("threads") = 0,
         py::arg("progress") = py::none(),

@@ -122,6 +122,7 @@ using tracer_path::no_label;
 using tracer_path::no_polarization;
 using tracer_path::path_stack;
 using tracer_path::path_state;
+using tracer_path::path_trail;
 using tracer_path::polarized;
 
 std::array<double, 6> pixel_sequence_rotation(const tracer_scene& ts, int px, int py) {
@@ -260,6 +261,7 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
         ++rays;
       }
       if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+      if constexpr (std::is_same_v<Label, path_trail>) p.label.add_segment(p.origin, p.dir, rh.ray.tfar, p.throughput);
 
       const unsigned part = rh.hit.instID[0];
       if (part >= ts.first_prop) {
@@ -280,7 +282,7 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
             L = p.throughput * profile * source_radiance(ts, part_local(f, hit));
           }
           radiance[component_of(p)] += L;
-          if constexpr (std::is_same_v<Label, path_label>) {
+          if constexpr (!std::is_same_v<Label, no_label>) {
             p.label.push({path_event_kind::display});
             layers->add(p.label, L);
           }
@@ -326,6 +328,10 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
 
 static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, const camera_ray& first,
                                      const RTCRayHit* first_hit, std::uint64_t& rays, layer_sink* layers) {
+  if (layers && layers->record) {
+    return ts.polarized ? trace_path_as<path_polarization, path_trail>(ts, n, first, first_hit, rays, layers)
+                        : trace_path_as<no_polarization, path_trail>(ts, n, first, first_hit, rays, layers);
+  }
   if (layers) {
     return ts.polarized ? trace_path_as<path_polarization, path_label>(ts, n, first, first_hit, rays, layers)
                         : trace_path_as<no_polarization, path_label>(ts, n, first, first_hit, rays, layers);
@@ -436,17 +442,16 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
   return true;
 }
 
-void census_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
-                 std::map<std::string, glm::dvec3>& light, const std::atomic<bool>& cancel, std::uint64_t& rays) {
-  static const path_layers none;
-  glm::vec3 unmatched(0.0f);  // what the census's sink adds up besides, unused
-  layer_sink sink{none, &unmatched};
-  sink.census = &light;
+void tracer_path::label_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
+                             layer_sink& sink, const std::atomic<bool>& cancel, std::uint64_t& rays) {
   for (int y = y0; y < y1 && !cancel.load(std::memory_order_relaxed); ++y) {
     for (int x = 0; x < ts.camera.width; ++x) {
       const std::array<double, 6> rotation = pixel_sequence_rotation(ts, x, y);
       for (std::uint64_t i = first; i < first + count; ++i) {
         const sample_numbers n = draw_sample_numbers(ts, x, y, i, rotation);
+        sink.x = std::uint32_t(x);
+        sink.y = std::uint32_t(y);
+        sink.sample = i;
         trace_path(ts, n, first_ray(ts, x, y, n), nullptr, rays, &sink);
       }
     }

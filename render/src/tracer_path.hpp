@@ -12,6 +12,7 @@
 #include "airr/core/random.hpp"
 #include "airr/layout/path_polarization.hpp"
 #include "airr/render/path_label.hpp"
+#include "airr/render/ray_file.hpp"
 #include "airr/render/tracer.hpp"
 
 namespace airr {
@@ -27,9 +28,24 @@ struct no_polarization {};
 struct no_label {
   void push(const path_event&) {}
 };
+// The label of a path kept for the ray file, with the segments it traced (eye first), each with
+// the path's throughput along it.
+struct path_trail : path_label {
+  struct segment {
+    glm::vec3 origin, dir;
+    float length;
+    glm::vec3 throughput;
+  };
+  std::array<segment, max_path_events> segments;
+  int segment_count = 0;
+  void add_segment(const glm::dvec3& origin, const glm::dvec3& dir, float length, const glm::vec3& throughput) {
+    if (segment_count < max_path_events)
+      segments[std::size_t(segment_count++)] = {glm::vec3(origin), glm::vec3(dir), length, throughput};
+  }
+};
 
 // `Polarization`: path_polarization when the scene polarizes, else nothing (the path as it was).
-// `Label`: path_label when layers are asked for, else nothing.
+// `Label`: path_label when layers are asked for, path_trail for the ray file, else nothing.
 template <class Polarization, class Label>
 struct path_state {
   glm::dvec3 origin;
@@ -170,9 +186,9 @@ bool meet_plate(const half_mirror_params& hm, const part_frame& f, const glm::dv
 
 }  // namespace tracer_path
 
-// Where a labelled path's light goes: to each of ts.layers' layers that selects its label. A
-// label's selection is remembered, as a render meets few distinct labels and matching every
-// expression again is most of what layers cost.
+// Where a labelled path's light goes: to each of ts.layers' layers that selects its label, and
+// to the census and the ray record when kept. A label's selection is remembered, as a render
+// meets few distinct labels and matching every expression again is most of what layers cost.
 struct layer_sink {
   layer_sink(const path_layers& l, glm::vec3* r) : layers(l), radiance(r) {}
   const path_layers& layers;
@@ -183,8 +199,14 @@ struct layer_sink {
   };
   std::array<remembered, 64> seen{};
   std::map<std::string, glm::dvec3>* census = nullptr;  // every label's light, when kept
+  // The paths layer 0 selects, when kept; the pixel and the sample being traced.
+  ray_record* record = nullptr;
+  std::uint64_t segment_limit = 0;
+  std::uint32_t x = 0, y = 0;
+  std::uint64_t sample = 0;
 
-  void add(const path_label& l, const glm::vec3& L) {
+  // The layers selecting `l`, as path_layers::select.
+  std::uint64_t add(const path_label& l, const glm::vec3& L) {
     if (census) (*census)[label_text(l)] += glm::dvec3(L);
     std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the events
     for (int i = 0; i < l.count; ++i) {
@@ -201,7 +223,34 @@ struct layer_sink {
     }
     for (std::size_t k = 0; k < layers.count(); ++k)
       if (r.selected >> k & 1) radiance[k] += L;
+    return r.selected;
+  }
+
+  void add(const tracer_path::path_trail& t, const glm::vec3& L) {
+    if (!(add(static_cast<const path_label&>(t), L) & 1) || !record) return;
+    // The light's order: the trail's last segment first, each turned around. A segment carries
+    // what reaches the eye divided by the throughput from the eye to it.
+    std::vector<ray_segment> out;
+    out.reserve(std::size_t(t.segment_count));
+    for (int j = t.segment_count - 1; j >= 0; --j) {
+      const auto& g = t.segments[std::size_t(j)];
+      ray_segment r;
+      r.start = g.origin + g.dir * g.length;
+      r.direction = -g.dir;
+      r.length = g.length;
+      for (int c = 0; c < 3; ++c) r.radiance[c] = g.throughput[c] > 0 ? L[c] / g.throughput[c] : 0.0f;
+      r.event = t.events[std::size_t(j + 1)];  // events are eye first: the one at the segment's far end
+      out.push_back(r);
+    }
+    add_to_record(*record, {x, y, sample, 0, 0, L}, out, segment_limit);
   }
 };
+
+namespace tracer_path {
+// Traces samples [first, first + count) of rows [y0, y1) with labels into `sink` (the trails when
+// sink.record is set), as a render traces them, without the control variate.
+void label_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count, layer_sink& sink,
+                const std::atomic<bool>& cancel, std::uint64_t& rays);
+}  // namespace tracer_path
 
 }  // namespace airr

@@ -16,11 +16,12 @@ See docs/python.md.
 import os as _os
 
 from . import _airr
-from ._airr import (Scene, __version__, asset_dir, compare, fit, mtf, optimise, psf, read_image, render, sweep,
-                    tolerance, viewzone, write_image)
+from ._airr import (Scene, __version__, asset_dir, compare, fit, mtf, optimise, psf, read_image, record_rays, render,
+                    sweep, tolerance, viewzone, write_image)
+from ._rays import read_rays
 
 __all__ = ["Scene", "asset_dir", "compare", "default_scene_path", "fit", "mtf", "optimise", "psf", "read_image",
-           "render", "sweep", "tolerance", "viewzone", "write_image", "__version__"]
+           "read_rays", "record_rays", "render", "sweep", "tolerance", "viewzone", "write_image", "__version__"]
 
 
 def _use_assets_beside_the_package():
