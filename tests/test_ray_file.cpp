@@ -111,8 +111,9 @@ TEST(RayFile, SegmentsRunFromTheDisplayToTheEye) {
       EXPECT_NE(g[j].event.kind, path_event_kind::display);
       EXPECT_NEAR(glm::length(g[j].direction), 1.0f, 1e-5f);
       // A sheet shifts the light sideways; anything else joins the segments.
-      if (g[j].event.kind != path_event_kind::sheet)
+      if (g[j].event.kind != path_event_kind::sheet) {
         EXPECT_LT(glm::distance(end_of(g[j - 1]), g[j].start), 1e-2f) << "path of pixel " << p.x << ", " << p.y;
+      }
       if (g[j].event.kind == path_event_kind::prop) ++mirror_paths;
       if (g[j].event.kind == path_event_kind::sheet && g[j].event.taken) ++retro_paths;
     }

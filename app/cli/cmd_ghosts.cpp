@@ -1,4 +1,5 @@
-// airr ghosts SCENE -o DIR [--spp N] [--census-spp N] [--top K] [--baseline MM] [--set key=value ...]:
+// airr ghosts SCENE -o DIR [--spp N] [--census-spp N] [--top K] [--class EXPR ...] [--baseline MM]
+//             [--set key=value ...]:
 // the light paths that reach the observer, ranked by their light inside the aerial image's
 // outline and by their peak, each placed by parallax; DIR/ghosts.csv and an EXR of each class.
 #include <cstdio>
@@ -31,6 +32,9 @@ void add_ghosts_command(CLI::App& app) {
   cmd->add_option("--top", opt->p.top, "Path classes measured, those with the most light")->check(CLI::Range(1, 62));
   cmd->add_option("--baseline", opt->p.baseline_mm, "Between the two eyes whose parallax places each class (mm)")
       ->check(CLI::Range(0.001, 1000.0));
+  cmd->add_option("--class", opt->p.expressions,
+                  "A path expression measured as a class of its own besides the census's, e.g. 'D .* H:r1 .* E' "
+                  "(repeatable)");
   cmd->add_option("--threads", opt->p.threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
   cmd->add_option("--set", opt->sets, "Override a scene value, e.g. half_mirror.kind=plate");
   cmd->callback([opt] {

@@ -32,6 +32,8 @@ constexpr std::array<metric_name, design_metric_count> metric_names = {{
     {design_metric::r50_mm, "r50_mm", true},
     {design_metric::brightness, "brightness", true},
     {design_metric::stray_light, "stray_light", true},
+    {design_metric::ghost_ratio, "ghost_ratio", true},
+    {design_metric::ghost_separation_arcmin, "ghost_separation_arcmin", true},
     {design_metric::size_x_mm, "size_x_mm", false},
     {design_metric::size_y_mm, "size_y_mm", false},
     {design_metric::size_z_mm, "size_z_mm", false},
@@ -55,10 +57,17 @@ void each_object(json_reader& r, const std::string& key, bool required, Read rea
   }
 }
 
-design_metric read_metric(json_reader& r) {
+// The metric, and the expression that a ghost metric needs and no other takes.
+design_metric read_metric(json_reader& r, std::string& expression) {
   const std::string name = r.string("metric");
   const auto m = design_metric_named(name);
   if (!m) r.fail(r.field("metric"), "unknown metric '" + name + "' (" + design_metric_names() + ")");
+  if (metric_takes_expression(*m)) {
+    expression = r.string("expression");
+    if (expression.empty()) r.fail(r.field("expression"), "must not be empty");
+  } else if (r.has("expression")) {
+    r.fail(r.field("expression"), "only ghost_ratio and ghost_separation_arcmin take a path expression");
+  }
   return *m;
 }
 
@@ -112,6 +121,10 @@ std::optional<design_metric> design_metric_named(const std::string& name) {
   for (const metric_name& n : metric_names)
     if (name == n.name) return n.metric;
   return std::nullopt;
+}
+
+bool metric_takes_expression(design_metric m) {
+  return m == design_metric::ghost_ratio || m == design_metric::ghost_separation_arcmin;
 }
 
 bool metric_at_eye(design_metric m) {
@@ -184,7 +197,7 @@ design_spec read_design_spec(const nlohmann::json& j, const std::string& path, c
   if (spec.eyes_mm.empty() && !spec.eye_zone) spec.eyes_mm.push_back(observer_position(spec.base));
   each_object(r, "objectives", true, [&](json_reader& o, std::size_t) {
     design_objective obj;
-    obj.metric = read_metric(o);
+    obj.metric = read_metric(o, obj.expression);
     obj.over = read_over(o, obj.threshold);
     const std::string goal = o.string("goal");
     if (goal != "maximise" && goal != "minimise") o.fail(o.field("goal"), "must be \"maximise\" or \"minimise\"");
@@ -195,7 +208,7 @@ design_spec read_design_spec(const nlohmann::json& j, const std::string& path, c
   });
   each_object(r, "constraints", false, [&](json_reader& c, std::size_t) {
     design_constraint con;
-    con.metric = read_metric(c);
+    con.metric = read_metric(c, con.expression);
     con.over = read_over(c, con.threshold);
     con.min = c.optional_number("min");
     con.max = c.optional_number("max");
@@ -280,16 +293,19 @@ std::string design_spec_text(const design_spec& spec) {
   }
   j["objectives"] = nlohmann::ordered_json::array();
   for (const design_objective& o : spec.objectives) {
-    nlohmann::ordered_json obj = {{"metric", to_string(o.metric)},
-                                  {"goal", goal_name(o.maximise)},
-                                  {"over", over_name(o.over)},
-                                  {"weight", o.weight}};
+    nlohmann::ordered_json obj = {{"metric", to_string(o.metric)}};
+    if (metric_takes_expression(o.metric)) obj["expression"] = o.expression;
+    obj["goal"] = goal_name(o.maximise);
+    obj["over"] = over_name(o.over);
+    obj["weight"] = o.weight;
     if (o.over == over_eyes::share_above) obj["threshold"] = o.threshold;
     j["objectives"].push_back(obj);
   }
   j["constraints"] = nlohmann::ordered_json::array();
   for (const design_constraint& c : spec.constraints) {
-    nlohmann::ordered_json o = {{"metric", to_string(c.metric)}, {"over", over_name(c.over)}};
+    nlohmann::ordered_json o = {{"metric", to_string(c.metric)}};
+    if (metric_takes_expression(c.metric)) o["expression"] = c.expression;
+    o["over"] = over_name(c.over);
     if (c.over == over_eyes::share_above) o["threshold"] = c.threshold;
     if (c.min) o["min"] = *c.min;
     if (c.max) o["max"] = *c.max;

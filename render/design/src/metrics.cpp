@@ -21,6 +21,7 @@
 #include "airr/measure/mtf_routes.hpp"
 #include "airr/measure/viewing_zone_full.hpp"
 #include "airr/render/memory_need.hpp"
+#include "airr/render/path_expression.hpp"
 #include "airr/render/prop_hits.hpp"
 
 namespace airr {
@@ -34,8 +35,17 @@ class eye_metrics {
   eye_metrics(const design_spec& spec, const scene& s, const glm::dvec3& eye, const viewing_parts* parts)
       : spec_(spec), s_(observer_at(s, eye)), eye_(eye), parts_(parts) {}
 
-  double value(design_metric m) {
+  double value(design_metric m, const std::string& expression) {
     if (m == design_metric::visible_fraction) return visible_fraction(*parts_, eye_);
+    if (metric_takes_expression(m)) {
+      auto it = ghosts_.find(expression);
+      if (it == ghosts_.end()) it = ghosts_.emplace(expression, ghost_from_eye(s_, eye_, expression)).first;
+      // Unseen: no aerial image to spoil (the ratio's worst), or no ghost to be near it (the
+      // separation's best).
+      const double inf = std::numeric_limits<double>::infinity();
+      if (m == design_metric::ghost_ratio) return std::isnan(it->second.ratio) ? inf : it->second.ratio;
+      return std::isnan(it->second.separation_arcmin) ? inf : it->second.separation_arcmin;
+    }
     if (m == design_metric::stray_light) {
       const double r = stray_light_ratio(s_, eye_);
       return std::isnan(r) ? std::numeric_limits<double>::infinity() : r;  // none of the aerial image seen
@@ -71,6 +81,14 @@ class eye_metrics {
   const viewing_parts* parts_;
   std::optional<psf_samples> psf_;
   std::optional<mtf_summary> mtf_;
+  std::map<std::string, ghost_seen> ghosts_;
+};
+
+// A metric as a spec asks for it: with its path expression, for the ghost metrics.
+struct asked_metric {
+  design_metric metric;
+  std::string expression;
+  auto operator<=>(const asked_metric&) const = default;
 };
 
 }  // namespace
@@ -145,9 +163,26 @@ std::vector<std::string> broken_constraints(const design_spec& spec, const std::
   return broken;
 }
 
+void check_design_expressions(const design_spec& spec) {
+  const auto check = [&](const std::string& where, const std::string& expression) {
+    try {
+      path_expression::parse(expression).bound(spec.base, true);
+    } catch (const input_error& e) {
+      throw input_error(spec.path + ": " + where + ".expression: " + e.what());
+    }
+  };
+  for (std::size_t i = 0; i < spec.objectives.size(); ++i)
+    if (metric_takes_expression(spec.objectives[i].metric))
+      check("objectives[" + std::to_string(i) + "]", spec.objectives[i].expression);
+  for (std::size_t i = 0; i < spec.constraints.size(); ++i)
+    if (metric_takes_expression(spec.constraints[i].metric))
+      check("constraints[" + std::to_string(i) + "]", spec.constraints[i].expression);
+}
+
 void check_design_memory(const design_spec& spec, const std::string& what, std::size_t layouts) {
   auto takes_psf = [](design_metric m) {
-    return metric_at_eye(m) && m != design_metric::visible_fraction && m != design_metric::stray_light;
+    return metric_at_eye(m) && m != design_metric::visible_fraction && m != design_metric::stray_light &&
+           !metric_takes_expression(m);
   };
   const bool psfs = std::any_of(spec.objectives.begin(), spec.objectives.end(),
                                 [&](const design_objective& o) { return takes_psf(o.metric); }) ||
@@ -164,22 +199,23 @@ void check_design_memory(const design_spec& spec, const std::string& what, std::
 }
 
 design_evaluation evaluate_design(const design_spec& spec, const scene& s) {
-  std::vector<design_metric> asked;  // the eye metrics the spec names
-  for (const design_objective& o : spec.objectives) asked.push_back(o.metric);
-  for (const design_constraint& c : spec.constraints) asked.push_back(c.metric);
-  std::erase_if(asked, [](design_metric m) { return !metric_at_eye(m); });
+  std::vector<asked_metric> asked;  // the eye metrics the spec names
+  for (const design_objective& o : spec.objectives) asked.push_back({o.metric, o.expression});
+  for (const design_constraint& c : spec.constraints) asked.push_back({c.metric, c.expression});
+  std::erase_if(asked, [](const asked_metric& m) { return !metric_at_eye(m.metric); });
   std::sort(asked.begin(), asked.end());
   asked.erase(std::unique(asked.begin(), asked.end()), asked.end());
   // Only a visible fraction needs the viewing parts (and the props' Embree scene); built once,
   // before the eyes are measured in parallel (each eye's values alone, so any threads agree).
   std::optional<viewing_parts> parts;
-  if (std::find(asked.begin(), asked.end(), design_metric::visible_fraction) != asked.end())
+  if (std::any_of(asked.begin(), asked.end(),
+                  [](const asked_metric& m) { return m.metric == design_metric::visible_fraction; }))
     parts.emplace(s, scene_prop_hits(s));
   const std::vector<glm::dvec3> eyes = design_eyes(spec);
-  std::vector<std::map<design_metric, double>> at_eye(eyes.size());
+  std::vector<std::map<asked_metric, double>> at_eye(eyes.size());
   tbb::parallel_for(std::size_t(0), eyes.size(), [&](std::size_t i) {
     eye_metrics e(spec, s, eyes[i], parts ? &*parts : nullptr);
-    for (design_metric m : asked) at_eye[i][m] = e.value(m);
+    for (const asked_metric& m : asked) at_eye[i][m] = e.value(m.metric, m.expression);
   });
   const glm::dvec3 size = device_size_mm(s);
   const bool cuts_asked =
@@ -188,7 +224,7 @@ design_evaluation evaluate_design(const design_spec& spec, const scene& s) {
       std::any_of(spec.objectives.begin(), spec.objectives.end(),
                   [](const design_objective& o) { return o.metric == design_metric::prop_cut_mm; });
   const double cut = cuts_asked ? prop_cut_length_mm(s) : 0;
-  auto value = [&](design_metric m, over_eyes over, double threshold) {
+  auto value = [&](design_metric m, const std::string& expression, over_eyes over, double threshold) {
     if (m == design_metric::size_x_mm) return size.x;
     if (m == design_metric::size_y_mm) return size.y;
     if (m == design_metric::size_z_mm) return size.z;
@@ -196,7 +232,7 @@ design_evaluation evaluate_design(const design_spec& spec, const scene& s) {
     double sum = 0, least = std::numeric_limits<double>::infinity();
     int above = 0;
     for (const auto& values : at_eye) {
-      const double v = values.at(m);
+      const double v = values.at({m, expression});
       sum += v;
       least = std::min(least, v);
       above += v >= threshold;
@@ -206,10 +242,10 @@ design_evaluation evaluate_design(const design_spec& spec, const scene& s) {
   };
   design_evaluation out;
   for (const design_objective& o : spec.objectives)
-    out.objective_values.push_back(value(o.metric, o.over, o.threshold));
+    out.objective_values.push_back(value(o.metric, o.expression, o.over, o.threshold));
   out.score = design_score(spec, out.objective_values);
   for (const design_constraint& c : spec.constraints)
-    out.constraint_values.push_back(value(c.metric, c.over, c.threshold));
+    out.constraint_values.push_back(value(c.metric, c.expression, c.over, c.threshold));
   out.broken = broken_constraints(spec, out.constraint_values);
   return out;
 }

@@ -205,7 +205,7 @@ design_spec front_search_spec(const design_spec& spec, int main, std::optional<d
   sub.objectives[std::size_t(1 - main)].weight = 0;
   if (level) {
     const design_objective& o = spec.objectives[std::size_t(1 - main)];
-    design_constraint c{o.metric, o.over, std::nullopt, std::nullopt};
+    design_constraint c{o.metric, o.over, std::nullopt, std::nullopt, o.threshold, o.expression};
     const double slack = 1e-9 * (1 + std::abs(*level));
     (o.maximise ? c.min : c.max) = o.maximise ? *level - slack : *level + slack;
     sub.constraints.push_back(c);
@@ -367,6 +367,7 @@ design_result search_front(const design_spec& spec, const std::function<void(con
 
 design_result optimise_design(const design_spec& spec, const std::function<void(const design_progress&)>& progress,
                               const std::atomic<bool>* cancel, const item_share& share) {
+  check_design_expressions(spec);
   check_design_memory(spec, "optimise", 1);
   const int budget = spec.search.global_evaluations + spec.search.local_evaluations;
   design_result r = spec.front.points > 0 ? search_front(spec, progress, cancel, share)

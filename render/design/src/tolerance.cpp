@@ -86,6 +86,7 @@ tolerance_result run_tolerance(const design_spec& spec, const scene& nominal,
   // Shared among an MPI job's ranks, a batch is large enough to keep many ranks busy between
   // exchanges.
   const std::size_t batch_size = share ? 1024 : 16;
+  check_design_expressions(spec);
   check_design_memory(spec, "tolerance", batch_size);
   std::vector<double> nominal_values, sizes;
   for (const design_tolerance& t : spec.tolerances) {

@@ -1,6 +1,11 @@
 #include "airr/measure/aerial_outline.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <utility>
+
+#include "airr/core/color.hpp"
 
 namespace airr {
 
@@ -24,6 +29,25 @@ bool inside_quad(const std::array<glm::dvec2, 4>& q, double x, double y) {
     if (s != 0) sign = s;
   }
   return true;
+}
+
+glm::dvec2 luminance_centroid(const image_rgb& img) {
+  double sum = 0, sx = 0, sy = 0;
+  for (int y = 0; y < img.height; ++y) {
+    for (int x = 0; x < img.width; ++x) {
+      const float* v = img.at(x, y);
+      const double l = std::max(0.0, rec709_luminance(v[0], v[1], v[2]));
+      sum += l;
+      sx += l * (x + 0.5);
+      sy += l * (y + 0.5);
+    }
+  }
+  return sum > 0 ? glm::dvec2(sx / sum, sy / sum) : glm::dvec2(std::numeric_limits<double>::quiet_NaN());
+}
+
+double separation_arcmin(const pinhole_camera& cam, const glm::dvec2& a, const glm::dvec2& b) {
+  const glm::dvec3 u = camera_direction(cam, a.x, a.y), v = camera_direction(cam, b.x, b.y);
+  return std::atan2(glm::length(glm::cross(u, v)), glm::dot(u, v)) * 180 / M_PI * 60;
 }
 
 }  // namespace airr

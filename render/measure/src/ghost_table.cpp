@@ -35,7 +35,7 @@ std::map<std::string, glm::dvec3> census(const scene& s, const ghost_params& p) 
   detail::parallel_rows(ts.camera.height, p.threads, [&](int y0, int y1) {
     std::map<std::string, glm::dvec3> mine;
     std::uint64_t rays = 0;
-    census_rows(ts, y0, y1, 0, p.census_spp, mine, never, rays);
+    census_rows(ts, y0, y1, 0, p.census_spp, mine, p.cancel ? *p.cancel : never, rays);
     std::lock_guard lock(m);
     for (const auto& [label, light] : mine) all[label] += light;
   });
@@ -64,21 +64,7 @@ eye_view render_eye(const scene& s, const std::shared_ptr<const path_layers>& la
   session_params sp{.threads = p.threads, .target_spp = p.spp, .layers = layers};
   check_render_memory(s, sp);
   render_session session(s, sp);
-  return {render_to_spp(session, p.spp), make_camera(s)};
-}
-
-// An image's luminance-weighted centroid, in pixels (NaN when it is dark).
-glm::dvec2 centroid_of(const image_rgb& img) {
-  double sum = 0, sx = 0, sy = 0;
-  for (int y = 0; y < img.height; ++y) {
-    for (int x = 0; x < img.width; ++x) {
-      const double l = std::max(0.0, luminance(img.at(x, y)));
-      sum += l;
-      sx += l * (x + 0.5);
-      sy += l * (y + 0.5);
-    }
-  }
-  return sum > 0 ? glm::dvec2(sx / sum, sy / sum) : glm::dvec2(ghost_class::nan);
+  return {render_to_spp(session, p.spp, [&](std::uint64_t) { return !(p.cancel && *p.cancel); }), make_camera(s)};
 }
 
 // How far along the centre camera's view the point lies that the two eyes see at pixels `pl`
@@ -105,6 +91,9 @@ ghost_table compute_ghost_table(const scene& s, const ghost_params& p,
   if (p.top < 1 || p.top > max_path_layers - 1)
     throw input_error("ghosts: --top must be 1 to " + std::to_string(max_path_layers - 1));
   if (p.census_spp < 1 || p.spp < 1) throw input_error("ghosts: samples per pixel must be at least 1");
+  if (std::size_t(p.top) + p.expressions.size() > std::size_t(max_path_layers))
+    throw input_error("ghosts: at most " + std::to_string(max_path_layers) + " classes (--top and the expressions)");
+  for (const std::string& e : p.expressions) path_expression::parse(e).bound(s, true);  // before the census
   if (!(p.baseline_mm > 0) || p.baseline_mm > 1000) throw input_error("ghosts: the baseline must be in (0, 1000] mm");
   const auto start = std::chrono::steady_clock::now();
   const auto say = [&](const std::string& stage, double f) {
@@ -123,63 +112,72 @@ ghost_table compute_ghost_table(const scene& s, const ghost_params& p,
   }
   std::sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
   if (ranked.size() > std::size_t(p.top)) ranked.resize(std::size_t(p.top));
+  const std::size_t found = ranked.size();
+  for (const std::string& e : p.expressions) ranked.push_back({-1, e});  // their census share from the render
+  const auto stopped = [&] { return p.cancel && p.cancel->load(); };
+  if (stopped()) return {};
 
   // Each class a layer; the brightest retroreflected one is the aerial image the others are
   // placed against.
   auto layers = std::make_shared<path_layers>();
   std::size_t aerial_layer = ranked.size();
   for (std::size_t i = 0; i < ranked.size(); ++i) {
-    layers->layers.push_back({"c" + std::to_string(i), path_expression::parse(ranked[i].second)});
-    if (aerial_layer == ranked.size() && ranked[i].second.find(":retro") != std::string::npos) aerial_layer = i;
+    layers->layers.push_back({"c" + std::to_string(i), path_expression::parse(ranked[i].second).bound(s, true)});
+    if (aerial_layer == ranked.size() && i < found && ranked[i].second.find(":retro") != std::string::npos)
+      aerial_layer = i;
   }
 
   const double b = p.baseline_mm;
   say("observer", 0.1);
   const eye_view centre = render_eye(s, layers, p);
+  if (stopped()) return {};
   say("left eye", 0.4);
   const eye_view left = render_eye(eye_moved(s, -0.5 * b), layers, p);
+  if (stopped()) return {};
   say("right eye", 0.7);
   const eye_view right = render_eye(eye_moved(s, 0.5 * b), layers, p);
+  if (stopped()) return {};
 
   const std::array<glm::dvec2, 4> outline = aerial_outline(s, centre.cam);
   const image_rgb whole = centre.snap.image();
-  double whole_inside = 0;
+  double whole_inside = 0, whole_all = 0;
   int inside = 0;
   for (int y = 0; y < whole.height; ++y) {
     for (int x = 0; x < whole.width; ++x) {
+      whole_all += luminance(whole.at(x, y));
       if (!inside_quad(outline, x + 0.5, y + 0.5)) continue;
       whole_inside += luminance(whole.at(x, y));
       ++inside;
     }
   }
   const auto place = [&](std::size_t k, glm::dvec2& c, double& distance) {
-    c = centroid_of(centre.snap.layer_image(k));
-    distance = distance_by_parallax(centre.cam, left, right, centroid_of(left.snap.layer_image(k)),
-                                    centroid_of(right.snap.layer_image(k)));
+    c = luminance_centroid(centre.snap.layer_image(k));
+    distance = distance_by_parallax(centre.cam, left, right, luminance_centroid(left.snap.layer_image(k)),
+                                    luminance_centroid(right.snap.layer_image(k)));
   };
   if (aerial_layer < ranked.size()) place(aerial_layer, t.aerial_centroid, t.aerial_distance_mm);
   for (std::size_t i = 0; i < ranked.size(); ++i) {
     ghost_class g;
     g.expression = ranked[i].second;
     g.aerial = g.expression.find(":retro") != std::string::npos;
+    g.typed = i >= found;
     g.census_share = all > 0 ? ranked[i].first / all : 0;
     g.image = centre.snap.layer_image(i);
-    double in = 0;
+    double in = 0, everywhere = 0;
     for (int y = 0; y < g.image.height; ++y) {
       for (int x = 0; x < g.image.width; ++x) {
         const double l = luminance(g.image.at(x, y));
         g.peak = std::max(g.peak, l);
+        everywhere += l;
         if (inside_quad(outline, x + 0.5, y + 0.5)) in += l;
       }
     }
+    if (g.typed) g.census_share = whole_all > 0 ? everywhere / whole_all : 0;  // from the render instead
     g.outline_luminance = inside ? in / inside : 0;
     g.share = whole_inside > 0 ? in / whole_inside : 0;
     place(i, g.centroid, g.distance_mm);
-    if (std::isfinite(g.centroid.x) && std::isfinite(t.aerial_centroid.x)) {
-      const glm::dvec3 a = camera_direction(centre.cam, t.aerial_centroid.x, t.aerial_centroid.y);
-      const glm::dvec3 d = camera_direction(centre.cam, g.centroid.x, g.centroid.y);
-      g.separation_arcmin = std::atan2(glm::length(glm::cross(a, d)), glm::dot(a, d)) * 180 / M_PI * 60;
-    }
+    if (std::isfinite(g.centroid.x) && std::isfinite(t.aerial_centroid.x))
+      g.separation_arcmin = separation_arcmin(centre.cam, t.aerial_centroid, g.centroid);
     t.classes.push_back(std::move(g));
   }
   std::stable_sort(t.classes.begin(), t.classes.end(), [](const ghost_class& a, const ghost_class& b) {

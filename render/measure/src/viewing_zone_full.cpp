@@ -17,6 +17,7 @@
 #include "airr/measure/mtf_routes.hpp"
 #include "airr/render/memory_need.hpp"
 #include "airr/render/parallel_rows.hpp"
+#include "airr/render/path_expression.hpp"
 #include "airr/render/prop_hits.hpp"
 #include "airr/render/tracer.hpp"
 
@@ -109,6 +110,49 @@ double stray_light_ratio(const scene& s, const glm::dvec3& eye, const full_zone_
   ts.retro = make_sheet_models(s);
   const embree_device device;
   return render_from(ts, device, at, p, nullptr).stray_ratio();
+}
+
+ghost_seen ghost_from_eye(const scene& s, const glm::dvec3& eye, const std::string& expression,
+                          const full_zone_params& p) {
+  auto layers = std::make_shared<path_layers>();
+  layers->layers.push_back({"ghost", path_expression::parse(expression).bound(s, true)});
+  scene at = s;
+  const part_frame aerial = aerial_image_frame(s);
+  at.observer.placement = observer_placement::look_at;
+  at.observer.position_mm = {eye.x, eye.y, eye.z};
+  at.observer.look_at_mm = {aerial.center.x, aerial.center.y, aerial.center.z};
+  frame_eye_render(at, aerial, p);
+  tracer_scene ts;
+  ts.use_model_image = false;
+  ts.layers = layers;
+  const embree_device device;
+  build_tracer_scene(ts, device, at);
+  const int w = ts.camera.width, h = ts.camera.height;
+  const std::size_t pixels = std::size_t(w) * h;
+  std::vector<double> sums(3 * pixels), components(component_count * sums.size()), layer_sums(2 * sums.size());
+  const std::atomic<bool> never{false};
+  std::uint64_t rays = 0;
+  trace_rows(ts, 0, h, 0, p.render_spp, sums, never, rays, nullptr, &components, nullptr, &layer_sums);
+  image_rgb aerial_image{w, h, std::vector<float>(3 * pixels)}, ghost_image = aerial_image;
+  for (std::size_t i = 0; i < 3 * pixels; ++i) {
+    aerial_image.rgb[i] = float(components[component_count * 3 * (i / 3) + 3 * component_aerial + i % 3]);
+    ghost_image.rgb[i] = float(layer_sums[2 * 3 * (i / 3) + i % 3]);
+  }
+  const std::array<glm::dvec2, 4> outline = aerial_outline(at, ts.camera);
+  double aerial_in = 0, ghost_in = 0;
+  for (int y = 0; y < h; ++y) {
+    for (int x = 0; x < w; ++x) {
+      if (!inside_quad(outline, x + 0.5, y + 0.5)) continue;
+      const float *a = aerial_image.at(x, y), *g = ghost_image.at(x, y);
+      aerial_in += rec709_luminance(a[0], a[1], a[2]);
+      ghost_in += rec709_luminance(g[0], g[1], g[2]);
+    }
+  }
+  ghost_seen out;
+  out.ratio = aerial_in > 0 ? ghost_in / aerial_in : nan;
+  const glm::dvec2 a = luminance_centroid(aerial_image), g = luminance_centroid(ghost_image);
+  out.separation_arcmin = std::isfinite(a.x) && std::isfinite(g.x) ? separation_arcmin(ts.camera, a, g) : nan;
+  return out;
 }
 
 full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zone_params& p,

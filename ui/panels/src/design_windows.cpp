@@ -8,6 +8,7 @@
 #include <imgui.h>
 
 #include "airr/core/error.hpp"
+#include "airr/design/metrics.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
 #include "design_widgets.hpp"
@@ -45,7 +46,7 @@ void start_design_spec(studio& st) {
   const double tilt = st.doc.sheet().pose.pitch_deg;
   d.spec.variables = {{"tilt_deg", tilt - 10, tilt + 10}};
   d.spec.eyes_mm = {observer_position(st.doc)};
-  d.spec.objectives = {design_objective{design_metric::mean_mtf, over_eyes::mean, true, 1}};
+  d.spec.objectives = {design_objective{.metric = design_metric::mean_mtf}};
   d.spec.search.global_evaluations = 60;
   d.spec.search.local_evaluations = 40;
   d.spec.tolerances = {{"tilt_deg", 0.5, false, false}};
@@ -196,6 +197,7 @@ bool start_design_job(studio& st, design_job::kind k) {
   try {
     // The spec read back as `airr optimise` reads a file: the same checks, errors naming the field.
     design_spec spec = parse_design_spec(design_spec_text(d.spec), "design spec", st.applied);
+    check_design_expressions(spec);
     d.job = std::make_unique<design_job>(spec, k);
   } catch (const std::exception& e) {
     d.error = one_line(e.what());

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include <imgui.h>
+#include <imgui_stdlib.h>
 
 #include "airr/ui/views/plot_widget.hpp"
 #include "design_widgets.hpp"
@@ -58,6 +59,11 @@ void objectives_section(studio& st) {
     ImGui::SetNextItemWidth(9 * w);
     design_metric_combo("##metric", o.metric);
     ImGui::SameLine();
+    if (metric_takes_expression(o.metric)) {
+      ImGui::SetNextItemWidth(10 * w);
+      ImGui::InputTextWithHint("##expression", "path expression, e.g. D .* H:r1 .* E", &o.expression);
+      ImGui::SameLine();
+    }
     if (metric_at_eye(o.metric)) {
       over_eyes_combo("##over", o.over, o.threshold);
       ImGui::SameLine();
@@ -69,7 +75,7 @@ void objectives_section(studio& st) {
     ImGui::PopID();
   }
   if (remove) spec.objectives.erase(spec.objectives.begin() + std::ptrdiff_t(*remove));
-  if (ImGui::Button("add an objective")) spec.objectives.push_back({design_metric::visible_fraction});
+  if (ImGui::Button("add an objective")) spec.objectives.push_back({.metric = design_metric::visible_fraction});
   if (spec.objectives.size() == 2) {
     bool front = spec.front.points > 0;
     ImGui::SameLine();
@@ -93,6 +99,11 @@ void constraints_section(studio& st) {
     ImGui::PushID(int(i));
     ImGui::SetNextItemWidth(9 * w);
     design_metric_combo("##metric", c.metric);
+    if (metric_takes_expression(c.metric)) {
+      ImGui::SameLine();
+      ImGui::SetNextItemWidth(10 * w);
+      ImGui::InputTextWithHint("##expression", "path expression", &c.expression);
+    }
     if (metric_at_eye(c.metric)) {
       ImGui::SameLine();
       over_eyes_combo("##over", c.over, c.threshold);
@@ -115,7 +126,8 @@ void constraints_section(studio& st) {
   }
   if (remove) cons.erase(cons.begin() + std::ptrdiff_t(*remove));
   if (ImGui::Button("add a constraint"))
-    cons.push_back({design_metric::size_z_mm, over_eyes::mean, std::nullopt, st.applied.half_mirror.width_mm * 2});
+    cons.push_back(
+        {.metric = design_metric::size_z_mm, .min = std::nullopt, .max = st.applied.half_mirror.width_mm * 2});
 }
 
 void search_section(design_spec& spec) {

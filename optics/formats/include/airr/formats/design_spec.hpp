@@ -19,13 +19,15 @@ namespace airr {
 
 // The metrics of a layout (spec section 9) a spec may name.
 enum class design_metric {
-  visible_fraction,  // of the aerial image, at the eye (geometric)
-  mean_mtf,          // of the model PSF seen from the eye, over (0, 1] lp/mm
-  mtf50_lp_per_mm,   // where that MTF first falls to 0.5
-  r50_mm,            // radius holding half the model PSF's energy
-  brightness,        // the model PSF's light relative to the display's
-  stray_light,       // the stray-light ratio seen from the eye (a small render split into components)
-  size_x_mm,         // the device's bounding box (display panel, half mirror, sheets) along x, y, z
+  visible_fraction,         // of the aerial image, at the eye (geometric)
+  mean_mtf,                 // of the model PSF seen from the eye, over (0, 1] lp/mm
+  mtf50_lp_per_mm,          // where that MTF first falls to 0.5
+  r50_mm,                   // radius holding half the model PSF's energy
+  brightness,               // the model PSF's light relative to the display's
+  stray_light,              // the stray-light ratio seen from the eye (a small render split into components)
+  ghost_ratio,              // a path expression's light over the aerial image's, inside its outline, from the eye
+  ghost_separation_arcmin,  // the angle between that light's centroid and the aerial image's, from the eye
+  size_x_mm,                // the device's bounding box (display panel, half mirror, sheets) along x, y, z
   size_y_mm,
   size_z_mm,
   prop_cut_mm,  // the length of the lines where the display panel, the half mirror and the sheets cut props
@@ -48,19 +50,24 @@ struct design_variable {
 // at least a threshold (e.g. the part of a zone of eyes that sees 90% of the aerial image).
 enum class over_eyes { mean, min, share_above };
 
+// Whether the metric measures the paths of a path expression (the objective's "expression").
+bool metric_takes_expression(design_metric m);
+
 struct design_objective {
   design_metric metric = design_metric::visible_fraction;
   over_eyes over = over_eyes::mean;
   bool maximise = true;
   double weight = 1;
-  double threshold = 0;  // for share_above
+  double threshold = 0;      // for share_above
+  std::string expression{};  // the ghost metrics' paths (docs/path-expressions.md)
 };
 
 struct design_constraint {
   design_metric metric = design_metric::visible_fraction;
   over_eyes over = over_eyes::mean;
   std::optional<double> min, max;
-  double threshold = 0;  // for share_above
+  double threshold = 0;      // for share_above
+  std::string expression{};  // as the objective's
 };
 
 // An assembly tolerance: a scene value (by its --set key) off its nominal by a normal error of

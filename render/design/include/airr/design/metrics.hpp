@@ -1,7 +1,9 @@
 #pragma once
 // A layout's design metrics (spec section 9) as a design spec names them: at each of its eyes (the
 // observer placed there, looking at the aerial image's centre) the visible fraction and the model
-// PSF's mean MTF, MTF50, r50 and brightness, over the eyes their mean or minimum; and the device's
+// PSF's mean MTF, MTF50, r50 and brightness, the stray light and a path expression's light (its
+// ratio to the aerial image's, its angle from it) in a small render, over the eyes their mean or
+// minimum; and the device's
 // bounding box and how far its parts cut its props.
 #include <cstddef>
 #include <string>
@@ -48,6 +50,10 @@ design_evaluation evaluate_design(const design_spec& spec, const scene& s);
 // measured, each of the spec's psf_samples (input_error "<what>: N PSFs at once of M samples needs
 // about ..."). Nothing is refused when no metric takes a PSF.
 void check_design_memory(const design_spec& spec, const std::string& what, std::size_t layouts);
+
+// Throws input_error "<spec>: objectives[i].expression: path expression '...': at character N:
+// ..." when a ghost metric's expression does not parse or names a prop the base scene lacks.
+void check_design_expressions(const design_spec& spec);
 
 // How far a constraint is broken (0 when it holds), in its metric's units.
 double constraint_violation(const design_constraint& c, double value);

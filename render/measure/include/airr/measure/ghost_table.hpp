@@ -2,6 +2,7 @@
 // The ghost table (docs/path-expressions.md): which light paths reach the eye, ranked by their
 // light inside the aerial image's outline and by their peak, each placed by the parallax between
 // two eyes: how far from the eye its image forms and how far, in arcmin, from the aerial image.
+#include <atomic>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -21,12 +22,16 @@ struct ghost_params {
   int top = 8;                   // the classes measured: those with the most light in the census
   double baseline_mm = 65;       // between the two eyes, either side of the observer
   int threads = 0;               // 0: all cores
+  // Path expressions measured as classes too, after the census's (the designer's typed layers).
+  std::vector<std::string> expressions{};
+  const std::atomic<bool>* cancel = nullptr;  // set: the table stops and comes back empty
 };
 
 struct ghost_class {
   std::string expression;   // the class's label, a path expression selecting it alone
   bool aerial = false;      // it holds a retroreflection: a share of the aerial image itself
-  double census_share = 0;  // of all the light the census saw
+  bool typed = false;       // one of ghost_params::expressions (else a label the census found)
+  double census_share = 0;  // of all the light the census saw (typed: of the observer's render)
   // Mean luminance inside the aerial image's outline, and its share of the whole image's there.
   double outline_luminance = 0, share = 0;
   double peak = 0;  // the luminance of its brightest pixel

@@ -38,6 +38,17 @@ struct full_zone_map {
 // aerial image's light is seen. The same number the full pass maps.
 double stray_light_ratio(const scene& s, const glm::dvec3& eye, const full_zone_params& p = {});
 
+// The light of the paths `expression` selects (docs/path-expressions.md) seen from `eye`, in the
+// same small render: `ratio`, its mean luminance inside the aerial image's outline over the aerial
+// image's (NaN when none of the aerial image's light is seen); `separation_arcmin`, the angle
+// between its luminance centroid and the aerial image's over the whole render (NaN when either is
+// dark). Throws input_error when the expression does not parse.
+struct ghost_seen {
+  double ratio = 0, separation_arcmin = 0;
+};
+ghost_seen ghost_from_eye(const scene& s, const glm::dvec3& eye, const std::string& expression,
+                          const full_zone_params& p = {});
+
 // Eyes run in parallel (each eye's render on one core; the maps do not depend on the number of
 // cores), or as the items of `share` (an MPI job's ranks) when given; `progress(done, total)` after
 // every eye this process measured, from one worker at a time. Empty maps when `cancel` was set
