@@ -1,6 +1,6 @@
 // The design windows under Xvfb: the Optimise window's search finds what `airr optimise` finds for
 // the same spec and applies it as one step that undo takes back; a Pareto front is plotted; the
-// Tolerance window shows a histogram per metric.
+// Tolerance window shows a histogram per metric; the Ghosts window shows a class and draws its paths.
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -9,7 +9,9 @@
 #include <nlohmann/json.hpp>
 
 #include "airr/core/assets.hpp"
+#include "airr/formats/scene_json.hpp"
 #include "gui_test_support.hpp"
+#include "plate_mesh.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -78,4 +80,61 @@ TEST(GuiDesign, TheParetoFrontAndTheHistogramsArePlotted) {
         EXPECT_GT(curve_pixels(img, region(regions, h), {80, 160, 255}), 50) << h;
     }
   }
+}
+
+// The Ghosts window on a layout with a mirror prop that shows the display to the observer: the
+// table lists the mirror's class; shown, it takes the render view's place (dimmer than the whole
+// image) and a few of its paths are drawn, magenta, in the 3D and the layout views, which have
+// none before.
+TEST(GuiDesign, TheGhostsWindowShowsAClassAndDrawsItsPaths) {
+  test::temp_dir dir;
+  test::write_plate(test::plate(2, -60, -60, 60, -200, -80), dir.file("mirror.glb"));
+  scene s = test::uniform_source_scene(50, 96);
+  prop_params p;
+  p.name = "mirror";
+  p.mesh = dir.file("mirror.glb");
+  p.surface = prop_surface::mirror;
+  s.props.push_back(p);
+  s.observer.placement = observer_placement::look_at;
+  s.observer.position_mm = {0, 150, 410};
+  s.observer.look_at_mm = {0, -150, -120};
+  s.observer.fov_deg = 30;
+  std::ofstream(dir.file("scene.json")) << scene_to_json(s).dump(2);
+
+  const auto run = [&](int shown) {
+    const std::string shot = dir.file("ghosts" + std::to_string(shown) + ".png");
+    const studio_run r = run_studio(dir, dir.file("scene.json") + " --ghosts --ghost-class " + std::to_string(shown) +
+                                             " --frames 3 --screenshot " + shot);
+    EXPECT_EQ(r.status, 0) << r.log;
+    return std::pair{read_png(shot), nlohmann::json::parse(std::ifstream(shot + ".json"))};
+  };
+  const auto [none, none_notes] = run(0);
+  const auto& classes = none_notes.at("ghosts").at("classes");
+  int mirror = 0;
+  for (std::size_t k = 0; k < classes.size() && !mirror; ++k)
+    if (classes[k].get<std::string>().find("P#0") != std::string::npos) mirror = int(k) + 1;
+  ASSERT_GT(mirror, 0) << none_notes.at("ghosts").dump();
+  const auto [shown, notes] = run(mirror);
+  EXPECT_EQ(notes.at("ghosts").at("shown"), mirror - 1);
+  EXPECT_TRUE(notes.at("ghosts").at("render_shows_it"));
+  EXPECT_TRUE(notes.at("regions").contains("ghosts_window"));
+  const std::array<int, 3> magenta = {255, 0, 255};
+  for (const char* view : {"layout_3d", "layout_side", "layout_top"}) {
+    const int before = curve_pixels(none, region(none_notes, view), magenta);
+    const int after = curve_pixels(shown, region(notes, view), magenta);
+    std::printf("%s: %d magenta pixels without a class shown, %d with the mirror's\n", view, before, after);
+    EXPECT_GT(after, before + 30) << view;
+  }
+  const auto mean_level = [](const rgb8_image& img, const std::array<int, 4>& r) {
+    double sum = 0;
+    int n = 0;
+    for (int y = r[1]; y < r[3]; ++y)
+      for (int x = r[0]; x < r[2]; ++x, ++n) sum += img.at(x, y)[0] + img.at(x, y)[1] + img.at(x, y)[2];
+    return sum / std::max(1, n);
+  };
+  const double whole = mean_level(none, region(none_notes, "render_image"));
+  const double mirror_only = mean_level(shown, region(notes, "render_image"));
+  std::printf("render view's mean level: %.1f the whole image, %.1f the mirror's class\n", whole, mirror_only);
+  EXPECT_LT(mirror_only, whole);
+  EXPECT_GT(mirror_only, 0.5);
 }

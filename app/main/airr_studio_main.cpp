@@ -47,6 +47,7 @@ struct options {
   std::string zone;                // the viewing zone's quantity; a full one is computed before the screenshot
   std::string design;              // a design spec for the Optimise and Tolerance windows
   airr::ui::design_script design_run;
+  airr::ui::ghost_script ghost_run;
   airr::ui::soak_script soak;  // --soak: a long scripted run
 };
 
@@ -137,6 +138,8 @@ int main(int argc, char** argv) {
                "After the scripted frames, run the Tolerance window's analysis");
   cli.add_flag("--apply-optimised", opt.design_run.apply, "Then apply the optimised layout (one undoable step)");
   cli.add_option("--undo", opt.design_run.undo, "Then undo this many steps")->check(CLI::Range(0, 100));
+  cli.add_flag("--ghosts", opt.ghost_run.run, "After the scripted frames, find the Ghosts window's table");
+  cli.add_option("--ghost-class", opt.ghost_run.show, "Then show its class K (from 1)")->check(CLI::Range(0, 63));
   CLI11_PARSE(cli, argc, argv);
   if (!opt.screenshot.empty() && opt.frames == 0) opt.frames = 60;
 
@@ -337,6 +340,10 @@ int main(int argc, char** argv) {
         glfwSwapBuffers(window);
         continue;
       }
+      if (airr::ui::run_ghost_script(st, opt.ghost_run)) {
+        glfwSwapBuffers(window);
+        continue;
+      }
       if (airr::ui::run_design_script(st, opt.design_run)) {
         glfwSwapBuffers(window);
         continue;
@@ -409,8 +416,9 @@ int main(int argc, char** argv) {
           std::fprintf(stderr, "%s; plot data in %s\n", said.c_str(), csv.c_str());
         }
       }
-      if (!opt.design_run.error.empty()) {
-        std::fprintf(stderr, "error: %s\n", opt.design_run.error.c_str());
+      for (const std::string* e : {&opt.design_run.error, &opt.ghost_run.error}) {
+        if (e->empty()) continue;
+        std::fprintf(stderr, "error: %s\n", e->c_str());
         exit_code = 1;
       }
       if (!opt.save_as.empty() && !airr::ui::studio_save(st, opt.save_as)) {

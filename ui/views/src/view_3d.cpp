@@ -204,7 +204,16 @@ void draw_view_3d(studio& st, ImVec2 at, ImVec2 size) {
   if (!v.renderer) v.renderer = std::make_unique<gl_layout_renderer>();
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const ImVec2 end(at.x + size.x, at.y + size.y);
-  if (v.renderer->render(int(size.x), int(size.y), proj * view, layout_items(st.doc, st.prop_meshes))) {
+  std::vector<gl_draw_item> items = layout_items(st.doc, st.prop_meshes);
+  if (const auto* paths = st.ghosts.shown_paths()) {
+    // The Ghosts window's class: a few of its traced paths, display to eye.
+    gl_draw_item it;
+    for (const auto& line : *paths)
+      for (std::size_t i = 1; i < line.size(); ++i) it.lines.insert(it.lines.end(), {line[i - 1], line[i]});
+    it.colour = ghost_path_colour;
+    items.push_back(std::move(it));
+  }
+  if (v.renderer->render(int(size.x), int(size.y), proj * view, items)) {
     // OpenGL's rows run bottom-up.
     dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(v.renderer->texture())), at, end,
                  ImVec2(0, 1), ImVec2(1, 0));

@@ -108,6 +108,13 @@ void draw_projection(studio& st, projection proj, ImVec2 canvas0, ImVec2 canvas,
     for (std::size_t i = 0; i < g->retroreflectors.size(); ++i) outline(retroreflector_frame(*g, i), ghost, 1.5f * lw);
     outline(aerial_image_frame(*g), ghost, 1.5f * lw);
   }
+  if (const auto* paths = st.ghosts.shown_paths()) {
+    // The Ghosts window's class: a few of its traced paths, display to eye.
+    const ImU32 c = ImGui::ColorConvertFloat4ToU32(
+        ImVec4(ghost_path_colour.r, ghost_path_colour.g, ghost_path_colour.b, ghost_path_colour.a));
+    for (const auto& line : *paths)
+      for (std::size_t i = 1; i < line.size(); ++i) seg(glm::dvec3(line[i - 1]), glm::dvec3(line[i]), c, lw);
+  }
   const ImVec2 es = m.to_screen(eye);
   dl->AddCircleFilled(es, 4 * lw, IM_COL32(200, 200, 200, 255));
 

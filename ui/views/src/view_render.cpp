@@ -20,22 +20,31 @@ static int shown_component(const studio& st, const render_snapshot& snap) {
   return snap.components ? st.view.component : -1;
 }
 
-static void upload_snapshot(studio& st, const render_snapshot& snap, float exposure) {
-  std::vector<std::uint8_t> rgba(std::size_t(snap.width) * snap.height * 4);
-  const int component = shown_component(st, snap);
-  for (std::size_t i = 0; i < std::size_t(snap.width) * snap.height; ++i) {
-    const float* v = component < 0 ? snap.shown->data() + 3 * i
-                                   : snap.components->data() + 3 * (component_count * i + std::size_t(component));
+// Uploads `pixel(i)` (linear RGB of pixel i) as the view's texture.
+template <class Pixel>
+static void upload_pixels(studio& st, int width, int height, float exposure, const Pixel& pixel) {
+  std::vector<std::uint8_t> rgba(std::size_t(width) * height * 4);
+  for (std::size_t i = 0; i < std::size_t(width) * height; ++i) {
+    const float* v = pixel(i);
     for (int c = 0; c < 3; ++c) rgba[4 * i + c] = srgb_encode_8bit(v[c] * exposure);
     rgba[4 * i + 3] = 255;
   }
+  st.view.texture.upload(width, height, rgba);
+  st.view.uploaded_exposure = exposure;
+}
+
+static void upload_snapshot(studio& st, const render_snapshot& snap, float exposure) {
+  const int component = shown_component(st, snap);
+  upload_pixels(st, snap.width, snap.height, exposure, [&](std::size_t i) {
+    return component < 0 ? snap.shown->data() + 3 * i
+                         : snap.components->data() + 3 * (component_count * i + std::size_t(component));
+  });
   st.view.uploaded_component = component;
-  st.view.texture.upload(snap.width, snap.height, rgba);
+  st.view.uploaded_ghost = -1;
   st.view.uploaded_generation = snap.generation;
   st.view.uploaded_spp = snap.spp;
   st.view.uploaded_model_image = snap.model_image;
   st.view.uploaded_estimate = estimate_name(snap);
-  st.view.uploaded_exposure = exposure;
 }
 
 void draw_render_view(studio& st, double now) {
@@ -43,10 +52,16 @@ void draw_render_view(studio& st, double now) {
   const render_snapshot snap = st.session->snapshot();
   const float exposure = float(default_exposure(st.doc) * std::exp2(st.settings.exposure_ev));
 
-  if (snap.shown && (snap.spp > 0 || snap.preview) &&
-      (snap.generation != st.view.uploaded_generation || snap.spp != st.view.uploaded_spp ||
-       estimate_name(snap) != st.view.uploaded_estimate || exposure != st.view.uploaded_exposure ||
-       shown_component(st, snap) != st.view.uploaded_component)) {
+  // A ghost class the Ghosts window shows (of the image's size) takes the render's place.
+  const image_rgb* ghost = st.ghosts.shown_image();
+  if (ghost && (ghost->width != snap.width || ghost->height != snap.height)) ghost = nullptr;
+  if (ghost && (st.view.uploaded_ghost != st.ghosts.shown || exposure != st.view.uploaded_exposure)) {
+    upload_pixels(st, ghost->width, ghost->height, exposure, [&](std::size_t i) { return ghost->rgb.data() + 3 * i; });
+    st.view.uploaded_ghost = st.ghosts.shown;
+  } else if (!ghost && snap.shown && (snap.spp > 0 || snap.preview) &&
+             (snap.generation != st.view.uploaded_generation || snap.spp != st.view.uploaded_spp ||
+              estimate_name(snap) != st.view.uploaded_estimate || exposure != st.view.uploaded_exposure ||
+              shown_component(st, snap) != st.view.uploaded_component || st.view.uploaded_ghost >= 0)) {
     const bool first_of_edit = snap.generation != st.view.uploaded_generation;
     upload_snapshot(st, snap, exposure);
     if (first_of_edit && st.edit_time >= 0 && snap.generation == st.generation) {
@@ -106,6 +121,10 @@ void draw_render_view(studio& st, double now) {
               snap.seconds, ("  " + st.view.uploaded_estimate).c_str(), shown >= 0 ? ": " : "",
               shown >= 0 ? component_names[shown] : "", st.view.paused ? "  (paused)" : "");
   if (!snap.error.empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", snap.error.c_str());
+  if (ghost) {
+    ImGui::TextColored(ImVec4(1, 0.55f, 1, 1), "showing the Ghosts window's class %d: %s", st.ghosts.shown + 1,
+                       st.ghosts.found->table.classes[std::size_t(st.ghosts.shown)].expression.c_str());
+  }
 
   // Image area: fit the image, then zoom about the cursor and pan by dragging.
   const ImVec2 avail = ImGui::GetContentRegionAvail();

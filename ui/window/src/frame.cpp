@@ -34,6 +34,7 @@ void studio_frame(studio& st, double now) {
   collect_design_job(st);
   draw_optimise_window(st);
   draw_tolerance_window(st);
+  draw_ghosts_window(st);
 
   // Status bar.
   ImGui::SetNextWindowPos(ImVec2(vp->WorkPos.x, vp->WorkPos.y + vp->WorkSize.y - ImGui::GetFrameHeight()));

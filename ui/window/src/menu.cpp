@@ -136,6 +136,7 @@ void draw_menu(studio& st) {
   if (ImGui::BeginMenu("Design")) {
     if (ImGui::MenuItem("Optimise...")) st.design.show_optimise = true;
     if (ImGui::MenuItem("Tolerance...")) st.design.show_tolerance = true;
+    if (ImGui::MenuItem("Ghosts...")) st.ghosts.show = true;
     ImGui::EndMenu();
   }
   ImGui::TextDisabled("  %s%s", display_name(st).c_str(), studio_dirty(st) ? " (unsaved changes)" : "");

@@ -45,11 +45,22 @@ void write_screenshot_notes(const studio& st, const std::string& path, int fw, i
                  static_cast<unsigned long long>(b->generation), shown.current ? ", current" : ", previous", b->psf_ms,
                  b->focus_ms, b->spots_ms, b->map_ms, st.analysis.predicted() ? st.analysis.predicted()->psf_ms : 0.0);
   }
-  airr::write_file_atomic(
-      path,
-      nlohmann::json{{"width", fw}, {"height", fh}, {"regions", regions}, {"layout_views", views}, {"bokeh", bokeh}}
-              .dump(2) +
-          "\n");
+  // The Ghosts window's table and the class shown.
+  nlohmann::json ghosts;
+  if (const auto& found = st.ghosts.found) {
+    ghosts["classes"] = nlohmann::json::array();
+    for (const auto& c : found->table.classes) ghosts["classes"].push_back(c.expression);
+    ghosts["shown"] = st.ghosts.shown;
+    ghosts["render_shows_it"] = st.view.uploaded_ghost >= 0 && st.view.uploaded_ghost == st.ghosts.shown;
+  }
+  airr::write_file_atomic(path, nlohmann::json{{"width", fw},
+                                               {"height", fh},
+                                               {"regions", regions},
+                                               {"layout_views", views},
+                                               {"bokeh", bokeh},
+                                               {"ghosts", ghosts}}
+                                        .dump(2) +
+                                    "\n");
 }
 
 }  // namespace airr::ui

@@ -1,6 +1,7 @@
 #pragma once
 // The panels: what the user edits, one file each (panel_layout.cpp, panel_fit.cpp,
-// panel_optimise.cpp, panel_tolerance.cpp; design_windows.cpp runs the last two's jobs).
+// panel_optimise.cpp, panel_tolerance.cpp, panel_ghosts.cpp; design_windows.cpp runs the
+// optimise and tolerance jobs).
 #include <string>
 
 #include "airr/models/preset.hpp"
@@ -42,5 +43,22 @@ struct design_script {
 };
 // Advances the script by a frame: true while it needs more frames.
 bool run_design_script(studio& st, design_script& script);
+
+// The Ghosts window (panel_ghosts.cpp).
+void draw_ghosts_window(studio& st);
+// Finds the ghost table of the applied layout in the background (false with ghosts.error when the
+// layout or a typed expression is wrong).
+bool start_ghost_job(studio& st);
+// Takes a finished job's table into the window (draw_ghosts_window calls it); true when one ended.
+bool collect_ghost_job(studio& st);
+// A scripted run (airr-studio --ghosts [--ghost-class K]): the table found, printed, and class K
+// (from 1) shown.
+struct ghost_script {
+  bool run = false;
+  int show = 0;
+  bool started = false, finished = false;
+  std::string error;  // why it failed
+};
+bool run_ghost_script(studio& st, ghost_script& script);
 
 }  // namespace airr::ui

@@ -20,6 +20,7 @@
 #include "airr/ui/jobs/analysis_worker.hpp"
 #include "airr/ui/jobs/design_job.hpp"
 #include "airr/ui/jobs/fit_job.hpp"
+#include "airr/ui/jobs/ghost_job.hpp"
 #include "airr/ui/jobs/zone_job.hpp"
 #include "airr/ui/platform/file_dialog.hpp"
 #include "airr/ui/platform/gl_layout_renderer.hpp"
@@ -45,6 +46,7 @@ struct render_view_state {
   std::string uploaded_estimate;      // which (estimate_name)
   int component = -1;                 // the image component shown (tracer.hpp); -1: the whole image
   int uploaded_component = -1;
+  int uploaded_ghost = -1;  // the ghost class shown instead of the render (-1: none)
   float uploaded_exposure = -1;
   gl_texture texture;
 };
@@ -71,6 +73,30 @@ struct design_windows {
   std::optional<scene> ghost;                  // drawn in the layout views: the best so far, or the chosen trial
   std::optional<tolerance_result> tolerances;  // the last finished analysis, and its spec
   design_spec tolerance_spec;
+};
+
+// The Ghosts window: the ghost table of the applied layout and the class shown in the render
+// view (its image) and in the 3D and layout views (a few of its paths).
+struct ghost_window {
+  bool show = false;
+  int spp = 8;
+  std::string typed;                     // the expression being typed
+  std::vector<std::string> expressions;  // typed classes, measured besides the census's
+  std::unique_ptr<ghost_job> job;
+  std::optional<ghost_findings> found;
+  std::uint64_t found_generation = 0;  // the layout it was found for
+  int shown = -1;                      // index into found->table.classes; -1: none
+  std::string error;
+
+  // The shown class's image and paths (null when none is shown).
+  const image_rgb* shown_image() const {
+    return found && shown >= 0 && shown < int(found->table.classes.size())
+               ? &found->table.classes[std::size_t(shown)].image
+               : nullptr;
+  }
+  const std::vector<std::vector<glm::vec3>>* shown_paths() const {
+    return found && shown >= 0 && shown < int(found->paths.size()) ? &found->paths[std::size_t(shown)] : nullptr;
+  }
 };
 
 struct studio {
@@ -141,6 +167,7 @@ struct studio {
   } bokeh_shown;
 
   design_windows design;
+  ghost_window ghosts;
 
   // Crash recovery: unsaved edits are copied to config_dir()/recovery.json every few seconds.
   bool keep_recovery = true;  // off in scripted runs

@@ -8,6 +8,8 @@
 namespace airr::ui {
 
 void draw_render_view(studio& st, double now_seconds);
+// The colour the 3D and layout views draw the Ghosts window's class's paths in (magenta).
+inline constexpr glm::vec4 ghost_path_colour{1.0f, 0.0f, 1.0f, 1.0f};
 void draw_layout_view(studio& st);
 // The 3D layout view in the screen rectangle at `at` of `size` (inside the layout view's window).
 void draw_view_3d(studio& st, ImVec2 at, ImVec2 size);
