@@ -16,7 +16,6 @@
 #include "airr/layout/layout.hpp"
 #include "airr/measure/viewing_zone_full.hpp"
 #include "error_of.hpp"
-#include "plate_mesh.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -26,18 +25,8 @@ namespace {
 // The display seen in a mirror prop beside the aerial image (as in the ghost table's test), the
 // scene written to dir/scene.json.
 std::string mirror_scene(const test::temp_dir& dir) {
-  test::write_plate(test::plate(2, -60, -60, 60, -200, -80), dir.file("mirror.glb"));
-  scene s = test::uniform_source_scene(50, 48);
-  prop_params p;
-  p.name = "mirror";
-  p.mesh = dir.file("mirror.glb");
-  p.surface = prop_surface::mirror;
-  s.props.push_back(p);
-  s.observer.placement = observer_placement::look_at;
-  s.observer.position_mm = {0, 150, 410};
-  s.observer.look_at_mm = {0, -150, -120};
   const std::string path = dir.file("scene.json");
-  std::ofstream(path) << scene_to_json(s).dump(2);
+  std::ofstream(path) << scene_to_json(test::display_in_mirror_scene(dir, 48)).dump(2);
   return path;
 }
 

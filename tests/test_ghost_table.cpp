@@ -12,7 +12,6 @@
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/measure/ghost_table.hpp"
-#include "plate_mesh.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -37,19 +36,10 @@ bool mirror_shows_display(const glm::dvec3& eye, const glm::dvec3& d) {
 
 TEST(GhostTable, MirrorPropRanksFirstByPeakAndSelectsItsImage) {
   test::temp_dir dir;
-  test::write_plate(test::plate(2, -60, -60, 60, -200, -80), dir.file("mirror.glb"));
-  scene s = test::uniform_source_scene(50, 48);
+  scene s = test::display_in_mirror_scene(dir, 48);
   s.half_mirror.reflectance = 0.2;
   s.half_mirror.transmittance = 0.8;
-  prop_params p;
-  p.name = "mirror";
-  p.mesh = dir.file("mirror.glb");
-  p.surface = prop_surface::mirror;
-  p.albedo = {0.7, 0.7, 0.7};
-  s.props.push_back(p);
-  s.observer.placement = observer_placement::look_at;
-  s.observer.position_mm = {0, 150, 410};
-  s.observer.look_at_mm = {0, -150, -120};
+  s.props[0].albedo = {0.7, 0.7, 0.7};
   s.observer.fov_deg = 8;
   const ghost_table t = compute_ghost_table(s, {.census_spp = 2, .spp = 8, .top = 6, .threads = 2});
   ASSERT_FALSE(t.classes.empty());

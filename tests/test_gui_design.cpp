@@ -11,7 +11,6 @@
 #include "airr/core/assets.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "gui_test_support.hpp"
-#include "plate_mesh.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -88,16 +87,7 @@ TEST(GuiDesign, TheParetoFrontAndTheHistogramsArePlotted) {
 // none before.
 TEST(GuiDesign, TheGhostsWindowShowsAClassAndDrawsItsPaths) {
   test::temp_dir dir;
-  test::write_plate(test::plate(2, -60, -60, 60, -200, -80), dir.file("mirror.glb"));
-  scene s = test::uniform_source_scene(50, 96);
-  prop_params p;
-  p.name = "mirror";
-  p.mesh = dir.file("mirror.glb");
-  p.surface = prop_surface::mirror;
-  s.props.push_back(p);
-  s.observer.placement = observer_placement::look_at;
-  s.observer.position_mm = {0, 150, 410};
-  s.observer.look_at_mm = {0, -150, -120};
+  scene s = test::display_in_mirror_scene(dir, 96);
   s.observer.fov_deg = 30;
   std::ofstream(dir.file("scene.json")) << scene_to_json(s).dump(2);
 

@@ -14,6 +14,7 @@
 #include "airr/core/geometry.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
+#include "plate_mesh.hpp"
 
 namespace airr::test {
 
@@ -34,6 +35,20 @@ scene uniform_source_scene(double source_mm, int resolution) {
   s.source.image.clear();
   s.source.width_mm = s.source.height_mm = source_mm;
   s.observer.width = s.observer.height = resolution;
+  return s;
+}
+
+scene display_in_mirror_scene(const temp_dir& dir, int resolution) {
+  write_plate(plate(2, -60, -60, 60, -200, -80), dir.file("mirror.glb"));
+  scene s = uniform_source_scene(50, resolution);
+  prop_params p;
+  p.name = "mirror";
+  p.mesh = dir.file("mirror.glb");
+  p.surface = prop_surface::mirror;
+  s.props.push_back(p);
+  s.observer.placement = observer_placement::look_at;
+  s.observer.position_mm = {0, 150, 410};
+  s.observer.look_at_mm = {0, -150, -120};
   return s;
 }
 

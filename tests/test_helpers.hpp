@@ -50,6 +50,11 @@ struct temp_dir {
 // small camera image; valid without any scene file.
 scene uniform_source_scene(double source_mm, int resolution = 96);
 
+// uniform_source_scene(50, resolution) with a mirror prop (dir/mirror.glb, named "mirror": 120 x
+// 120 mm standing in z = -60 beside the display) that shows the display to the observer, placed
+// at (0, 150, 410) mm looking at (0, -150, -120).
+scene display_in_mirror_scene(const temp_dir& dir, int resolution);
+
 // The default scene (its chart on the display) at size x size pixels, its sheet the sinc-shift
 // model with the given preset, tilted to `tilt_deg` when given.
 scene chart_scene(const std::string& preset, int size, std::optional<double> tilt_deg = std::nullopt);

@@ -13,7 +13,6 @@
 #include "airr/render/ray_file.hpp"
 #include "airr/render/tracer.hpp"
 #include "error_of.hpp"
-#include "plate_mesh.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -23,16 +22,7 @@ namespace {
 // A small scene whose paths meet every kind of event: the half mirror both ways, the sheet, and a
 // mirror prop that shows the display to the observer.
 scene scene_with_mirror(const test::temp_dir& dir) {
-  test::write_plate(test::plate(2, -60, -60, 60, -200, -80), dir.file("mirror.glb"));
-  scene s = test::uniform_source_scene(50, 24);
-  prop_params p;
-  p.name = "mirror";
-  p.mesh = dir.file("mirror.glb");
-  p.surface = prop_surface::mirror;
-  s.props.push_back(p);
-  s.observer.placement = observer_placement::look_at;
-  s.observer.position_mm = {0, 150, 410};
-  s.observer.look_at_mm = {0, -150, -120};
+  scene s = test::display_in_mirror_scene(dir, 24);
   s.observer.fov_deg = 20;
   return s;
 }

@@ -42,6 +42,17 @@ void frame_eye_render(scene& eye, const part_frame& aerial, const full_zone_para
       degrees(2 * std::atan(reach / std::max(1.0, glm::length(observer_position(eye) - aerial.center))));
 }
 
+// The scene seen from `eye` (looking at the aerial image's centre) in the eye's render.
+scene seen_from(const scene& s, const glm::dvec3& eye, const full_zone_params& p) {
+  scene at = s;
+  const part_frame aerial = aerial_image_frame(s);
+  at.observer.placement = observer_placement::look_at;
+  at.observer.position_mm = {eye.x, eye.y, eye.z};
+  at.observer.look_at_mm = {aerial.center.x, aerial.center.y, aerial.center.z};
+  frame_eye_render(at, aerial, p);
+  return at;
+}
+
 // A small render of the aerial image from the eye, split into components: the aerial image and
 // everything else, averaged over the aerial image's outline as the eye sees it.
 eye_render render_from(tracer_scene& ts, const embree_device& device, const scene& eye_scene, const full_zone_params& p,
@@ -99,12 +110,7 @@ double display_luminance(const tracer_scene& ts) {
 }  // namespace
 
 double stray_light_ratio(const scene& s, const glm::dvec3& eye, const full_zone_params& p) {
-  scene at = s;
-  const part_frame aerial = aerial_image_frame(s);
-  at.observer.placement = observer_placement::look_at;
-  at.observer.position_mm = {eye.x, eye.y, eye.z};
-  at.observer.look_at_mm = {aerial.center.x, aerial.center.y, aerial.center.z};
-  frame_eye_render(at, aerial, p);
+  const scene at = seen_from(s, eye, p);
   tracer_scene ts;
   ts.use_model_image = false;
   ts.retro = make_sheet_models(s);
@@ -116,12 +122,7 @@ ghost_seen ghost_from_eye(const scene& s, const glm::dvec3& eye, const std::stri
                           const full_zone_params& p) {
   auto layers = std::make_shared<path_layers>();
   layers->layers.push_back({"ghost", path_expression::parse(expression).bound(s, true)});
-  scene at = s;
-  const part_frame aerial = aerial_image_frame(s);
-  at.observer.placement = observer_placement::look_at;
-  at.observer.position_mm = {eye.x, eye.y, eye.z};
-  at.observer.look_at_mm = {aerial.center.x, aerial.center.y, aerial.center.z};
-  frame_eye_render(at, aerial, p);
+  const scene at = seen_from(s, eye, p);
   tracer_scene ts;
   ts.use_model_image = false;
   ts.layers = layers;
