@@ -114,9 +114,13 @@ TEST(GhostTable, APlatesSecondSurfaceIsAClassOfItsOwnWhereTheGeometrySaysAndAsBr
   s.half_mirror.plate.front = {.kind = coating_kind::uncoated};
   derive_half_mirror_light(s.half_mirror);
   // The second face's paths are one in 40 of the reflected ones: 10,000 of them in the image.
-  // A class typed besides: every path that met the second face on the way to the sheet.
-  const ghost_table t = compute_ghost_table(
-      s, {.census_spp = 1, .spp = 256, .top = 6, .threads = 2, .expressions = {"D H:r1 S0:retro H:t E"}});
+  // Classes typed besides: every path that met the second face on the way to the sheet, and
+  // every path the sheet did not retroreflect (whose text names a retroreflection all the same).
+  const ghost_table t = compute_ghost_table(s, {.census_spp = 1,
+                                                .spp = 256,
+                                                .top = 6,
+                                                .threads = 2,
+                                                .expressions = {"D H:r1 S0:retro H:t E", "D [^S0:retro]* E"}});
   const auto light_of = [](const image_rgb& img) {
     double sum = 0;
     for (int y = 0; y < img.height; ++y)
@@ -137,6 +141,12 @@ TEST(GhostTable, APlatesSecondSurfaceIsAClassOfItsOwnWhereTheGeometrySaysAndAsBr
   const auto typed = std::find_if(t.classes.begin(), t.classes.end(), [](const ghost_class& g) { return g.typed; });
   ASSERT_NE(typed, t.classes.end());
   EXPECT_EQ(typed->expression, "D H:r1 S0:retro H:t E");
+  EXPECT_TRUE(typed->aerial);
+  const auto others = std::find_if(t.classes.begin(), t.classes.end(),
+                                   [](const ghost_class& g) { return g.expression == "D [^S0:retro]* E"; });
+  ASSERT_NE(others, t.classes.end());
+  EXPECT_TRUE(others->typed);
+  EXPECT_FALSE(others->aerial);
   // It holds the second face's class and its return through the plate's other orders.
   EXPECT_GE(light_of(typed->image), light_of(second->image));
   EXPECT_LT(light_of(typed->image), 1.2 * light_of(second->image));

@@ -81,6 +81,35 @@ TEST(Gui, TheRenderViewShowsOneComponent) {
   EXPECT_LT(mean[1], 25.0);
 }
 
+// The luminance view: a 500 cd/m2 white display on the ideal bench makes an aerial image of
+// L R T = 125 cd/m2, the top of the scale at 0 EV (viridis' yellow), on a black surround (its
+// purple); the scale bar beside the image, labelled in cd/m2.
+TEST(Gui, TheLuminanceViewShowsCdPerM2InFalseColour) {
+  test::temp_dir dir;
+  const std::string shot = dir.file("luminance.png");
+  const studio_run run = run_studio(dir, asset_dir() +
+                                             "/scenes/ideal_bench.json --set source.image= --set "
+                                             "source.luminance_cd_m2=500 --luminance-view --frames 30 --screenshot " +
+                                             shot);
+  ASSERT_EQ(run.status, 0) << run.log;
+  const rgb8_image img = read_png(shot);
+  ASSERT_GT(img.width, 0) << "no screenshot: " << run.log;
+  const auto notes = nlohmann::json::parse(std::ifstream(shot + ".json"));
+  EXPECT_EQ(notes["render_view"]["units"], "cd/m2");
+  EXPECT_EQ(notes["render_view"]["luminance_view"], true);
+  EXPECT_NEAR(notes["render_view"]["scale_top"].get<double>(), 125, 1e-3);
+  const auto aerial = region(notes, "render_aerial_image");
+  const int area = (aerial[2] - aerial[0]) * (aerial[3] - aerial[1]);
+  const int yellow = curve_pixels(img, aerial, {253, 231, 37});
+  std::printf("luminance view: %d of the aerial image's %d pixels at the scale's top\n", yellow, area);
+  EXPECT_GT(yellow, area / 2);
+  const auto image = region(notes, "render_image");
+  EXPECT_GT(curve_pixels(img, image, {68, 1, 84}), area / 2) << "the black surround at the scale's bottom";
+  const auto scale = region(notes, "luminance_scale");
+  EXPECT_GT(curve_pixels(img, scale, {253, 231, 37}), 20);
+  EXPECT_GT(curve_pixels(img, scale, {68, 1, 84}), 20);
+}
+
 // The viewing zone's full pass from the designer (scripted: it runs to its end before the
 // screenshot): the brightness map is 1 (viridis' top) at the best eyes and grey where nothing is seen.
 TEST(Gui, TheFullViewingZoneShowsBrightness) {

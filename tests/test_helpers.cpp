@@ -14,6 +14,7 @@
 #include "airr/core/geometry.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
+#include "airr/render/tracer.hpp"
 #include "plate_mesh.hpp"
 
 namespace airr::test {
@@ -115,6 +116,25 @@ double centre_mean(const render_snapshot& snap, int half, int channel) {
   for (int y = snap.height / 2 - half; y < snap.height / 2 + half; ++y) {
     for (int x = snap.width / 2 - half; x < snap.width / 2 + half; ++x) {
       sum += (*snap.rgb)[3 * (std::size_t(y) * snap.width + x) + std::size_t(channel)];
+      ++n;
+    }
+  }
+  return sum / n;
+}
+
+double traced_aerial_at_centre(const scene& s, std::uint64_t spp, int half) {
+  render_session session(s, {.threads = 2, .target_spp = spp, .components = true});
+  const render_snapshot snap = session.wait_for(0, spp);
+  EXPECT_TRUE(snap.components);
+  if (!snap.components) return 0;
+  // The pixel corner nearest the projected centre (which may fall a rounding error short of one).
+  const glm::dvec2 c = camera_project(make_camera(s), aerial_image_center(s));
+  const int cx = int(std::lround(c.x)), cy = int(std::lround(c.y));
+  double sum = 0;
+  int n = 0;
+  for (int y = cy - half; y < cy + half; ++y) {
+    for (int x = cx - half; x < cx + half; ++x) {
+      sum += (*snap.components)[3 * (component_count * (std::size_t(y) * snap.width + x) + component_aerial) + 1];
       ++n;
     }
   }

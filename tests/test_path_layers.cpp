@@ -291,9 +291,10 @@ TEST(PathLayers, APartitionAddsUpToTheWholeImage) {
 TEST(PathLayers, LayerArgumentsAreChecked) {
   const scene s = looking_down();
   EXPECT_EQ(parse_layer_arguments({"a=D .* E", "b=D H:t E"}, s).layers.size(), 2u);
-  const auto says = [&](const std::vector<std::string>& args, const std::string& what) {
+  const auto says = [&](const std::vector<std::string>& args, const std::string& what,
+                        const std::vector<std::string>& taken = {}) {
     try {
-      parse_layer_arguments(args, s);
+      parse_layer_arguments(args, s, taken);
       ADD_FAILURE() << "accepted " << args.front();
     } catch (const input_error& e) {
       EXPECT_NE(std::string(e.what()).find(what), std::string::npos) << e.what();
@@ -305,6 +306,17 @@ TEST(PathLayers, LayerArgumentsAreChecked) {
   says({"unmatched=D E"}, "'unmatched' names the paths");
   says({"a=D (E"}, "at character 3");
   says({"a=D P:lid E"}, "no prop named 'lid'");
+  says({"rest=D E"}, "rest names another of the render's outputs", {"aerial", "direct", "reflection", "rest"});
+  EXPECT_EQ(parse_layer_arguments({"rest=D E"}, s).layers.size(), 1u);
+  // The command line's outputs: the components with --components, the Stokes images with --stokes.
+  test::temp_dir dir;
+  const std::string scene = test::scene_file(dir, [](nlohmann::json& j) { j["observer"]["width"] = 8; });
+  const std::string out = dir.file("taken.exr");
+  test::expect_one_line_error(test::run_cli("render " + scene + " -o " + out + " --components --layer 'direct=D E'"),
+                              {"--layer 'direct=D E'", "another of the render's outputs"});
+  test::expect_one_line_error(test::run_cli("render " + scene + " -o " + out + " --stokes --layer 'dop=D E'"),
+                              {"--layer 'dop=D E'", "another of the render's outputs"});
+  EXPECT_FALSE(std::filesystem::exists(out));
 }
 
 TEST(PathLayers, RenderWritesEachLayerWithItsExpression) {

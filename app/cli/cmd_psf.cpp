@@ -159,6 +159,10 @@ void add_psf_command(CLI::App& app) {
       std::printf("MTF50: not reached (MTF stays above 0.5 up to %g lp/mm)\n", pixel_mm > 0 ? 1.0 / pixel_mm : 4.0);
     std::printf("brightness: %.6g (aerial radiance per unit source radiance%s)\n", psf.brightness(),
                 psf.sheets.size() > 1 ? "; the sum of the sheets'" : "");
+    if (airr::in_cd_m2(s.source)) {
+      std::printf("aerial image luminance: %.6g cd/m2 (the display's white at %.6g cd/m2)\n",
+                  psf.brightness() * s.source.luminance_cd_m2, s.source.luminance_cd_m2);
+    }
     std::printf("samples: %llu launched, %zu reach the source plane\n", static_cast<unsigned long long>(psf.launched),
                 psf.offset_mm.size());
     std::printf("time: %.3f s (sampling %.3f s, %d-point MTF curve %.3f s, mean MTF, MTF50 and radius %.3f s)\n",

@@ -104,13 +104,11 @@ void add_render_command(CLI::App& app) {
     std::shared_ptr<const airr::path_layers> path_layers;
     if (!opt->layers.empty()) {
       if (!opt->out.ends_with(".exr")) throw airr::input_error(opt->out + ": --layer needs an EXR output (layers)");
-      path_layers = std::make_shared<const airr::path_layers>(airr::parse_layer_arguments(opt->layers, s));
-      for (const auto& l : path_layers->layers) {
-        for (const char* name : {"aerial", "direct", "reflection", "rest", "S0", "S1", "S2", "S3", "dop"}) {
-          if (l.name == name && (opt->components || opt->stokes))
-            throw airr::input_error("--layer " + l.name + ": that name is taken by --components or --stokes");
-        }
-      }
+      std::vector<std::string> taken;
+      if (opt->components) taken.assign(std::begin(airr::component_names), std::end(airr::component_names));
+      if (opt->stokes)
+        taken.insert(taken.end(), std::begin(airr::stokes_layer_names), std::end(airr::stokes_layer_names));
+      path_layers = std::make_shared<const airr::path_layers>(airr::parse_layer_arguments(opt->layers, s, taken));
     }
     std::optional<airr::shard_index> shard;  // this process's rows go to a shard file
     airr::session_params params{
@@ -198,8 +196,8 @@ void add_render_command(CLI::App& app) {
         stokes_bar.update((i + double(spp) / double(opt->spp)) / 4, "S" + std::to_string(i));
       });
       stokes_bar.finish();
-      for (int i = 0; i < 4; ++i) layers.push_back({"S" + std::to_string(i), &stokes.s[std::size_t(i)]});
-      layers.push_back({"dop", &stokes.degree});
+      for (int i = 0; i < 4; ++i) layers.push_back({airr::stokes_layer_names[i], &stokes.s[std::size_t(i)]});
+      layers.push_back({airr::stokes_layer_names[4], &stokes.degree});
     }
     airr::write_image(opt->out, image, meta, exposure, layers);
     std::fprintf(stderr, "wrote %s (%dx%d, %llu spp, %.6g mm/pixel)\n", opt->out.c_str(), snap.width, snap.height,

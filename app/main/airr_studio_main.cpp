@@ -43,6 +43,7 @@ struct options {
   std::vector<std::string> edits;  // applied as one designer edit after the scripted frames
   double screenshot_after = -1;    // with edits: seconds after the edit (0: its first image)
   std::string component;           // the render view shows this component (empty: the whole image)
+  bool luminance_view = false;     // the render view shows luminance in false colour
   std::string plots = "mtf";       // the Plots window's tab
   std::string zone;                // the viewing zone's quantity; a full one is computed before the screenshot
   std::string design;              // a design spec for the Optimise and Tolerance windows
@@ -129,6 +130,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"mtf", "bokeh"}));
   cli.add_option("--component", opt.component, "The render view shows one component of the image")
       ->check(CLI::IsMember({"aerial", "direct", "reflection", "rest"}));
+  cli.add_flag("--luminance-view", opt.luminance_view,
+               "The render view shows luminance in false colour with its scale");
   cli.add_option("--soak", opt.soak.seconds, "Run the designer's soak cycle this many seconds, then exit")
       ->check(CLI::Range(1.0, 1e6));
   cli.add_option("--soak-log", opt.soak.log, "With --soak: the samples as CSV (default soak.csv)");
@@ -214,6 +217,7 @@ int main(int argc, char** argv) {
   for (int k = 0; k < airr::component_count; ++k) {
     if (opt.component == airr::component_names[k]) st.view.component = k;
   }
+  st.view.luminance = opt.luminance_view;
   st.plots_tab = opt.plots == "bokeh" ? 1 : 0;
   st.select_plots_tab = true;
   const char* const zone_quantities[] = {"visible", "brightness", "mtf", "stray"};

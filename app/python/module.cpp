@@ -77,6 +77,10 @@ and leaves the scene as it was.)")
           "to count from the new file's folder, which is then the scene's file.")
       .def_property_readonly("path", &py_scene::path, "The file the scene was read from (or last saved to).")
       .def_property_readonly(
+          "units", [](const py_scene& s) { return std::string(image_units(s.current().source)); },
+          "The units of the scene's images: \"cd/m2\" when source.luminance_cd_m2 is set, else \"relative\" "
+          "(radiance in units of source.intensity).")
+      .def_property_readonly(
           "overrides",
           [](const py_scene& s) {
             py::list out;

@@ -58,6 +58,8 @@ py::dict psf(const py_scene& ps, std::uint64_t samples, bool pixel, double max_l
     out["mean_mtf"] = m.mean_mtf;
     out["mtf50_lp_per_mm"] = m.mtf50_lp_per_mm ? py::object(py::float_(*m.mtf50_lp_per_mm)) : py::none();
     out["brightness"] = p.brightness();
+    out["luminance_cd_m2"] =
+        in_cd_m2(s.source) ? py::object(py::float_(p.brightness() * s.source.luminance_cd_m2)) : py::none();
     out["launched"] = p.launched;
     out["reached"] = p.offset_mm.size();
     cv::Mat density(grid.size, grid.size, CV_64FC1, const_cast<double*>(grid.density.data()));
@@ -188,7 +190,8 @@ void add_measure_functions(py::module_& m) {
 Returns a dict: "lp_per_mm" and "mtf" (the MTF curve, float64 arrays, with the camera pixel's
 aperture unless pixel=False), "pixel_mm", "r50_mm" (50%-energy radius), "mean_mtf" (over (0, 1]
 lp/mm), "mtf50_lp_per_mm" (None when the MTF stays above 0.5), "brightness" (aerial radiance per
-unit source radiance), "launched" and "reached" (samples), and the 2D PSF: "image", an
+unit source radiance), "luminance_cd_m2" (the aerial image's luminance, brightness times the
+display's source.luminance_cd_m2; None in relative units), "launched" and "reached" (samples), and the 2D PSF: "image", an
 image_pixels x image_pixels float64 array of density per mm^2 (x right, y up, row 0 the top; it
 integrates to the brightness that falls inside it), "image_mm_per_pixel" (the picture spans
 extent_mm either side of the ideal point; default the square holding 99.8% of the PSF).)");

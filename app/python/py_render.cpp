@@ -39,11 +39,11 @@ py::object render(const py_scene& ps, std::uint64_t spp, std::optional<std::uint
     std::vector<std::string> arguments;
     for (const auto& [name, expression] : *layers) {
       const std::string n = py::str(name), e = py::str(expression);
-      if (components && (n == "aerial" || n == "direct" || n == "reflection" || n == "rest"))
-        throw input_error("render: the layer " + n + " is named as a component");
       arguments.push_back(n + "=" + e);
     }
-    path_layers = std::make_shared<const airr::path_layers>(parse_layer_arguments(arguments, s));
+    std::vector<std::string> taken;
+    if (components) taken.assign(std::begin(component_names), std::end(component_names));
+    path_layers = std::make_shared<const airr::path_layers>(parse_layer_arguments(arguments, s, taken));
   }
   python_job job(std::move(progress));
   render_snapshot snap;

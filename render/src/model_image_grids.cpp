@@ -19,7 +19,7 @@ cv::Mat display_texels(const scene& s, const image_rgb* display, int max_texels)
     const double longer = std::max(src.width, src.height);
     m = cv::Mat(std::max(1, int(std::lround(max_texels * src.height / longer))),
                 std::max(1, int(std::lround(max_texels * src.width / longer))), CV_32FC3,
-                cv::Scalar::all(s.source.intensity));
+                cv::Scalar::all(white_radiance(s.source)));
   }
   const int longer = std::max(m.cols, m.rows);
   if (longer > max_texels) {
@@ -32,7 +32,7 @@ cv::Mat display_texels(const scene& s, const image_rgb* display, int max_texels)
   if (display) {
     // Into a new matrix: `m` may still be the caller's texture itself.
     cv::Mat scaled;
-    m.convertTo(scaled, CV_32F, s.source.intensity);
+    m.convertTo(scaled, CV_32F, white_radiance(s.source));
     return scaled;
   }
   return m;

@@ -1,5 +1,6 @@
 #include "airr/render/path_expression.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <set>
 
@@ -332,7 +333,8 @@ path_layers component_layers() {
   return out;
 }
 
-path_layers parse_layer_arguments(const std::vector<std::string>& arguments, const scene& s) {
+path_layers parse_layer_arguments(const std::vector<std::string>& arguments, const scene& s,
+                                  const std::vector<std::string>& taken) {
   path_layers out;
   std::set<std::string> names;
   for (const auto& a : arguments) {
@@ -343,6 +345,8 @@ path_layers parse_layer_arguments(const std::vector<std::string>& arguments, con
         name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") != std::string::npos)
       throw input_error("--layer '" + a + "': a layer's name is letters, digits, '_' and '-'");
     if (name == "unmatched") throw input_error("--layer '" + a + "': 'unmatched' names the paths no layer selects");
+    if (std::find(taken.begin(), taken.end(), name) != taken.end())
+      throw input_error("--layer '" + a + "': " + name + " names another of the render's outputs");
     if (!names.insert(name).second) throw input_error("--layer '" + a + "': the layer " + name + " is named twice");
     if (out.layers.size() >= std::size_t(max_path_layers))
       throw input_error("--layer: at most " + std::to_string(max_path_layers) + " layers");

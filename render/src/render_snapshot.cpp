@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "airr/render/interleaved_image.hpp"
 #include "airr/render/render_session.hpp"
 
 namespace airr {
@@ -20,27 +21,13 @@ image_rgb render_snapshot::image() const {
 }
 
 image_rgb render_snapshot::component_image(int component) const {
-  image_rgb img;
-  if (!components || component < 0 || component >= component_count) return img;
-  img.width = width;
-  img.height = height;
-  img.rgb.resize(std::size_t(width) * height * 3);
-  for (std::size_t i = 0; i < std::size_t(width) * height; ++i) {
-    std::copy_n(components->data() + 3 * (component_count * i + std::size_t(component)), 3, img.rgb.data() + 3 * i);
-  }
-  return img;
+  if (!components || component < 0 || component >= component_count) return {};
+  return interleaved_image(components->data(), width, height, component_count, std::size_t(component));
 }
 
 image_rgb render_snapshot::layer_image(std::size_t k) const {
-  image_rgb img;
-  const std::size_t n = layer_names.size();
-  if (!layers || k >= n) return img;
-  img.width = width;
-  img.height = height;
-  img.rgb.resize(std::size_t(width) * height * 3);
-  for (std::size_t i = 0; i < std::size_t(width) * height; ++i)
-    std::copy_n(layers->data() + 3 * (n * i + k), 3, img.rgb.data() + 3 * i);
-  return img;
+  if (!layers || k >= layer_names.size()) return {};
+  return interleaved_image(layers->data(), width, height, layer_names.size(), k);
 }
 
 std::vector<image_rgb> render_snapshot::component_images() const {

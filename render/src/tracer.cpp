@@ -97,7 +97,7 @@ void update_model_image(tracer_scene& ts, const std::atomic<bool>* cancel, bool 
 static glm::vec3 source_radiance(const tracer_scene& ts, const glm::dvec2& local) {
   const part_frame& f = ts.source_area;
   if (!inside_part(f, local)) return glm::vec3(0.0f);
-  const float intensity = float(ts.layout.source.intensity);
+  const float intensity = float(white_radiance(ts.layout.source));
   if (!ts.texture) return glm::vec3(intensity);
   const image_rgb& img = *ts.texture;
   const double s = (local.x / f.width + 0.5) * img.width - 0.5;

@@ -198,7 +198,7 @@ struct layer_sink {
     std::uint64_t selected = 0;
   };
   std::array<remembered, 64> seen{};
-  std::map<std::string, glm::dvec3>* census = nullptr;  // every label's light, when kept
+  std::map<std::string, census_class>* census = nullptr;  // every label's light, when kept
   // The paths layer 0 selects, when kept; the pixel and the sample being traced.
   ray_record* record = nullptr;
   std::uint64_t segment_limit = 0;
@@ -207,7 +207,11 @@ struct layer_sink {
 
   // The layers selecting `l`, as path_layers::select.
   std::uint64_t add(const path_label& l, const glm::vec3& L) {
-    if (census) (*census)[label_text(l)] += glm::dvec3(L);
+    if (census) {
+      census_class& c = (*census)[label_text(l)];
+      c.label = l;
+      c.light += glm::dvec3(L);
+    }
     std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the events
     for (int i = 0; i < l.count; ++i) {
       const path_event& e = l.events[std::size_t(i)];

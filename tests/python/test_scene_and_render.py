@@ -40,6 +40,19 @@ def test_path_expression_layers_partition_the_image(small_scene):
     assert parts["aerial0"].max() > 0 and parts["unmatched"].max() == 0
     with pytest.raises(ValueError, match="at character 5"):
         airr.render(small_scene, spp=1, layers={"x": "D H:q E"})
+    with pytest.raises(ValueError, match="aerial names another of the render's outputs"):
+        airr.render(small_scene, spp=1, components=True, layers={"aerial": "D .* E"})
+
+
+def test_a_display_luminance_puts_the_images_in_cd_per_m2(small_scene):
+    assert small_scene.units == "relative"
+    assert airr.psf(small_scene, samples=2000)["luminance_cd_m2"] is None
+    small_scene.set("source.luminance_cd_m2", 500)
+    assert small_scene.units == "cd/m2"
+    p = airr.psf(small_scene, samples=2000)
+    assert p["luminance_cd_m2"] == pytest.approx(500 * p["brightness"], rel=1e-12)
+    with pytest.raises(ValueError, match="source.luminance_cd_m2"):
+        small_scene.set("source.luminance_cd_m2", -1)
 
 
 BAD_SETS = [

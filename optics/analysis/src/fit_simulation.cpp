@@ -147,7 +147,7 @@ cv::Mat white_square_image(const scene& s, const psf_samples& psf, double width_
     }
   }
   cv::Mat img(H, W, CV_64FC1, cv::Scalar(0));
-  const double scale = psf.launched ? s.source.intensity / double(psf.launched) : 0.0;
+  const double scale = psf.launched ? white_radiance(s.source) / double(psf.launched) : 0.0;
   for (int j = 0; j < H; ++j) {
     double* out = img.ptr<double>(j);
     for (int my = 0; my < kh; ++my) {

@@ -112,6 +112,7 @@ void validate_scene(const scene& s, const std::string& origin) {
   const checker c{origin};
   c.part("source", s.source);
   c.range("source.intensity", s.source.intensity, 0, 1e9);
+  c.range("source.luminance_cd_m2", s.source.luminance_cd_m2, 0, 1e9);
   c.range("source.bezel_mm", s.source.bezel_mm, 0, 1e4);
   c.range("source.polarization.angle_deg", s.source.polarization.angle_deg, -360, 360);
   c.part("half_mirror", s.half_mirror);

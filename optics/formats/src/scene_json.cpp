@@ -83,6 +83,7 @@ json scene_to_json(const scene& s, json_form form) {
   json src = part_to_json(s.source);
   src["image"] = s.source.image;
   src["intensity"] = s.source.intensity;
+  if (form == json_form::complete || in_cd_m2(s.source)) src["luminance_cd_m2"] = s.source.luminance_cd_m2;
   src["emission_profile"] = s.source.emission_profile;
   src["bezel_mm"] = s.source.bezel_mm;
   if (form == json_form::complete || s.source.polarization != source_polarization{})
@@ -219,6 +220,7 @@ static scene scene_from_json_v2(json_reader& r) {
     read_part(c, s.source);
     c.string("image", s.source.image);
     c.number("intensity", s.source.intensity);
+    c.number("luminance_cd_m2", s.source.luminance_cd_m2);
     c.string("emission_profile", s.source.emission_profile);
     c.number("bezel_mm", s.source.bezel_mm);
     if (c.has("polarization")) read_polarization(c.child("polarization"), s.source.polarization);

@@ -7,6 +7,9 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
@@ -28,27 +31,31 @@ namespace airr {
 
 namespace {
 
-// The eye metrics of one layout at one eye, each worked out once when first asked for.
+// The eye metrics of one layout at one eye, each worked out once when first asked for; the
+// stray-light ratio and every ghost metric from one small render.
 class eye_metrics {
  public:
-  // `parts`: the layout's viewing parts, when a visible fraction is asked for.
-  eye_metrics(const design_spec& spec, const scene& s, const glm::dvec3& eye, const viewing_parts* parts)
-      : spec_(spec), s_(observer_at(s, eye)), eye_(eye), parts_(parts) {}
+  // `parts`: the layout's viewing parts, when a visible fraction is asked for; `expressions`: the
+  // ghost metrics' (each once).
+  eye_metrics(const design_spec& spec, const scene& s, const glm::dvec3& eye, const viewing_parts* parts,
+              std::vector<std::string> expressions)
+      : spec_(spec), s_(observer_at(s, eye)), eye_(eye), parts_(parts), expressions_(std::move(expressions)) {}
 
   double value(design_metric m, const std::string& expression) {
     if (m == design_metric::visible_fraction) return visible_fraction(*parts_, eye_);
+    const double inf = std::numeric_limits<double>::infinity();
     if (metric_takes_expression(m)) {
-      auto it = ghosts_.find(expression);
-      if (it == ghosts_.end()) it = ghosts_.emplace(expression, ghost_from_eye(s_, eye_, expression)).first;
+      const auto at = std::find(expressions_.begin(), expressions_.end(), expression);
+      if (at == expressions_.end()) throw std::logic_error("eye_metrics: an expression it was not given");
+      const ghost_seen& g = view().ghosts[std::size_t(at - expressions_.begin())];
       // Unseen: no aerial image to spoil (the ratio's worst), or no ghost to be near it (the
       // separation's best).
-      const double inf = std::numeric_limits<double>::infinity();
-      if (m == design_metric::ghost_ratio) return std::isnan(it->second.ratio) ? inf : it->second.ratio;
-      return std::isnan(it->second.separation_arcmin) ? inf : it->second.separation_arcmin;
+      if (m == design_metric::ghost_ratio) return std::isnan(g.ratio) ? inf : g.ratio;
+      return std::isnan(g.separation_arcmin) ? inf : g.separation_arcmin;
     }
     if (m == design_metric::stray_light) {
-      const double r = stray_light_ratio(s_, eye_);
-      return std::isnan(r) ? std::numeric_limits<double>::infinity() : r;  // none of the aerial image seen
+      const double r = view().stray_ratio;
+      return std::isnan(r) ? inf : r;  // none of the aerial image seen
     }
     const psf_samples& p = psf();
     switch (m) {
@@ -74,6 +81,10 @@ class eye_metrics {
     if (!mtf_) mtf_ = psf_route_mtf(psf(), 0.0);
     return *mtf_;
   }
+  const eye_view_metrics& view() {
+    if (!view_) view_ = eye_view_from(s_, eye_, expressions_);
+    return *view_;
+  }
 
   const design_spec& spec_;
   scene s_;
@@ -81,7 +92,8 @@ class eye_metrics {
   const viewing_parts* parts_;
   std::optional<psf_samples> psf_;
   std::optional<mtf_summary> mtf_;
-  std::map<std::string, ghost_seen> ghosts_;
+  std::vector<std::string> expressions_;
+  std::optional<eye_view_metrics> view_;
 };
 
 // A metric as a spec asks for it: with its path expression, for the ghost metrics.
@@ -211,10 +223,15 @@ design_evaluation evaluate_design(const design_spec& spec, const scene& s) {
   if (std::any_of(asked.begin(), asked.end(),
                   [](const asked_metric& m) { return m.metric == design_metric::visible_fraction; }))
     parts.emplace(s, scene_prop_hits(s));
+  std::vector<std::string> expressions;  // the ghost metrics', each once
+  for (const asked_metric& m : asked)
+    if (metric_takes_expression(m.metric) &&
+        std::find(expressions.begin(), expressions.end(), m.expression) == expressions.end())
+      expressions.push_back(m.expression);
   const std::vector<glm::dvec3> eyes = design_eyes(spec);
   std::vector<std::map<asked_metric, double>> at_eye(eyes.size());
   tbb::parallel_for(std::size_t(0), eyes.size(), [&](std::size_t i) {
-    eye_metrics e(spec, s, eyes[i], parts ? &*parts : nullptr);
+    eye_metrics e(spec, s, eyes[i], parts ? &*parts : nullptr, expressions);
     for (const asked_metric& m : asked) at_eye[i][m] = e.value(m.metric, m.expression);
   });
   const glm::dvec3 size = device_size_mm(s);

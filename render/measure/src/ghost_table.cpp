@@ -25,21 +25,36 @@ namespace {
 double luminance(const float* v) { return rec709_luminance(v[0], v[1], v[2]); }
 
 // The census: every label's light over the observer's image, at p.census_spp.
-std::map<std::string, glm::dvec3> census(const scene& s, const ghost_params& p) {
+std::map<std::string, census_class> census(const scene& s, const ghost_params& p) {
   embree_device device;
   tracer_scene ts;
   build_tracer_scene(ts, device, s);
-  std::map<std::string, glm::dvec3> all;
+  std::map<std::string, census_class> all;
   std::mutex m;
   const std::atomic<bool> never{false};
   detail::parallel_rows(ts.camera.height, p.threads, [&](int y0, int y1) {
-    std::map<std::string, glm::dvec3> mine;
+    std::map<std::string, census_class> mine;
     std::uint64_t rays = 0;
     census_rows(ts, y0, y1, 0, p.census_spp, mine, p.cancel ? *p.cancel : never, rays);
     std::lock_guard lock(m);
-    for (const auto& [label, light] : mine) all[label] += light;
+    for (const auto& [text, c] : mine) {
+      all[text].label = c.label;
+      all[text].light += c.light;
+    }
   });
   return all;
+}
+
+// Whether a typed expression's paths are retroreflected: every label of the census it selects
+// is, and it selects one.
+bool retroreflected_class(const path_expression& e, const std::map<std::string, census_class>& seen) {
+  bool any = false;
+  for (const auto& [text, c] : seen) {
+    if (!e.matches(c.label)) continue;
+    if (!retroreflected(c.label)) return false;
+    any = true;
+  }
+  return any;
 }
 
 // The observer moved `offset` mm along its camera's right, still aimed at its target, so that
@@ -100,13 +115,13 @@ ghost_table compute_ghost_table(const scene& s, const ghost_params& p,
     if (progress) progress(stage, f);
   };
   say("census", 0);
-  const std::map<std::string, glm::dvec3> light = census(s, p);
+  const std::map<std::string, census_class> seen = census(s, p);
   ghost_table t;
-  t.labels_seen = light.size();
+  t.labels_seen = seen.size();
   std::vector<std::pair<double, std::string>> ranked;
   double all = 0;
-  for (const auto& [label, rgb] : light) {
-    const double l = rec709_luminance(rgb.x, rgb.y, rgb.z);
+  for (const auto& [label, c] : seen) {
+    const double l = rec709_luminance(c.light.x, c.light.y, c.light.z);
     all += l;
     ranked.push_back({l, label});
   }
@@ -120,11 +135,13 @@ ghost_table compute_ghost_table(const scene& s, const ghost_params& p,
   // Each class a layer; the brightest retroreflected one is the aerial image the others are
   // placed against.
   auto layers = std::make_shared<path_layers>();
+  std::vector<bool> retro(ranked.size());
   std::size_t aerial_layer = ranked.size();
   for (std::size_t i = 0; i < ranked.size(); ++i) {
     layers->layers.push_back({"c" + std::to_string(i), path_expression::parse(ranked[i].second).bound(s, true)});
-    if (aerial_layer == ranked.size() && i < found && ranked[i].second.find(":retro") != std::string::npos)
-      aerial_layer = i;
+    retro[i] = i < found ? retroreflected(seen.at(ranked[i].second).label)
+                         : retroreflected_class(layers->layers.back().expression, seen);
+    if (aerial_layer == ranked.size() && i < found && retro[i]) aerial_layer = i;
   }
 
   const double b = p.baseline_mm;
@@ -159,7 +176,7 @@ ghost_table compute_ghost_table(const scene& s, const ghost_params& p,
   for (std::size_t i = 0; i < ranked.size(); ++i) {
     ghost_class g;
     g.expression = ranked[i].second;
-    g.aerial = g.expression.find(":retro") != std::string::npos;
+    g.aerial = retro[i];
     g.typed = i >= found;
     g.census_share = all > 0 ? ranked[i].first / all : 0;
     g.image = centre.snap.layer_image(i);

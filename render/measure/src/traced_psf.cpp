@@ -121,7 +121,7 @@ traced_psf trace_psf(const scene& base, int size, double mm_per_pixel, const tra
   out.grid.size = size;
   out.grid.mm_per_pixel = mm_per_pixel;
   out.grid.density.assign(std::size_t(size) * size, 0.0);
-  const double per_radiance = 1.0 / (s.source.intensity * out.disc_area_mm2);
+  const double per_radiance = 1.0 / (white_radiance(s.source) * out.disc_area_mm2);
   for (std::size_t i = 0; i < out.grid.density.size(); ++i) out.grid.density[i] = sums[i] * per_radiance;
   out.spp = p.spp;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -15,6 +15,7 @@
 #include "airr/layout/sheet_models.hpp"
 #include "airr/measure/aerial_outline.hpp"
 #include "airr/measure/mtf_routes.hpp"
+#include "airr/render/interleaved_image.hpp"
 #include "airr/render/memory_need.hpp"
 #include "airr/render/parallel_rows.hpp"
 #include "airr/render/path_expression.hpp"
@@ -53,18 +54,10 @@ scene seen_from(const scene& s, const glm::dvec3& eye, const full_zone_params& p
   return at;
 }
 
-// A small render of the aerial image from the eye, split into components: the aerial image and
-// everything else, averaged over the aerial image's outline as the eye sees it.
-eye_render render_from(tracer_scene& ts, const embree_device& device, const scene& eye_scene, const full_zone_params& p,
-                       const std::atomic<bool>* cancel) {
-  build_tracer_scene(ts, device, eye_scene, ts.retro);
-  const pinhole_camera& cam = ts.camera;
-  const std::array<glm::dvec2, 4> outline = aerial_outline(eye_scene, cam);
+// The components' mean luminance per sample over the aerial image's outline as the eye sees it.
+eye_render outline_means(const std::vector<double>& components, const pinhole_camera& cam,
+                         const std::array<glm::dvec2, 4>& outline, std::uint64_t spp) {
   const int w = cam.width, h = cam.height;
-  std::vector<double> sums(std::size_t(w) * h * 3, 0.0), components(component_count * sums.size(), 0.0);
-  const std::atomic<bool> never{false};
-  std::uint64_t rays = 0;
-  trace_rows(ts, 0, h, 0, p.render_spp, sums, cancel ? *cancel : never, rays, nullptr, &components);
   eye_render out;
   int inside = 0;
   for (int y = 0; y < h; ++y) {
@@ -81,7 +74,7 @@ eye_render render_from(tracer_scene& ts, const embree_device& device, const scen
       out.direct += luminance(component_direct);
     }
   }
-  const double n = double(inside) * double(p.render_spp);
+  const double n = double(inside) * double(spp);
   if (n > 0) {
     out.aerial /= n;
     out.stray /= n;
@@ -90,7 +83,20 @@ eye_render render_from(tracer_scene& ts, const embree_device& device, const scen
   return out;
 }
 
-// The luminance of the display's emitting area, face on: its intensity times its image's mean.
+// A small render of the aerial image from the eye, split into components: the aerial image and
+// everything else, averaged over the aerial image's outline as the eye sees it.
+eye_render render_from(tracer_scene& ts, const embree_device& device, const scene& eye_scene, const full_zone_params& p,
+                       const std::atomic<bool>* cancel) {
+  build_tracer_scene(ts, device, eye_scene, ts.retro);
+  const int w = ts.camera.width, h = ts.camera.height;
+  std::vector<double> sums(std::size_t(w) * h * 3, 0.0), components(component_count * sums.size(), 0.0);
+  const std::atomic<bool> never{false};
+  std::uint64_t rays = 0;
+  trace_rows(ts, 0, h, 0, p.render_spp, sums, cancel ? *cancel : never, rays, nullptr, &components);
+  return outline_means(components, ts.camera, aerial_outline(eye_scene, ts.camera), p.render_spp);
+}
+
+// The luminance of the display's emitting area, face on: its white's radiance times its image's mean.
 double display_luminance(const tracer_scene& ts) {
   double mean = 1;
   if (ts.texture) {
@@ -104,56 +110,62 @@ double display_luminance(const tracer_scene& ts) {
     }
     mean = sum / (double(img.width) * img.height);
   }
-  return ts.layout.source.intensity * mean;
+  return white_radiance(ts.layout.source) * mean;
 }
 
 }  // namespace
 
-double stray_light_ratio(const scene& s, const glm::dvec3& eye, const full_zone_params& p) {
+eye_view_metrics eye_view_from(const scene& s, const glm::dvec3& eye, const std::vector<std::string>& expressions,
+                               const full_zone_params& p) {
+  auto layers = std::make_shared<path_layers>();
+  for (const std::string& e : expressions)
+    layers->layers.push_back({"ghost", path_expression::parse(e).bound(s, true)});
   const scene at = seen_from(s, eye, p);
   tracer_scene ts;
   ts.use_model_image = false;
-  ts.retro = make_sheet_models(s);
+  if (!expressions.empty()) ts.layers = layers;
   const embree_device device;
-  return render_from(ts, device, at, p, nullptr).stray_ratio();
+  build_tracer_scene(ts, device, at, make_sheet_models(s));
+  const int w = ts.camera.width, h = ts.camera.height;
+  std::vector<double> sums(std::size_t(w) * h * 3), components(component_count * sums.size()),
+      layer_sums(expressions.empty() ? 0 : layers->count() * sums.size());
+  const std::atomic<bool> never{false};
+  std::uint64_t rays = 0;
+  trace_rows(ts, 0, h, 0, p.render_spp, sums, never, rays, nullptr, &components, nullptr,
+             expressions.empty() ? nullptr : &layer_sums);
+  const std::array<glm::dvec2, 4> outline = aerial_outline(at, ts.camera);
+  eye_view_metrics out;
+  out.stray_ratio = outline_means(components, ts.camera, outline, p.render_spp).stray_ratio();
+  const image_rgb aerial = interleaved_image(components.data(), w, h, component_count, component_aerial);
+  const glm::dvec2 aerial_centroid = luminance_centroid(aerial);
+  for (std::size_t k = 0; k < expressions.size(); ++k) {
+    const image_rgb ghost = interleaved_image(layer_sums.data(), w, h, layers->count(), k);
+    double aerial_in = 0, ghost_in = 0;
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        if (!inside_quad(outline, x + 0.5, y + 0.5)) continue;
+        const float *a = aerial.at(x, y), *g = ghost.at(x, y);
+        aerial_in += rec709_luminance(a[0], a[1], a[2]);
+        ghost_in += rec709_luminance(g[0], g[1], g[2]);
+      }
+    }
+    ghost_seen seen;
+    seen.ratio = aerial_in > 0 ? ghost_in / aerial_in : nan;
+    const glm::dvec2 g = luminance_centroid(ghost);
+    seen.separation_arcmin =
+        std::isfinite(aerial_centroid.x) && std::isfinite(g.x) ? separation_arcmin(ts.camera, aerial_centroid, g) : nan;
+    out.ghosts.push_back(seen);
+  }
+  return out;
+}
+
+double stray_light_ratio(const scene& s, const glm::dvec3& eye, const full_zone_params& p) {
+  return eye_view_from(s, eye, {}, p).stray_ratio;
 }
 
 ghost_seen ghost_from_eye(const scene& s, const glm::dvec3& eye, const std::string& expression,
                           const full_zone_params& p) {
-  auto layers = std::make_shared<path_layers>();
-  layers->layers.push_back({"ghost", path_expression::parse(expression).bound(s, true)});
-  const scene at = seen_from(s, eye, p);
-  tracer_scene ts;
-  ts.use_model_image = false;
-  ts.layers = layers;
-  const embree_device device;
-  build_tracer_scene(ts, device, at);
-  const int w = ts.camera.width, h = ts.camera.height;
-  const std::size_t pixels = std::size_t(w) * h;
-  std::vector<double> sums(3 * pixels), components(component_count * sums.size()), layer_sums(2 * sums.size());
-  const std::atomic<bool> never{false};
-  std::uint64_t rays = 0;
-  trace_rows(ts, 0, h, 0, p.render_spp, sums, never, rays, nullptr, &components, nullptr, &layer_sums);
-  image_rgb aerial_image{w, h, std::vector<float>(3 * pixels)}, ghost_image = aerial_image;
-  for (std::size_t i = 0; i < 3 * pixels; ++i) {
-    aerial_image.rgb[i] = float(components[component_count * 3 * (i / 3) + 3 * component_aerial + i % 3]);
-    ghost_image.rgb[i] = float(layer_sums[2 * 3 * (i / 3) + i % 3]);
-  }
-  const std::array<glm::dvec2, 4> outline = aerial_outline(at, ts.camera);
-  double aerial_in = 0, ghost_in = 0;
-  for (int y = 0; y < h; ++y) {
-    for (int x = 0; x < w; ++x) {
-      if (!inside_quad(outline, x + 0.5, y + 0.5)) continue;
-      const float *a = aerial_image.at(x, y), *g = ghost_image.at(x, y);
-      aerial_in += rec709_luminance(a[0], a[1], a[2]);
-      ghost_in += rec709_luminance(g[0], g[1], g[2]);
-    }
-  }
-  ghost_seen out;
-  out.ratio = aerial_in > 0 ? ghost_in / aerial_in : nan;
-  const glm::dvec2 a = luminance_centroid(aerial_image), g = luminance_centroid(ghost_image);
-  out.separation_arcmin = std::isfinite(a.x) && std::isfinite(g.x) ? separation_arcmin(ts.camera, a, g) : nan;
-  return out;
+  return eye_view_from(s, eye, {expression}, p).ghosts.front();
 }
 
 full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zone_params& p,

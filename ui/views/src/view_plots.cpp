@@ -110,7 +110,12 @@ static void draw_mtf_tab(studio& st) {
   if (pred && !pred->error.empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", pred->error.c_str());
   if (pred) {
     ImGui::Text("model PSF: r50 %.3f mm   mean MTF (0-1 lp/mm) %.3f", pred->r50_mm, pred->mean_mtf);
-    ImGui::Text("MTF50 %.2f lp/mm   brightness %.4f x source", pred->mtf50, pred->brightness);
+    if (in_cd_m2(st.doc.source)) {
+      ImGui::Text("MTF50 %.2f lp/mm   brightness %.4f x source = %.4g cd/m2", pred->mtf50, pred->brightness,
+                  pred->brightness * st.doc.source.luminance_cd_m2);
+    } else {
+      ImGui::Text("MTF50 %.2f lp/mm   brightness %.4f x source", pred->mtf50, pred->brightness);
+    }
     ImGui::TextDisabled("PSF %.1f ms, sweep %.1f ms%s", pred->psf_ms, pred->sweep_ms, current ? "" : "   (updating)");
   }
   if (ImGui::Button("Pin MTF") && pred && !pred->mtf.empty()) {

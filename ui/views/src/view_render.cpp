@@ -1,5 +1,6 @@
 // The render view: the progressive image with its statistics, pause/resume, exposure, zoom and
-// pan, and a cursor readout of the pixel value and its position on the aerial-image plane.
+// pan, the luminance view (false colour with its scale), and a cursor readout of the pixel value,
+// its luminance and its position on the aerial-image plane.
 #include <algorithm>
 #include <cmath>
 
@@ -10,6 +11,8 @@
 #include "airr/layout/layout.hpp"
 #include "airr/render/render_metadata.hpp"
 #include "airr/render/tracer.hpp"
+#include "airr/ui/views/luminance_scale.hpp"
+#include "airr/ui/views/plot_widget.hpp"
 #include "airr/ui/views/views.hpp"
 
 namespace airr::ui {
@@ -20,17 +23,57 @@ static int shown_component(const studio& st, const render_snapshot& snap) {
   return snap.components ? st.view.component : -1;
 }
 
-// Uploads `pixel(i)` (linear RGB of pixel i) as the view's texture.
+// The luminance view's scale: its top is the luminance the exposure shows as white.
+static luminance_scale view_scale(float exposure) { return {.top = 1.0 / exposure}; }
+
+// Uploads `pixel(i)` (linear RGB of pixel i) as the view's texture, as the exposure shows it or
+// in the luminance view's false colour.
 template <class Pixel>
 static void upload_pixels(studio& st, int width, int height, float exposure, const Pixel& pixel) {
+  const luminance_scale scale = view_scale(exposure);
   std::vector<std::uint8_t> rgba(std::size_t(width) * height * 4);
   for (std::size_t i = 0; i < std::size_t(width) * height; ++i) {
     const float* v = pixel(i);
-    for (int c = 0; c < 3; ++c) rgba[4 * i + c] = srgb_encode_8bit(v[c] * exposure);
+    if (st.view.luminance) {
+      const auto c = scale.colour(v);
+      std::copy(c.begin(), c.end(), rgba.begin() + std::ptrdiff_t(4 * i));
+    } else {
+      for (int c = 0; c < 3; ++c) rgba[4 * i + c] = srgb_encode_8bit(v[c] * exposure);
+    }
     rgba[4 * i + 3] = 255;
   }
   st.view.texture.upload(width, height, rgba);
   st.view.uploaded_exposure = exposure;
+  st.view.uploaded_luminance = st.view.luminance;
+  st.view.scale_top = scale.top;
+}
+
+// The luminance view's scale bar along the image area's right edge, a label at each decade.
+static void draw_scale_bar(studio& st, ImDrawList* dl, const ImVec2& origin, const ImVec2& area) {
+  const luminance_scale scale = view_scale(st.view.uploaded_exposure);
+  const float font = ImGui::GetFontSize();
+  const float x1 = origin.x + area.x - 0.5f * font, x0 = x1 - 0.8f * font;
+  const float y0 = origin.y + 0.5f * font, y1 = origin.y + area.y - 0.5f * font;
+  if (y1 - y0 < 2 * font) return;
+  const int steps = 64;
+  for (int k = 0; k < steps; ++k) {
+    const float ya = y1 - (y1 - y0) * float(k) / steps, yb = y1 - (y1 - y0) * float(k + 1) / steps;
+    dl->AddRectFilled(ImVec2(x0, yb), ImVec2(x1, ya), viridis((k + 0.5) / steps));
+  }
+  float label_x0 = x0;
+  for (int d = 0; d <= scale.decades; ++d) {
+    const float y = y1 - (y1 - y0) * float(d) / float(scale.decades);
+    char text[48];
+    std::snprintf(text, sizeof text, "%.3g%s", scale.bottom() * std::pow(10.0, d),
+                  in_cd_m2(st.doc.source) ? " cd/m2" : "");
+    const ImVec2 size = ImGui::CalcTextSize(text);
+    const ImVec2 at(x0 - size.x - 0.4f * font, std::clamp(y - 0.5f * size.y, y0, y1 - size.y));
+    dl->AddRectFilled(at, ImVec2(at.x + size.x, at.y + size.y), IM_COL32(20, 20, 20, 200));
+    dl->AddText(at, IM_COL32(230, 230, 230, 255), text);
+    dl->AddLine(ImVec2(x0 - 0.3f * font, y), ImVec2(x0, y), IM_COL32(230, 230, 230, 255));
+    label_x0 = std::min(label_x0, at.x);
+  }
+  st.regions["luminance_scale"] = {label_x0, y0, x1, y1};
 }
 
 static void upload_snapshot(studio& st, const render_snapshot& snap, float exposure) {
@@ -55,13 +98,15 @@ void draw_render_view(studio& st, double now) {
   // A ghost class the Ghosts window shows (of the image's size) takes the render's place.
   const image_rgb* ghost = st.ghosts.shown_image();
   if (ghost && (ghost->width != snap.width || ghost->height != snap.height)) ghost = nullptr;
-  if (ghost && (st.view.uploaded_ghost != st.ghosts.shown || exposure != st.view.uploaded_exposure)) {
+  if (ghost && (st.view.uploaded_ghost != st.ghosts.shown || exposure != st.view.uploaded_exposure ||
+                st.view.luminance != st.view.uploaded_luminance)) {
     upload_pixels(st, ghost->width, ghost->height, exposure, [&](std::size_t i) { return ghost->rgb.data() + 3 * i; });
     st.view.uploaded_ghost = st.ghosts.shown;
   } else if (!ghost && snap.shown && (snap.spp > 0 || snap.preview) &&
              (snap.generation != st.view.uploaded_generation || snap.spp != st.view.uploaded_spp ||
               estimate_name(snap) != st.view.uploaded_estimate || exposure != st.view.uploaded_exposure ||
-              shown_component(st, snap) != st.view.uploaded_component || st.view.uploaded_ghost >= 0)) {
+              shown_component(st, snap) != st.view.uploaded_component || st.view.uploaded_ghost >= 0 ||
+              st.view.luminance != st.view.uploaded_luminance)) {
     const bool first_of_edit = snap.generation != st.view.uploaded_generation;
     upload_snapshot(st, snap, exposure);
     if (first_of_edit && st.edit_time >= 0 && snap.generation == st.generation) {
@@ -104,6 +149,12 @@ void draw_render_view(studio& st, double now) {
   }
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("0 EV shows a white source seen through a lossless retroreflector as white");
+  ImGui::SameLine();
+  ImGui::Checkbox("luminance", &st.view.luminance);
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("Luminance (CIE Y) in false colour over three decades up to the exposure's white, in %s",
+                      in_cd_m2(st.doc.source) ? "cd/m2" : "relative units (set the display's luminance for cd/m2)");
+  }
   ImGui::SameLine();
   ImGui::SetNextItemWidth(9 * ImGui::GetFontSize());
   static const char* const shows[] = {"whole image", "aerial image", "display, direct", "its reflection", "the rest"};
@@ -162,6 +213,7 @@ void draw_render_view(studio& st, double now) {
   dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(st.view.texture.id())), p0,
                ImVec2(p0.x + size.x, p0.y + size.y));
   dl->PopClipRect();
+  if (st.view.uploaded_luminance) draw_scale_bar(st, dl, origin, area);
   st.regions["render_image"] = {std::max(p0.x, origin.x), std::max(p0.y, origin.y),
                                 std::min(p0.x + size.x, origin.x + area.x), std::min(p0.y + size.y, origin.y + area.y)};
   const glm::dvec2 centre = camera_project(make_camera(st.doc), aerial_image_center(st.doc));
@@ -171,7 +223,8 @@ void draw_render_view(studio& st, double now) {
       float(p0.x + (centre.x - half.x) * scale), float(p0.y + (centre.y - half.y) * scale),
       float(p0.x + (centre.x + half.x) * scale), float(p0.y + (centre.y + half.y) * scale)};
 
-  // Cursor readout: pixel, linear value, position in mm on the aerial-image plane (centre (0, 0, D)).
+  // Cursor readout: pixel, linear value, luminance, position in mm on the aerial-image plane
+  // (centre (0, 0, D)).
   std::string readout = "cursor outside the image";
   if (hovered) {
     const double px = (io.MousePos.x - p0.x) / scale, py = (io.MousePos.y - p0.y) / scale;
@@ -180,9 +233,11 @@ void draw_render_view(studio& st, double now) {
       const float* v = snap.shown->data() + 3 * (std::size_t(iy) * snap.width + ix);
       const double x_mm = (px - 0.5 * snap.width) * snap.mm_per_pixel;
       const double y_mm = (0.5 * snap.height - py) * snap.mm_per_pixel;
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "pixel (%d, %d)  value %.4g %.4g %.4g  at x %+.3f mm, y %+.3f mm  (%.4f mm/px)",
-                    ix, iy, v[0], v[1], v[2], x_mm, y_mm, snap.mm_per_pixel);
+      char buf[200];
+      std::snprintf(buf, sizeof buf,
+                    "pixel (%d, %d)  value %.4g %.4g %.4g  Y %.4g %s  at x %+.3f mm, y %+.3f mm  (%.4f mm/px)", ix, iy,
+                    v[0], v[1], v[2], rec709_luminance(v[0], v[1], v[2]), image_units(st.doc.source), x_mm, y_mm,
+                    snap.mm_per_pixel);
       readout = buf;
     }
   }

@@ -53,12 +53,18 @@ void write_screenshot_notes(const studio& st, const std::string& path, int fw, i
     ghosts["shown"] = st.ghosts.shown;
     ghosts["render_shows_it"] = st.view.uploaded_ghost >= 0 && st.view.uploaded_ghost == st.ghosts.shown;
   }
+  // What the render view shows and in which units.
+  const nlohmann::json render_view = {{"units", image_units(st.doc.source)},
+                                      {"luminance_view", st.view.uploaded_luminance},
+                                      {"scale_top", st.view.scale_top},
+                                      {"exposure", st.view.uploaded_exposure}};
   airr::write_file_atomic(path, nlohmann::json{{"width", fw},
                                                {"height", fh},
                                                {"regions", regions},
                                                {"layout_views", views},
                                                {"bokeh", bokeh},
-                                               {"ghosts", ghosts}}
+                                               {"ghosts", ghosts},
+                                               {"render_view", render_view}}
                                         .dump(2) +
                                     "\n");
 }

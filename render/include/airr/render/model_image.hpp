@@ -124,18 +124,17 @@ struct model_image {
 void check_model_image_params(const model_image_params& p);
 
 // The display's grids and their spectra for a layout's model images (`display` is the display's
-// texture, null: uniform; the scene's intensity is applied here). Null when `cancel` is set while it
-// runs. Throws input_error for parameters out of range.
+// texture, null: uniform; the display white's radiance (white_radiance) is applied here). Null when `cancel` is set
+// while it runs. Throws input_error for parameters out of range.
 std::shared_ptr<const display_grids> compute_display_grids(const scene& s, const image_rgb* display,
                                                            const model_image_params& p = {},
                                                            const std::atomic<bool>* cancel = nullptr);
 
 // Sheet `sheet`'s model image (`model` is that sheet's). Null when no pixel has an ideal path to
 // the sheet (or there is no such sheet), or when `cancel` is set while it runs. `display` is the
-// display's texture (null: uniform); the scene's intensity is applied here. `grids`, when given,
-// are the layout's (compute_display_grids with the same scene, display and `p`); else they are
-// computed. Throws input_error for parameters out of range, or when a bin's chief ray grazes a
-// part's edge.
+// display's texture (null: uniform); the display white's radiance (white_radiance) is applied here. `grids`, when
+// given, are the layout's (compute_display_grids with the same scene, display and `p`); else they are computed. Throws
+// input_error for parameters out of range, or when a bin's chief ray grazes a part's edge.
 std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shared_ptr<const retro_model> model,
                                                        const image_rgb* display, const model_image_params& p = {},
                                                        const std::atomic<bool>* cancel = nullptr, std::size_t sheet = 0,

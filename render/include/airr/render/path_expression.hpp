@@ -76,7 +76,9 @@ inline constexpr int max_path_layers = 63;
 path_layers component_layers();
 
 // Layers from "NAME=EXPR" arguments bound to the scene: a bad expression, an empty, repeated or
-// reserved name, an unknown prop or too many layers throw input_error naming the argument.
-path_layers parse_layer_arguments(const std::vector<std::string>& arguments, const scene& s);
+// reserved name, a name in `taken` (the render's other outputs: its components, Stokes images),
+// an unknown prop or too many layers throw input_error naming the argument.
+path_layers parse_layer_arguments(const std::vector<std::string>& arguments, const scene& s,
+                                  const std::vector<std::string>& taken = {});
 
 }  // namespace airr

@@ -37,6 +37,15 @@ struct path_label {
   const path_event& at(int i) const { return events[std::size_t(count - 1 - i)]; }
 };
 
+// Whether a sheet retroreflected the light on its way (the path is a share of the aerial image).
+inline bool retroreflected(const path_label& l) {
+  for (int i = 0; i < l.count; ++i) {
+    const path_event& e = l.events[std::size_t(i)];
+    if (e.kind == path_event_kind::sheet && e.taken) return true;
+  }
+  return false;
+}
+
 // An event as path expressions write it: D, E, H:r0:front, S1:retro, P3 ...
 std::string event_text(const path_event& e);
 // The whole label, events separated by spaces, e.g. "D H:r0:back S0:retro H:t0:front E".

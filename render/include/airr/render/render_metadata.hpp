@@ -1,5 +1,5 @@
 #pragma once
-// What every exported render carries: spp, seed, the layout JSON and the pixel size in mm.
+// What every exported render carries: spp, seed, the layout JSON, the pixel size in mm and the units.
 #include <cstdio>
 #include <string>
 
@@ -11,7 +11,7 @@ namespace airr {
 
 // Maps a white source seen through a lossless retroreflector to display white.
 inline double default_exposure(const scene& s) {
-  const double white = s.source.intensity * s.half_mirror.reflectance * s.half_mirror.transmittance;
+  const double white = white_radiance(s.source) * s.half_mirror.reflectance * s.half_mirror.transmittance;
   return white > 0 ? 1.0 / white : 1.0;
 }
 
@@ -24,6 +24,7 @@ inline image_metadata render_metadata(const scene& s, const render_snapshot& sna
           {"airr:layout", scene_to_json(s).dump()},
           {"airr:mm_per_pixel", mm},
           {"airr:exposure", ex},
+          {"airr:units", image_units(s.source)},
           {"airr:generator", "airr render"}};
 }
 

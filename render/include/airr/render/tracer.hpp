@@ -140,11 +140,16 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
                 std::vector<double>* odd_sums = nullptr, std::vector<double>* component_sums = nullptr,
                 prediction_sums* predictions = nullptr, std::vector<double>* layer_sums = nullptr);
 
-// The light (RGB, summed over the samples) of every distinct path label that samples
-// [first, first + count) of rows [y0, y1) met, keyed by label_text (a path expression selecting
-// exactly that label): a census of the light paths, without the control variate.
+// One class of a census: a path label and the light (RGB, summed over the samples) that met it.
+struct census_class {
+  path_label label;
+  glm::dvec3 light{0.0};
+};
+// Every distinct path label that samples [first, first + count) of rows [y0, y1) met, keyed by
+// label_text (a path expression selecting exactly that label), with its light: a census of the
+// light paths, without the control variate.
 void census_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
-                 std::map<std::string, glm::dvec3>& light, const std::atomic<bool>& cancel, std::uint64_t& rays);
+                 std::map<std::string, census_class>& classes, const std::atomic<bool>& cancel, std::uint64_t& rays);
 
 // Adds the model image's predictions of samples [first, first + count) of rows [y0, y1): those
 // traced before ts.model arrived. Stops early (returns false, the sums half done) when `cancel`

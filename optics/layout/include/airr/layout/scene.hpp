@@ -56,8 +56,11 @@ struct part_params {
 
 // The display. width/height are its active (emitting) area; the bezel is a black border around it.
 struct source_params : part_params {
-  std::string image;             // path relative to the scene file; empty = uniform white
-  double intensity = 10.0;       // radiance = image value x intensity
+  std::string image;        // path relative to the scene file; empty = uniform white
+  double intensity = 10.0;  // radiance = image value x intensity (relative units)
+  // The white's luminance in cd/m2 (CIE Y of the linear RGB, face on); above 0 it takes the place
+  // of intensity and every image of the layout is in cd/m2.
+  double luminance_cd_m2 = 0.0;
   std::string emission_profile;  // CSV of angle (deg) -> relative luminance; empty: Lambertian
   double bezel_mm = 0.0;
   source_polarization polarization;
@@ -69,6 +72,13 @@ struct source_params : part_params {
   }
   bool operator==(const source_params&) const = default;
 };
+
+// The radiance of the display's white (image value 1) in the units of the layout's images.
+inline double white_radiance(const source_params& s) { return s.luminance_cd_m2 > 0 ? s.luminance_cd_m2 : s.intensity; }
+// Whether the layout's images are in cd/m2 (else relative to `intensity`).
+inline bool in_cd_m2(const source_params& s) { return s.luminance_cd_m2 > 0; }
+// The name of those units, as files and readouts give it.
+inline const char* image_units(const source_params& s) { return in_cd_m2(s) ? "cd/m2" : "relative"; }
 
 // The half mirror: a thin sheet with fixed reflectance and transmittance, a reflective polarizer,
 // or a glass plate with coated faces whose pose is its mid-plane's.

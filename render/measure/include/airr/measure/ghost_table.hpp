@@ -28,8 +28,10 @@ struct ghost_params {
 };
 
 struct ghost_class {
-  std::string expression;   // the class's label, a path expression selecting it alone
-  bool aerial = false;      // it holds a retroreflection: a share of the aerial image itself
+  std::string expression;  // the class's label, a path expression selecting it alone
+  // Its paths were retroreflected (a typed class: every path of the census it selects was): a
+  // share of the aerial image itself.
+  bool aerial = false;
   bool typed = false;       // one of ghost_params::expressions (else a label the census found)
   double census_share = 0;  // of all the light the census saw (typed: of the observer's render)
   // Mean luminance inside the aerial image's outline, and its share of the whole image's there.

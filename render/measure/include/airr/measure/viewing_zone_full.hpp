@@ -6,6 +6,7 @@
 // into components. Props block and scatter as everywhere.
 #include <atomic>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "airr/core/item_share.hpp"
@@ -48,6 +49,14 @@ struct ghost_seen {
 };
 ghost_seen ghost_from_eye(const scene& s, const glm::dvec3& eye, const std::string& expression,
                           const full_zone_params& p = {});
+
+// Both from one render: the stray-light ratio and each expression's ghost_seen, in their order.
+struct eye_view_metrics {
+  double stray_ratio = 0;
+  std::vector<ghost_seen> ghosts;
+};
+eye_view_metrics eye_view_from(const scene& s, const glm::dvec3& eye, const std::vector<std::string>& expressions,
+                               const full_zone_params& p = {});
 
 // Eyes run in parallel (each eye's render on one core; the maps do not depend on the number of
 // cores), or as the items of `share` (an MPI job's ranks) when given; `progress(done, total)` after

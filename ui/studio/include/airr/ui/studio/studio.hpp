@@ -47,6 +47,9 @@ struct render_view_state {
   int component = -1;                 // the image component shown (tracer.hpp); -1: the whole image
   int uploaded_component = -1;
   int uploaded_ghost = -1;  // the ghost class shown instead of the render (-1: none)
+  bool luminance = false;   // the luminance view: false colour with its scale (luminance_scale.hpp)
+  bool uploaded_luminance = false;
+  double scale_top = 0;  // the luminance view's scale when it was uploaded
   float uploaded_exposure = -1;
   gl_texture texture;
 };
