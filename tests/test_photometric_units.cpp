@@ -69,6 +69,10 @@ TEST(PhotometricUnits, TheLuminanceRoundTripsAndIsChecked) {
   test::expect_one_line_error(bad, {"source.luminance_cd_m2", "-5"});
   const auto text = test::run_cli("psf " + path + " --samples 1000 --set source.luminance_cd_m2=bright");
   test::expect_one_line_error(text, {"source.luminance_cd_m2"});
+  const auto sweep =
+      test::run_cli("sweep " + path + " --vary tilt=0:10:10 --psf --samples 2000 -o " + dir.file("s.csv"));
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.out;
+  EXPECT_NE(sweep.out.find("the aerial image's luminance is it x 500 cd/m2"), std::string::npos) << sweep.out;
   // The render's file names its units.
   const std::string exr = dir.file("render.exr");
   const auto r =

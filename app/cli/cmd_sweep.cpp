@@ -185,6 +185,10 @@ void add_sweep_command(CLI::App& app) {
       std::printf("%8g %8g %12.5f %12s %10.4f %11.6f  %s\n", pt.floating_distance_mm, pt.tilt_deg, pt.mean_mtf, m50,
                   pt.r50_mm, pt.brightness, shares.c_str());
     }
+    if (airr::in_cd_m2(s.source)) {
+      std::printf("brightness is per unit display luminance: the aerial image's luminance is it x %.6g cd/m2\n",
+                  s.source.luminance_cd_m2);
+    }
     for (const auto& sl : r.slopes)
       std::printf("slope d of mean MTF against D at tilt %g deg: %.6g per mm (%.4g per 100 mm)\n", sl.tilt_deg,
                   sl.per_mm, 100 * sl.per_mm);

@@ -293,7 +293,8 @@ void draw_layout_panel(studio& st) {
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("empty: uniform white; drop an image file on the window to use it");
     edit_part_size(s.source, 300, "source");
     edit_number("luminance", s.source.luminance_cd_m2, 0, 2000, "cd/m2", "%.0f",
-                "the display's white, face on; images and readouts in cd/m2. 0: relative units (intensity)");
+                "the display's white, face on; images and readouts in cd/m2. 0: relative units (intensity)",
+                "source.luminance_cd_m2");
     ImGui::BeginDisabled(in_cd_m2(s.source));
     edit_number("intensity", s.source.intensity, 0, 100, "radiance", "%.2f", "relative units, without a luminance");
     ImGui::EndDisabled();
