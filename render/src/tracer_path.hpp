@@ -208,9 +208,9 @@ struct layer_sink {
   // The layers selecting `l`, as path_layers::select.
   std::uint64_t add(const path_label& l, const glm::vec3& L) {
     if (census) {
-      census_class& c = (*census)[label_text(l)];
-      c.label = l;
-      c.light += glm::dvec3(L);
+      const auto [c, first] = census->try_emplace(label_text(l));
+      if (first) c->second.label = l;
+      c->second.light += glm::dvec3(L);
     }
     std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the events
     for (int i = 0; i < l.count; ++i) {

@@ -37,10 +37,7 @@ std::map<std::string, census_class> census(const scene& s, const ghost_params& p
     std::uint64_t rays = 0;
     census_rows(ts, y0, y1, 0, p.census_spp, mine, p.cancel ? *p.cancel : never, rays);
     std::lock_guard lock(m);
-    for (const auto& [text, c] : mine) {
-      all[text].label = c.label;
-      all[text].light += c.light;
-    }
+    for (const auto& [text, c] : mine) all.try_emplace(text, census_class{c.label}).first->second.light += c.light;
   });
   return all;
 }

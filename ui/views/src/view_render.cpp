@@ -23,14 +23,11 @@ static int shown_component(const studio& st, const render_snapshot& snap) {
   return snap.components ? st.view.component : -1;
 }
 
-// The luminance view's scale: its top is the luminance the exposure shows as white.
-static luminance_scale view_scale(float exposure) { return {.top = 1.0 / exposure}; }
-
 // Uploads `pixel(i)` (linear RGB of pixel i) as the view's texture, as the exposure shows it or
 // in the luminance view's false colour.
 template <class Pixel>
 static void upload_pixels(studio& st, int width, int height, float exposure, const Pixel& pixel) {
-  const luminance_scale scale = view_scale(exposure);
+  const luminance_scale scale = luminance_scale::for_exposure(exposure);
   std::vector<std::uint8_t> rgba(std::size_t(width) * height * 4);
   for (std::size_t i = 0; i < std::size_t(width) * height; ++i) {
     const float* v = pixel(i);
@@ -45,12 +42,11 @@ static void upload_pixels(studio& st, int width, int height, float exposure, con
   st.view.texture.upload(width, height, rgba);
   st.view.uploaded_exposure = exposure;
   st.view.uploaded_luminance = st.view.luminance;
-  st.view.scale_top = scale.top;
 }
 
 // The luminance view's scale bar along the image area's right edge, a label at each decade.
 static void draw_scale_bar(studio& st, ImDrawList* dl, const ImVec2& origin, const ImVec2& area) {
-  const luminance_scale scale = view_scale(st.view.uploaded_exposure);
+  const luminance_scale scale = luminance_scale::for_exposure(st.view.uploaded_exposure);
   const float font = ImGui::GetFontSize();
   const float x1 = origin.x + area.x - 0.5f * font, x0 = x1 - 0.8f * font;
   const float y0 = origin.y + 0.5f * font, y1 = origin.y + area.y - 0.5f * font;

@@ -6,6 +6,7 @@
 
 #include "airr/core/files.hpp"
 #include "airr/ui/views/layout_projection.hpp"
+#include "airr/ui/views/luminance_scale.hpp"
 
 namespace airr::ui {
 
@@ -56,7 +57,7 @@ void write_screenshot_notes(const studio& st, const std::string& path, int fw, i
   // What the render view shows and in which units.
   const nlohmann::json render_view = {{"units", image_units(st.doc.source)},
                                       {"luminance_view", st.view.uploaded_luminance},
-                                      {"scale_top", st.view.scale_top},
+                                      {"scale_top", luminance_scale::for_exposure(st.view.uploaded_exposure).top},
                                       {"exposure", st.view.uploaded_exposure}};
   airr::write_file_atomic(path, nlohmann::json{{"width", fw},
                                                {"height", fh},

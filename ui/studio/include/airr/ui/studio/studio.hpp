@@ -49,7 +49,6 @@ struct render_view_state {
   int uploaded_ghost = -1;  // the ghost class shown instead of the render (-1: none)
   bool luminance = false;   // the luminance view: false colour with its scale (luminance_scale.hpp)
   bool uploaded_luminance = false;
-  double scale_top = 0;  // the luminance view's scale when it was uploaded
   float uploaded_exposure = -1;
   gl_texture texture;
 };

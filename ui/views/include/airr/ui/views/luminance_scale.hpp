@@ -11,6 +11,9 @@ struct luminance_scale {
   double top = 1;  // in the image's units (cd/m2 or relative)
   int decades = 3;
 
+  // The render view's scale: its top is the luminance `exposure` shows as white.
+  static luminance_scale for_exposure(double exposure) { return {.top = 1.0 / exposure}; }
+
   double bottom() const;
   // Where a luminance lies on the scale: 0 at the bottom (and below), 1 at the top (and above).
   double position(double luminance) const;
