@@ -57,6 +57,41 @@ TEST(DesignTolerance, LinearMetricSpreadsBySensitivityTimesTolerance) {
   }
 }
 
+// Every layout keeps what was drawn for it: set into the nominal scene, the drawn values give the
+// metrics recorded for it, and the worst layouts are those that broke the constraint, deepest first.
+TEST(DesignTolerance, EachLayoutKeepsItsDrawnValuesAndTheWorstComeFirst) {
+  test::temp_dir dir;
+  const double nominal = device_size_mm(load_scene(default_scene_path())).z;
+  const design_spec spec =
+      tolerance_spec(dir, R"("constraints": [{"metric": "size_z_mm", "max": )" + std::to_string(nominal) +
+                              R"(}], "tolerances": [{"key": "retroreflectors.0.pose.center_mm.2", "sd": 2},
+               {"key": "tilt_deg", "sd": 0.5}], "tolerance": {"samples": 40, "seed": 5})");
+  const tolerance_result r = run_tolerance(spec, spec.base);
+  ASSERT_EQ(r.layouts.size(), 40u);
+  for (std::size_t i = 0; i < r.layouts.size(); i += 7) {
+    const tolerance_layout& l = r.layouts[i];
+    ASSERT_TRUE(l.valid);
+    ASSERT_EQ(l.values.size(), 2u);
+    const scene drawn = with_overrides(
+        spec.base,
+        {design_override("retroreflectors.0.pose.center_mm.2", l.values[0]), design_override("tilt_deg", l.values[1])},
+        "test");
+    const design_evaluation e = evaluate_design(spec, drawn);
+    EXPECT_NEAR(e.objective_values[0], l.metrics[0], 1e-9) << i;
+    EXPECT_EQ(e.broken.empty(), l.broken.empty()) << i;
+  }
+  const std::vector<std::size_t> worst = worst_layouts(r, 5);
+  ASSERT_EQ(worst.size(), 5u);
+  for (std::size_t k = 0; k + 1 < worst.size(); ++k) {
+    const tolerance_layout &a = r.layouts[worst[k]], &b = r.layouts[worst[k + 1]];
+    EXPECT_GE(a.broken.size(), b.broken.size());
+    if (a.broken.size() == b.broken.size()) {
+      EXPECT_LE(a.score, b.score);
+    }
+  }
+  EXPECT_FALSE(r.layouts[worst[0]].broken.empty());  // about half the layouts are deeper than nominal
+}
+
 TEST(DesignTolerance, BadTolerancesAreNamed) {
   test::temp_dir dir;
   auto error_for = [&](const std::string& members) { return test::error_of([&] { tolerance_spec(dir, members); }); };

@@ -110,6 +110,42 @@ TEST(Gui, TheLuminanceViewShowsCdPerM2InFalseColour) {
   EXPECT_GT(curve_pixels(img, scale, {68, 1, 84}), 20);
 }
 
+// The contrast view: the room's surround (no aerial image) at the scale's bottom; over the aerial
+// image the contrast (125 + 0.75 L) / (0.75 L) of the ideal bench, higher in a dimmer room, so
+// further up viridis (whose green rises along it).
+TEST(Gui, TheContrastViewShowsTheAerialImageAgainstTheRoom) {
+  test::temp_dir dir;
+  std::vector<double> green;
+  for (const char* lux : {"100", "3000"}) {
+    const std::string shot = dir.file(std::string("contrast_") + lux + ".png");
+    const studio_run run = run_studio(dir, asset_dir() +
+                                               "/scenes/ideal_bench.json --set source.image= --set "
+                                               "source.luminance_cd_m2=500 --set environment.room.illuminance_lux=" +
+                                               lux + " --contrast-view --frames 30 --screenshot " + shot);
+    ASSERT_EQ(run.status, 0) << run.log;
+    const rgb8_image img = read_png(shot);
+    ASSERT_GT(img.width, 0) << "no screenshot: " << run.log;
+    const auto notes = nlohmann::json::parse(std::ifstream(shot + ".json"));
+    EXPECT_EQ(notes["render_view"]["contrast_view"], true);
+    const auto aerial = region(notes, "render_aerial_image");
+    // The aerial image's middle half, away from its border.
+    const int qx = (aerial[2] - aerial[0]) / 4, qy = (aerial[3] - aerial[1]) / 4;
+    double sum = 0;
+    int n = 0;
+    for (int y = aerial[1] + qy; y < aerial[3] - qy; ++y) {
+      for (int x = aerial[0] + qx; x < aerial[2] - qx; ++x) {
+        sum += img.at(x, y)[1];
+        ++n;
+      }
+    }
+    green.push_back(sum / std::max(1, n));
+    const auto scale = region(notes, "contrast_scale");
+    EXPECT_GT(curve_pixels(img, scale, {253, 231, 37}), 20) << lux;
+    std::printf("contrast view at %s lx: mean green %.1f over the aerial image's middle\n", lux, green.back());
+  }
+  EXPECT_GT(green[0], green[1] + 30);  // contrast 6.2 at 100 lx against 1.17 at 3,000 lx
+}
+
 // The viewing zone's full pass from the designer (scripted: it runs to its end before the
 // screenshot): the brightness map is 1 (viridis' top) at the best eyes and grey where nothing is seen.
 TEST(Gui, TheFullViewingZoneShowsBrightness) {

@@ -122,6 +122,14 @@ double centre_mean(const render_snapshot& snap, int half, int channel) {
   return sum / n;
 }
 
+scene white_bench(double luminance_cd_m2, int size) {
+  scene s = load_scene(asset_dir() + "/scenes/ideal_bench.json");
+  s.source.image.clear();
+  s.source.luminance_cd_m2 = luminance_cd_m2;
+  s.observer.width = s.observer.height = size;
+  return s;
+}
+
 double traced_aerial_at_centre(const scene& s, std::uint64_t spp, int half) {
   render_session session(s, {.threads = 2, .target_spp = spp, .components = true});
   const render_snapshot snap = session.wait_for(0, spp);

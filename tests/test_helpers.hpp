@@ -79,6 +79,9 @@ double centre_mean(const render_snapshot& snap, int half, int channel = 1);
 // The traced aerial component's mean (green channel) over the (2 half)^2 pixels around the pixel
 // corner nearest where the aerial image's centre projects, rendered to `spp` samples per pixel.
 double traced_aerial_at_centre(const scene& s, std::uint64_t spp, int half = 2);
+// The ideal bench with a uniform white display whose white is `luminance_cd_m2` (0: relative
+// units), seen in a size x size image.
+scene white_bench(double luminance_cd_m2, int size = 64);
 
 // The unit direction at polar angle theta and azimuth phi (degrees) about +z.
 glm::dvec3 unit_direction(double theta_deg, double phi_deg);

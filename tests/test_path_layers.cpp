@@ -172,8 +172,10 @@ TEST(PathExpressions, ComponentsPartitionTheLabels) {
   const path_layers layers = component_layers();
   const std::vector<path_event> middle = {H(true), H(false), H(true, 1), S(0, true), S(1, false), P(0)};
   pcg32 rng(3, 5);
+  const path_event room{path_event_kind::ambient, false, false, ambient_room};
   for (int t = 0; t < 5000; ++t) {
-    std::vector<path_event> events = {D};
+    const bool ambient = t % 5 == 0;  // the room's light, by any path, is its own component
+    std::vector<path_event> events = {ambient ? room : D};
     int retro = 0, scattered = 0, reflections = 0;
     for (std::size_t n = std::size_t(rng.next_double() * 6); n > 0; --n) {
       const path_event e = middle[std::size_t(rng.next_double() * double(middle.size()))];
@@ -183,7 +185,8 @@ TEST(PathExpressions, ComponentsPartitionTheLabels) {
       reflections += e.kind == path_event_kind::half_mirror && e.taken;
     }
     events.push_back(E);
-    const int expected = retro > 0          ? component_aerial
+    const int expected = ambient            ? component_room
+                         : retro > 0        ? component_aerial
                          : scattered > 0    ? component_rest
                          : reflections == 0 ? component_direct
                          : reflections == 1 ? component_reflection
@@ -238,11 +241,14 @@ render_snapshot render_layers(const scene& s, const path_layers& layers, bool co
 
 TEST(PathLayers, PredefinedExpressionsReproduceTheComponentsBitForBit) {
   std::vector<double> energy(component_count, 0.0);
-  for (const scene& s : {looking_down(), looking_down("prism"), display_above(), wide("two_sheet_kiosk")}) {
+  scene kiosk_in_a_room = wide("two_sheet_kiosk");
+  kiosk_in_a_room.source.luminance_cd_m2 = 500;
+  kiosk_in_a_room.environment.room.illuminance_lux = 500;
+  for (const scene& s : {looking_down(), looking_down("prism"), display_above(), kiosk_in_a_room}) {
     const render_snapshot snap = render_layers(s, component_layers(), true, 8);
     ASSERT_TRUE(snap.components);
     ASSERT_TRUE(snap.layers);
-    ASSERT_EQ(snap.layer_names.size(), 5u);
+    ASSERT_EQ(snap.layer_names.size(), std::size_t(component_count + 1));
     EXPECT_EQ(snap.layer_names.back(), "unmatched");
     for (int k = 0; k < component_count; ++k) {
       EXPECT_EQ(snap.layer_names[std::size_t(k)], component_names[k]);
@@ -256,7 +262,7 @@ TEST(PathLayers, PredefinedExpressionsReproduceTheComponentsBitForBit) {
       })) << component_names[k];
       std::printf("%s: energy %.6g, the same as the component's to the bit\n", component_names[k], e);
     }
-    const image_rgb unmatched = snap.layer_image(4);
+    const image_rgb unmatched = snap.layer_image(component_count);
     EXPECT_EQ(*std::max_element(unmatched.rgb.begin(), unmatched.rgb.end()), 0.0f);
   }
   for (int k = 0; k < component_count; ++k) EXPECT_GT(energy[std::size_t(k)], 0) << component_names[k];

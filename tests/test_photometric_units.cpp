@@ -19,15 +19,6 @@ using namespace airr;
 
 namespace {
 
-// The ideal bench with a uniform white display of the given luminance (0: relative units).
-scene white_bench(double luminance_cd_m2, int size = 64) {
-  scene s = load_scene(asset_dir() + "/scenes/ideal_bench.json");
-  s.source.image.clear();
-  s.source.luminance_cd_m2 = luminance_cd_m2;
-  s.observer.width = s.observer.height = size;
-  return s;
-}
-
 // The number `airr psf` prints after "aerial image luminance: ".
 double printed_luminance(const std::string& out) {
   std::smatch m;
@@ -38,7 +29,7 @@ double printed_luminance(const std::string& out) {
 }  // namespace
 
 TEST(PhotometricUnits, IdealSheetsAerialImageIsTheDisplaysLuminanceTimesRT) {
-  const scene s = white_bench(500);
+  const scene s = test::white_bench(500);
   ASSERT_TRUE(in_cd_m2(s.source));
   EXPECT_STREQ(image_units(s.source), "cd/m2");
   const double at_defaults = test::traced_aerial_at_centre(s, 16, 4);
@@ -53,7 +44,7 @@ TEST(PhotometricUnits, IdealSheetsAerialImageIsTheDisplaysLuminanceTimesRT) {
   EXPECT_NEAR(other_rt, 500 * 0.7 * 0.2, 0.005 * 70);
 
   // Relative units stay: without a luminance the image is in units of `intensity`.
-  const scene relative = white_bench(0);
+  const scene relative = test::white_bench(0);
   EXPECT_STREQ(image_units(relative.source), "relative");
   EXPECT_NEAR(test::traced_aerial_at_centre(relative, 16, 4), 10 * 0.25, 0.005 * 2.5);
 }
@@ -61,10 +52,10 @@ TEST(PhotometricUnits, IdealSheetsAerialImageIsTheDisplaysLuminanceTimesRT) {
 TEST(PhotometricUnits, TheLuminanceRoundTripsAndIsChecked) {
   test::temp_dir dir;
   const std::string path = dir.file("bench.json");
-  save_scene(white_bench(500), path);
+  save_scene(test::white_bench(500), path);
   EXPECT_EQ(load_scene(path).source.luminance_cd_m2, 500);
   // A scene in relative units does not write the field.
-  EXPECT_FALSE(scene_to_json(white_bench(0), json_form::saved)["source"].contains("luminance_cd_m2"));
+  EXPECT_FALSE(scene_to_json(test::white_bench(0), json_form::saved)["source"].contains("luminance_cd_m2"));
   const auto bad = test::run_cli("psf " + path + " --samples 1000 --set source.luminance_cd_m2=-5");
   test::expect_one_line_error(bad, {"source.luminance_cd_m2", "-5"});
   const auto text = test::run_cli("psf " + path + " --samples 1000 --set source.luminance_cd_m2=bright");
@@ -90,7 +81,7 @@ TEST(PhotometricUnits, TheLuminanceRoundTripsAndIsChecked) {
 // there: the luminance changes by 1.6% from the centre to 6 mm off it, as the eye's angle to the
 // sheet changes) is the model PSF's brightness times the display's luminance, within 1%.
 TEST(PhotometricUnits, RealSheetsAerialImageIsTheModelsBrightnessTimesTheLuminance) {
-  scene s = white_bench(500, 96);
+  scene s = test::white_bench(500, 96);
   s.sheet().model = {.type = "sinc_shift", .values = {{"preset", std::string("rf-ay")}}};
   const double model = sample_psf(s, make_sheet_models(s), {.samples = 400000, .seed = 5}).brightness() * 500;
   const double traced = test::traced_aerial_at_centre(s, 256, 1);

@@ -62,11 +62,13 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--exposure", opt->exposure,
                   "PNG scale factor; default maps a white source through a lossless retroreflector to 1");
   cmd->add_option("--threads", opt->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
-  auto* layers = cmd->add_flag("--components", opt->components,
-                               "EXR: also write the image's components as layers aerial, direct, reflection, rest");
+  auto* layers =
+      cmd->add_flag("--components", opt->components,
+                    "EXR: also write the image's components as layers aerial, direct, reflection, rest, room");
   cmd->add_option("--component", opt->component,
-                  "Write one component instead of the whole image: aerial, direct, reflection or rest")
-      ->check(CLI::IsMember({"aerial", "direct", "reflection", "rest"}))
+                  "Write one component instead of the whole image: aerial, direct, reflection, rest or room")
+      ->check(
+          CLI::IsMember(std::vector<std::string>(std::begin(airr::component_names), std::end(airr::component_names))))
       ->excludes(layers);
   cmd->add_option("--layer", opt->layers,
                   "EXR: also write the light of the paths a path expression selects as a layer NAME, e.g. "

@@ -35,15 +35,28 @@ struct options {
   shard_options shards;
 };
 
-std::string samples_csv(const airr::tolerance_result& r) {
+// Every layout drawn: its number, each tolerance's drawn value, whether it made a layout and met
+// every constraint, its metrics (empty when it made none) and its broken constraints.
+std::string samples_csv(const airr::design_spec& spec, const airr::tolerance_result& r) {
   std::ostringstream out;
   out.precision(10);
-  for (std::size_t m = 0; m < r.metrics.size(); ++m) out << (m ? "," : "") << r.metrics[m].name;
-  out << "\n";
-  const std::size_t rows = r.metrics.empty() ? 0 : r.metrics.front().values.size();
-  for (std::size_t i = 0; i < rows; ++i) {
-    for (std::size_t m = 0; m < r.metrics.size(); ++m) out << (m ? "," : "") << r.metrics[m].values[i];
-    out << "\n";
+  out << "sample";
+  for (const airr::design_tolerance& t : spec.tolerances) out << ',' << t.key;
+  out << ",valid,meets_constraints";
+  for (const airr::metric_distribution& m : r.metrics) out << ',' << m.name;
+  out << ",broken\n";
+  for (std::size_t i = 0; i < r.layouts.size(); ++i) {
+    const airr::tolerance_layout& l = r.layouts[i];
+    out << i;
+    for (double v : l.values) out << ',' << v;
+    out << ',' << (l.valid ? 1 : 0) << ',' << (l.valid && l.broken.empty() ? 1 : 0);
+    for (std::size_t m = 0; m < r.metrics.size(); ++m) {
+      out << ',';
+      if (l.valid) out << l.metrics[m];
+    }
+    std::string broken;
+    for (const std::string& b : l.broken) broken += (broken.empty() ? "" : "; ") + b;
+    out << ",\"" << (l.valid ? broken : "no valid layout") << "\"\n";
   }
   return out.str();
 }
@@ -121,9 +134,19 @@ void report(const options& opt, const airr::design_spec& spec, const airr::toler
     for (double v : r.sensitivity[t]) std::printf(" %28.6g", v);
     std::printf("\n");
   }
+  std::printf("worst layouts (sample: drawn values; what it broke):\n");
+  for (std::size_t i : airr::worst_layouts(r, 5)) {
+    const airr::tolerance_layout& l = r.layouts[i];
+    std::printf("  %zu:", i);
+    for (std::size_t t = 0; t < l.values.size(); ++t)
+      std::printf(" %s=%.6g", spec.tolerances[t].key.c_str(), l.values[t]);
+    std::string broken = l.valid ? "" : "no valid layout";
+    for (const std::string& b : l.broken) broken += (broken.empty() ? "" : "; ") + b;
+    std::printf("; %s\n", broken.empty() ? ("score " + airr::number_text(l.score)).c_str() : broken.c_str());
+  }
   const std::string csv =
       opt.csv.empty() ? fs::path(opt.spec).replace_extension("").string() + "_tolerance.csv" : opt.csv;
-  airr::write_file_atomic(csv, samples_csv(r));
+  airr::write_file_atomic(csv, samples_csv(spec, r));
   std::printf("wrote %s\n", csv.c_str());
   if (!opt.png.empty()) {
     write_histograms(r, opt.png);

@@ -25,18 +25,19 @@ namespace {
 
 // One quantity per eye, ny rows of nx.
 struct zone_column {
-  const char* name;    // CSV column
-  const char* title;   // heatmap title and colour bar
-  const char* suffix;  // heatmap file: the --png stem plus this
+  std::string name;    // CSV column
+  std::string title;   // heatmap title and colour bar
+  std::string suffix;  // heatmap file: the --png stem plus this
   const std::vector<double>* values;
   double lo, hi;
+  const std::vector<double>* heat = nullptr;  // the heatmap's values, when not `values`
 };
 
 std::string zone_csv(const airr::scene& s, const airr::eye_grid& g, const std::vector<zone_column>& columns) {
   const bool sphere = g.kind == airr::eye_grid::shape::sphere;
   std::string out = sphere ? "azimuth_deg,elevation_deg" : "x_mm,y_mm";
   out += ",eye_x_mm,eye_y_mm,eye_z_mm";
-  for (const zone_column& c : columns) out += std::string(",") + c.name;
+  for (const zone_column& c : columns) out += "," + c.name;
   out += "\n";
   char cell[160];
   for (int j = 0; j < g.ny; ++j) {
@@ -51,13 +52,47 @@ std::string zone_csv(const airr::scene& s, const airr::eye_grid& g, const std::v
           std::snprintf(cell, sizeof cell, ",%.10g", v);
           out += cell;
         } else {
-          out += ",";  // nothing seen from here
+          out += std::isinf(v) ? ",inf" : ",";  // a contrast against a dark background; nothing seen from here
         }
       }
       out += "\n";
     }
   }
   return out;
+}
+
+// The aerial image's luminance, its contrast and, per threshold, the share of it reaching that
+// contrast; `shown` keeps the contrast heatmap's values.
+void add_legibility_columns(const airr::scene& s, const airr::full_zone_map& map, std::vector<zone_column>& columns,
+                            std::vector<double>& shown) {
+  double luminance_hi = 0, contrast_hi = 1;
+  for (double v : map.luminance) luminance_hi = std::max(luminance_hi, v);
+  for (double v : map.contrast) contrast_hi = std::isfinite(v) ? std::max(contrast_hi, v) : contrast_hi;
+  // A dark background makes the contrast infinite: the heatmap tops out at the highest threshold
+  // or the highest finite contrast, whichever is more.
+  for (double t : map.thresholds) contrast_hi = std::max(contrast_hi, t);
+  shown = map.contrast;
+  for (double& v : shown) v = std::min(v, contrast_hi);
+  columns.push_back({"luminance", std::string("aerial image's mean luminance (") + airr::image_units(s.source) + ")",
+                     "_luminance", &map.luminance, 0, luminance_hi > 0 ? luminance_hi : 1});
+  columns.push_back(
+      {"contrast", "contrast (aerial + background) / background", "_contrast", &map.contrast, 1, contrast_hi, &shown});
+  for (std::size_t k = 0; k < map.thresholds.size(); ++k) {
+    char name[64], title[96];
+    std::snprintf(name, sizeof name, "share_contrast_%g", map.thresholds[k]);
+    std::snprintf(title, sizeof title, "share of the aerial image at contrast >= %g", map.thresholds[k]);
+    columns.push_back({name, title, std::string("_") + name, &map.contrast_share[k], 0, 1});
+  }
+}
+
+void print_legibility(const airr::scene& s, const airr::full_zone_map& map) {
+  double best = 0;
+  for (double v : map.luminance) best = std::max(best, v);
+  std::printf("aerial image's mean luminance up to %.6g %s\n", best, airr::image_units(s.source));
+  for (std::size_t k = 0; k < map.thresholds.size(); ++k) {
+    std::printf("legible share of the zone at contrast %g: %.4f (eyes seeing %.0f%% of the image at that contrast)\n",
+                map.thresholds[k], airr::legible_share(map, k), 100 * airr::legible_image_share);
+  }
 }
 
 }  // namespace
@@ -72,6 +107,7 @@ void add_viewzone_command(CLI::App& app) {
     std::vector<std::string> sets;
     bool full = false;
     std::uint64_t spp = 16;
+    std::vector<double> contrast = airr::default_contrast_thresholds;
     shard_options shards;
   };
   auto opt = std::make_shared<options>();
@@ -95,9 +131,13 @@ void add_viewzone_command(CLI::App& app) {
       ->check(CLI::Range(1, 100000));
   cmd->add_flag("--full", opt->full,
                 "Also the full model per eye: mean brightness (relative to the best eye), mean MTF over (0, 1] lp/mm "
-                "of the model PSF, stray-light ratio (from a small render split into components); PNGs for each");
+                "of the model PSF, stray-light ratio, the aerial image's luminance and contrast, and the share of it "
+                "reaching each --contrast (from a small render split into components); PNGs for each");
   cmd->add_option("--spp", opt->spp, "Samples per pixel of each eye's render with --full (default 16)")
       ->check(CLI::Range(1, 65536));
+  cmd->add_option("--contrast", opt->contrast,
+                  "Contrast thresholds for --full's legibility (default 1.5 3 25: just visible, usable, best)")
+      ->check(CLI::Range(1.0, 1e6));
   cmd->add_option("--set", opt->sets, "Override a scene value, e.g. retroreflectors.0.pose.pitch_deg=10");
   add_shard_options(cmd, opt->shards);
   cmd->callback([opt] {
@@ -129,7 +169,8 @@ void add_viewzone_command(CLI::App& app) {
     airr::full_zone_map map;
     if (opt->full) {
       map = airr::full_viewing_zone(
-          s, g, {.rows_per_eye = opt->rows, .render_spp = opt->spp}, local_report, nullptr,
+          s, g, {.rows_per_eye = opt->rows, .render_spp = opt->spp, .contrast_thresholds = opt->contrast}, local_report,
+          nullptr,
           command_item_share(opt->shards, [&](std::size_t done, std::size_t n) { report(int(done), int(n)); }));
       if (!job.root() || write_shard_part(opt->shards)) return;
     } else {
@@ -140,6 +181,7 @@ void add_viewzone_command(CLI::App& app) {
       map.seconds = geometric.seconds;
     }
     bar->finish();
+    std::vector<double> contrast_shown;  // the contrast map's heatmap, infinite values at its top
     std::vector<zone_column> columns = {
         {"visible_fraction", "visible fraction of the aerial image", "", &map.visible, 0, 1}};
     if (opt->full) {
@@ -157,8 +199,10 @@ void add_viewzone_command(CLI::App& app) {
       for (double v : map.direct) direct_hi = std::isfinite(v) ? std::max(direct_hi, v) : direct_hi;
       columns.push_back({"direct", "display seen directly inside the aerial outline / its own luminance", "_direct",
                          &map.direct, 0, direct_hi > 0 ? direct_hi : 1});
+      add_legibility_columns(s, map, columns, contrast_shown);
     }
     airr::write_file_atomic(opt->csv, zone_csv(s, g, columns));
+    if (opt->full) print_legibility(s, map);
     double best = 0, sum = 0;
     for (double v : map.visible) best = std::max(best, v), sum += v;
     std::printf("%d x %d eyes on a %s at %.6g mm: visible fraction up to %.4f, mean %.4f; %.3f s (%.2f ms per eye)%s\n",
@@ -172,9 +216,9 @@ void add_viewzone_command(CLI::App& app) {
         airr::analysis::heatmap_params p;
         char title[160];
         if (opt->sphere) {
-          std::snprintf(title, sizeof title, "%s", c.title);
+          std::snprintf(title, sizeof title, "%s", c.title.c_str());
         } else {
-          std::snprintf(title, sizeof title, "%s, eyes %.6g mm in front", c.title, g.distance_mm);
+          std::snprintf(title, sizeof title, "%s, eyes %.6g mm in front", c.title.c_str(), g.distance_mm);
         }
         p.title = title;
         p.x_title = opt->sphere ? "observer azimuth (deg)" : "eye x (mm, right)";
@@ -190,7 +234,7 @@ void add_viewzone_command(CLI::App& app) {
         p.marker_label = "observer";
         const std::string path =
             (png.parent_path() / (png.stem().string() + c.suffix + png.extension().string())).string();
-        airr::analysis::write_heatmap_png(path, *c.values, g.nx, g.ny, p);
+        airr::analysis::write_heatmap_png(path, c.heat ? *c.heat : *c.values, g.nx, g.ny, p);
         std::printf("wrote %s\n", path.c_str());
       }
     }

@@ -44,6 +44,7 @@ struct options {
   double screenshot_after = -1;    // with edits: seconds after the edit (0: its first image)
   std::string component;           // the render view shows this component (empty: the whole image)
   bool luminance_view = false;     // the render view shows luminance in false colour
+  bool contrast_view = false;      // ... or the contrast
   std::string plots = "mtf";       // the Plots window's tab
   std::string zone;                // the viewing zone's quantity; a full one is computed before the screenshot
   std::string design;              // a design spec for the Optimise and Tolerance windows
@@ -125,13 +126,17 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 3600.0));
   cli.add_option("--zone", opt.zone,
                  "The viewing zone shows this quantity; a scripted run computes the full pass before its screenshot")
-      ->check(CLI::IsMember({"visible", "brightness", "mtf", "stray"}));
+      ->check(CLI::IsMember({"visible", "brightness", "mtf", "stray", "luminance", "contrast", "legible-1.5",
+                             "legible-3", "legible-25"}));
   cli.add_option("--plots", opt.plots, "The Plots window opens on this tab (mtf or bokeh)")
       ->check(CLI::IsMember({"mtf", "bokeh"}));
   cli.add_option("--component", opt.component, "The render view shows one component of the image")
       ->check(CLI::IsMember({"aerial", "direct", "reflection", "rest"}));
   cli.add_flag("--luminance-view", opt.luminance_view,
                "The render view shows luminance in false colour with its scale");
+  cli.add_flag("--contrast-view", opt.contrast_view,
+               "The render view shows each pixel's contrast (the aerial image against the rest) in false colour")
+      ->excludes("--luminance-view");
   cli.add_option("--soak", opt.soak.seconds, "Run the designer's soak cycle this many seconds, then exit")
       ->check(CLI::Range(1.0, 1e6));
   cli.add_option("--soak-log", opt.soak.log, "With --soak: the samples as CSV (default soak.csv)");
@@ -218,10 +223,12 @@ int main(int argc, char** argv) {
     if (opt.component == airr::component_names[k]) st.view.component = k;
   }
   st.view.luminance = opt.luminance_view;
+  st.view.contrast = opt.contrast_view;
   st.plots_tab = opt.plots == "bokeh" ? 1 : 0;
   st.select_plots_tab = true;
-  const char* const zone_quantities[] = {"visible", "brightness", "mtf", "stray"};
-  for (int k = 0; k < 4; ++k) {
+  const char* const zone_quantities[] = {"visible",  "brightness",  "mtf",       "stray",     "luminance",
+                                         "contrast", "legible-1.5", "legible-3", "legible-25"};
+  for (int k = 0; k < int(std::size(zone_quantities)); ++k) {
     if (opt.zone == zone_quantities[k]) st.zone_quantity = k;
   }
   st.keep_recovery = opt.frames == 0 && opt.bench_edits == 0;

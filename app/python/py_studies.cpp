@@ -121,6 +121,15 @@ py::dict viewzone(const py_scene& ps, bool sphere, double distance_mm, int grid,
     out["mean_mtf"] = grid_array(map.mean_mtf, g.ny, g.nx);
     out["stray_ratio"] = grid_array(map.stray_ratio, g.ny, g.nx);
     out["direct"] = grid_array(map.direct, g.ny, g.nx);
+    out["luminance"] = grid_array(map.luminance, g.ny, g.nx);
+    out["contrast"] = grid_array(map.contrast, g.ny, g.nx);
+    py::dict shares, legible;
+    for (std::size_t k = 0; k < map.thresholds.size(); ++k) {
+      shares[py::float_(map.thresholds[k])] = grid_array(map.contrast_share[k], g.ny, g.nx);
+      legible[py::float_(map.thresholds[k])] = legible_share(map, k);
+    }
+    out["contrast_share"] = shares;
+    out["legible_share"] = legible;
   }
   return out;
 }
@@ -221,6 +230,12 @@ py::dict tolerance(const std::filesystem::path& spec_file, std::optional<py_scen
   py::list keys;
   for (const auto& t : spec.tolerances) keys.append(t.key);
   out["tolerances"] = keys;
+  std::vector<double> drawn;
+  for (const tolerance_layout& l : r.layouts) drawn.insert(drawn.end(), l.values.begin(), l.values.end());
+  out["drawn"] = grid_array(drawn, int(r.layouts.size()), int(spec.tolerances.size()));
+  py::list worst;
+  for (std::size_t i : worst_layouts(r, 5)) worst.append(i);
+  out["worst"] = worst;
   return out;
 }
 
@@ -254,7 +269,11 @@ distance_mm. full=True adds the full model per eye (a small render of spp sample
 Returns a dict: the grid's "x_mm" and "y_mm" (or "azimuth_deg" and "elevation_deg"), and grid x
 grid float64 arrays (row j at y[j]): "visible" (the visible fraction), and with full=True
 "brightness" (relative to the best eye), "mean_mtf", "stray_ratio", "direct" (NaN where nothing
-of the aerial image is seen).)");
+of the aerial image is seen), "luminance" (the aerial image's mean, cd/m2 when the display's is
+given), "contrast" ((aerial + background) / background of the mean luminances; inf against a
+dark background), "contrast_share" ({threshold: the share of the image reaching it}, thresholds
+1.5, 3 and 25) and "legible_share" ({threshold: the share of the eyes seeing 90% of the image at
+it}).)");
   m.def("optimise", &optimise, py::arg("spec"), py::kw_only(), py::arg("output") = py::none(),
         py::arg("progress") = py::none(),
         R"(Searches a design spec's variables for the best layout, as `airr optimise` does (docs/design.md).
@@ -276,7 +295,10 @@ the spec's scene). progress: as for optimise.
 
 Returns a dict: "samples", "invalid", "yield" (the share meeting every constraint), "metrics"
 (per metric: its "values" per valid sample, "mean", "sd", "p5", "p50", "p95"), "tolerances" (their
-keys) and "sensitivity" (tolerances x metrics: each metric's change per tolerance size).)");
+keys), "sensitivity" (tolerances x metrics: each metric's change per tolerance size), "drawn"
+(samples x tolerances: each layout's drawn values, as `airr tolerance`'s CSV has them) and "worst"
+(the five worst samples' indices: no valid layout first, then the most constraints broken, then the
+lowest score).)");
 }
 
 }  // namespace airr::python

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "airr/core/error.hpp"
+#include "airr/render/tracer.hpp"
 
 namespace airr {
 
@@ -20,6 +21,8 @@ std::string event_text(const path_event& e) {
       return "S" + std::to_string(e.index) + (e.taken ? ":retro" : ":other");
     case path_event_kind::prop:
       return "P#" + std::to_string(e.index);
+    case path_event_kind::ambient:
+      return "A:room";
   }
   return "?";
 }
@@ -213,8 +216,11 @@ class path_expression_parser {
       case 'P':
         e.kind = path_event_kind::prop;
         break;
+      case 'A':
+        e.kind = path_event_kind::ambient;
+        break;
       default:
-        fail("expected an event (D, E, H, S or P), '.', '(' or '['");
+        fail("expected an event (D, E, H, S, P or A), '.', '(' or '['");
     }
     ++pos_;
     if (e.kind == path_event_kind::sheet && std::isdigit(static_cast<unsigned char>(peek()))) e.index = number();
@@ -249,13 +255,16 @@ class path_expression_parser {
         if (e.index != -1 || !e.prop_name.empty()) bad("a prop is named once");
         e.prop_name = w;
         e.index = -2;  // until bound to a scene's props
+      } else if (e.kind == path_event_kind::ambient) {
+        if (w != "room") bad("A takes room, not '" + w + "'");
+        e.index = ambient_room;
       } else {
         bad(std::string(e.kind == path_event_kind::display ? "D" : "E") + " takes no qualifier");
       }
     }
     if (!ends_event(peek())) {
       pos_ = start;
-      fail("expected an event (D, E, H, S or P), '.', '(' or '[' followed by a space or an operator");
+      fail("expected an event (D, E, H, S, P or A), '.', '(' or '[' followed by a space or an operator");
     }
     return e;
   }
@@ -320,16 +329,15 @@ path_layers path_layers::bound(const scene& s) const {
 
 path_layers component_layers() {
   // tracer.hpp's image components: at least one retroreflection; no half-mirror reflection, prop
-  // or sheet; one half-mirror reflection and nothing else; everything else.
+  // or sheet; one half-mirror reflection and nothing else; everything else; the room's light.
   static const char* const expressions[] = {
-      "D .* S:retro .* E",
-      "D H:t* E",
-      "D H:t* H:r H:t* E",
-      "D [^S:retro]* (P | S:other) [^S:retro]* E | D H* H:r H* H:r H* E",
+      "D .* S:retro .* E", "D H:t* E",
+      "D H:t* H:r H:t* E", "D [^S:retro]* (P | S:other) [^S:retro]* E | D H* H:r H* H:r H* E",
+      "A:room .* E",
   };
-  static const char* const names[] = {"aerial", "direct", "reflection", "rest"};
   path_layers out;
-  for (int k = 0; k < 4; ++k) out.layers.push_back({names[k], path_expression::parse(expressions[k])});
+  for (int k = 0; k < component_count; ++k)
+    out.layers.push_back({component_names[k], path_expression::parse(expressions[k])});
   return out;
 }
 

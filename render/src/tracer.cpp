@@ -13,6 +13,7 @@
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/path_polarization.hpp"
 #include "tracer_path.hpp"
+#include "tracer_surroundings.hpp"
 
 namespace airr {
 
@@ -58,6 +59,7 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   if (embree) ts.embree = std::move(embree);
   ts.texture = std::move(texture);
   ts.emission = std::move(emission);
+  ts.room_luminance = float(room_luminance(s.environment.room));
   ts.retro = std::move(models);
   ts.layout = s;
   derive_half_mirror_light(ts.layout.half_mirror);
@@ -124,6 +126,8 @@ using tracer_path::path_stack;
 using tracer_path::path_state;
 using tracer_path::path_trail;
 using tracer_path::polarized;
+using tracer_path::scatter_at_prop;
+using tracer_path::see_room;
 
 std::array<double, 6> pixel_sequence_rotation(const tracer_scene& ts, int px, int py) {
   pcg32 pixel_rng = sample_rng(std::uint64_t(py) * ts.camera.width + px, 0, ts.layout.seed ^ 0x5eedu);
@@ -163,7 +167,11 @@ static camera_ray first_ray(const tracer_scene& ts, int px, int py, const sample
 static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, const camera_ray& first,
                                      const RTCRayHit* first_hit, std::uint64_t& rays, layer_sink* layers = nullptr);
 
-static glm::vec3 total(const component_radiance& c) { return c[0] + c[1] + c[2] + c[3]; }
+static glm::vec3 total(const component_radiance& c) {
+  glm::vec3 sum(0.0f);
+  for (const glm::vec3& v : c) sum += v;
+  return sum;
+}
 
 glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sample_index, std::uint64_t& rays) {
   return trace_sample(ts, px, py, sample_index, pixel_sequence_rotation(ts, px, py), rays);
@@ -210,31 +218,6 @@ static camera_ray first_ray(const tracer_scene& ts, int px, int py, const sample
   return make_camera_ray(ts.camera, px + n.jitter.x, py + n.jitter.y, n.lens);
 }
 
-// Scatters the path at a prop (a mirror reflection, or a Lambertian bounce drawn from the path's
-// generator), both sides alike; false when the prop absorbs it.
-template <class Polarization, class Label>
-static bool scatter_at_prop(const tracer_scene::prop& prop, const RTCRayHit& rh, path_state<Polarization, Label>& p,
-                            pcg32& rng) {
-  const surface_response s = prop_surface_of(prop.params, *prop.mesh, rh.hit.primID);
-  if (s.kind == prop_surface::absorber) return false;
-  p.label.push({path_event_kind::prop, false, false, prop.index});
-  // Embree gives the normal in the mesh's frame; the prop's scale is uniform.
-  glm::dvec3 n = glm::normalize(prop.rotation * glm::dvec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z));
-  if (glm::dot(n, p.dir) > 0) n = -n;
-  p.origin += p.dir * double(rh.ray.tfar);
-  if (s.kind == prop_surface::mirror) {
-    p.dir = reflect(p.dir, n);
-    if constexpr (polarized<Polarization>) p.pol.mirror(-p.dir);
-  } else {
-    const double u1 = rng.next_double(), u2 = rng.next_double();
-    p.dir = glm::normalize(make_basis(n).to_world(cosine_hemisphere({u1, u2})));
-    if constexpr (polarized<Polarization>) p.pol.depolarize(-p.dir);
-  }
-  p.throughput *= s.reflectance;
-  ++p.prop_scatterings;
-  return true;
-}
-
 template <class Polarization, class Label>
 static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n, const camera_ray& first,
                                         const RTCRayHit* first_hit, std::uint64_t& rays, layer_sink* layers) {
@@ -260,7 +243,10 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
         intersect(ts.embree->get(), rh);
         ++rays;
       }
-      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) break;
+      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+        if (ts.room_luminance > 0) see_room(ts, p, radiance, layers);
+        break;
+      }
       if constexpr (std::is_same_v<Label, path_trail>) p.label.add_segment(p.origin, p.dir, rh.ray.tfar, p.throughput);
 
       const unsigned part = rh.hit.instID[0];

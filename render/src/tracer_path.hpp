@@ -66,6 +66,7 @@ struct path_state {
 template <class Polarization>
 inline constexpr bool polarized = std::is_same_v<Polarization, path_polarization>;
 
+// The component of the display's light along `p` (ambient light has its own).
 template <class Polarization, class Label>
 image_component component_of(const path_state<Polarization, Label>& p) {
   if (p.retroreflections > 0) return component_aerial;

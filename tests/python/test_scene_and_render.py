@@ -26,7 +26,7 @@ def test_a_render_equals_airr_render_pixel_for_pixel(tmp_path, cli, small_scene)
 
 def test_components_add_up_to_the_image(small_scene):
     image, parts = airr.render(small_scene, spp=2, seed=1, components=True)
-    assert sorted(parts) == ["aerial", "direct", "reflection", "rest"]
+    assert sorted(parts) == ["aerial", "direct", "reflection", "rest", "room"]
     total = sum(parts.values())
     assert np.allclose(total, image, rtol=1e-5, atol=1e-6)
     assert parts["aerial"].max() > 0
@@ -53,6 +53,25 @@ def test_a_display_luminance_puts_the_images_in_cd_per_m2(small_scene):
     assert p["luminance_cd_m2"] == pytest.approx(500 * p["brightness"], rel=1e-12)
     with pytest.raises(ValueError, match="source.luminance_cd_m2"):
         small_scene.set("source.luminance_cd_m2", -1)
+
+
+def test_the_room_is_its_own_component_in_cd_per_m2(small_scene):
+    small_scene.set("source.luminance_cd_m2", 500)
+    _, dark = airr.render(small_scene, spp=2, seed=1, components=True)
+    small_scene.set("environment.room.illuminance_lux", 500)
+    image, lit = airr.render(small_scene, spp=2, seed=1, components=True)
+    assert np.allclose(sum(lit.values()), image, rtol=1e-5, atol=1e-4)
+    assert dark["room"].max() == 0 and lit["room"].max() > 0
+    # Passive parts: nothing shows the room brighter than its surround, 500 / pi cd/m2.
+    assert lit["room"].max() <= 500 / math.pi * (1 + 1e-5)
+    assert np.array_equal(lit["aerial"], dark["aerial"])
+    zone = airr.viewzone(small_scene, grid=3, full=True, spp=2)
+    assert zone["contrast"].shape == (3, 3) and sorted(zone["legible_share"]) == [1.5, 3.0, 25.0]
+    assert np.all(zone["contrast"] >= 1) and zone["luminance"].max() > 0
+    with pytest.raises(ValueError, match="environment.room.illuminance_lux"):
+        small_scene.set("environment.room.illuminance_lux", -1)
+    with pytest.raises(ValueError, match="source.luminance_cd_m2"):
+        small_scene.set("source.luminance_cd_m2", 0)
 
 
 BAD_SETS = [

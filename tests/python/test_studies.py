@@ -91,6 +91,12 @@ def test_tolerance_equals_airr_tolerance(tmp_path, cli):
     column = next(k for k in rows[0] if k.startswith("r50_mm"))
     assert np.allclose(m["values"], [float(r[column]) for r in rows], rtol=1e-9)
     assert t["sensitivity"].shape == (2, 1)
+    # Each layout's drawn values, in the CSV and the dict alike, spread about the nominal as asked.
+    assert t["drawn"].shape == (30, 2)
+    assert np.allclose(t["drawn"][:, 0], [float(r["retroreflectors.0.pose.pitch_deg"]) for r in rows], rtol=1e-9)
+    nominal = airr.Scene.load(airr.default_scene_path()).get("floating_distance_mm")
+    assert abs(t["drawn"][:, 1].mean() - nominal) < 3 and 2 < t["drawn"][:, 1].std() < 8  # sd 5
+    assert len(t["worst"]) == 5 and all(0 <= i < 30 for i in t["worst"])
 
 
 def test_a_study_stops_at_an_exception_in_its_progress(small_scene):

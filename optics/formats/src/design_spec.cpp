@@ -34,6 +34,9 @@ constexpr std::array<metric_name, design_metric_count> metric_names = {{
     {design_metric::stray_light, "stray_light", true},
     {design_metric::ghost_ratio, "ghost_ratio", true},
     {design_metric::ghost_separation_arcmin, "ghost_separation_arcmin", true},
+    {design_metric::luminance_cd_m2, "luminance_cd_m2", true},
+    {design_metric::contrast, "contrast", true},
+    {design_metric::legible_share, "legible_share", true},
     {design_metric::size_x_mm, "size_x_mm", false},
     {design_metric::size_y_mm, "size_y_mm", false},
     {design_metric::size_z_mm, "size_z_mm", false},
@@ -194,6 +197,9 @@ design_spec read_design_spec(const nlohmann::json& j, const std::string& path, c
     }
   }
   if (r.has("eye_zone")) spec.eye_zone = read_eye_zone(r.child("eye_zone"));
+  r.number("legible_contrast", spec.legible_contrast);
+  if (!(spec.legible_contrast >= 1 && spec.legible_contrast <= 1e6))
+    r.fail("legible_contrast", "must be in [1, 1e6] (is " + number_text(spec.legible_contrast) + ")");
   if (spec.eyes_mm.empty() && !spec.eye_zone) spec.eyes_mm.push_back(observer_position(spec.base));
   each_object(r, "objectives", true, [&](json_reader& o, std::size_t) {
     design_objective obj;
@@ -291,6 +297,7 @@ std::string design_spec_text(const design_spec& spec) {
                      {"y", {z->y_min, z->y_max}},
                      {"n", {z->nx, z->ny}}};
   }
+  if (spec.legible_contrast != 3) j["legible_contrast"] = spec.legible_contrast;
   j["objectives"] = nlohmann::ordered_json::array();
   for (const design_objective& o : spec.objectives) {
     nlohmann::ordered_json obj = {{"metric", to_string(o.metric)}};

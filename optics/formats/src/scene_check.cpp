@@ -114,6 +114,13 @@ void validate_scene(const scene& s, const std::string& origin) {
   c.range("source.intensity", s.source.intensity, 0, 1e9);
   c.range("source.luminance_cd_m2", s.source.luminance_cd_m2, 0, 1e9);
   c.range("source.bezel_mm", s.source.bezel_mm, 0, 1e4);
+  c.range("environment.room.luminance_cd_m2", s.environment.room.luminance_cd_m2, 0, 1e9);
+  c.range("environment.room.illuminance_lux", s.environment.room.illuminance_lux, 0, 1e9);
+  if (s.environment.room.luminance_cd_m2 > 0 && s.environment.room.illuminance_lux > 0)
+    c.fail("environment.room", "give luminance_cd_m2 or illuminance_lux, not both");
+  if (has_ambient_light(s.environment) && !in_cd_m2(s.source))
+    c.fail("environment",
+           "ambient light is in cd/m2, so the display's luminance must be given too (source.luminance_cd_m2)");
   c.range("source.polarization.angle_deg", s.source.polarization.angle_deg, -360, 360);
   c.part("half_mirror", s.half_mirror);
   c.reflective_polarizer("half_mirror.polarizer", s.half_mirror.polarizer);

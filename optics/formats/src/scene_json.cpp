@@ -128,6 +128,12 @@ json scene_to_json(const scene& s, json_form form) {
       {"render", {{"max_depth", s.render.max_depth}}},
   };
   if (form == json_form::complete || o.analyzer_deg) out["observer"]["analyzer_deg"] = optional_number(o.analyzer_deg);
+  // Written only when set, so layouts in a dark room keep their form.
+  if (form == json_form::complete || s.environment != environment_params{}) {
+    const room_params& room = s.environment.room;
+    out["environment"] = {
+        {"room", {{"luminance_cd_m2", room.luminance_cd_m2}, {"illuminance_lux", room.illuminance_lux}}}};
+  }
   // Written only when there are any, so layouts without props keep their form.
   if (!s.props.empty()) {
     json props = json::array();
@@ -264,6 +270,16 @@ static scene scene_from_json_v2(json_reader& r) {
       read_prop(json_reader(list[i], r.origin(), "props[" + std::to_string(i) + "]"), s.props[i]);
   }
   if (r.has("observer")) read_observer(r.child("observer"), s.observer);
+  if (r.has("environment")) {
+    auto c = r.child("environment");
+    if (c.has("room")) {
+      auto room = c.child("room");
+      room.number("luminance_cd_m2", s.environment.room.luminance_cd_m2);
+      room.number("illuminance_lux", s.environment.room.illuminance_lux);
+      room.finish();
+    }
+    c.finish();
+  }
   if (r.has("render")) {
     auto c = r.child("render");
     c.integer("max_depth", s.render.max_depth);

@@ -185,6 +185,11 @@ void path_polarization::sheet(const retroreflector_params& r, const part_frame& 
   films(r.films, part_face::front, f, false);
 }
 
+glm::vec3 path_polarization::unpolarized_seen() const {
+  const stokes light = unpolarized();
+  return {float(glm::dot(rows[0], light)), float(glm::dot(rows[1], light)), float(glm::dot(rows[2], light))};
+}
+
 double path_polarization::emitted_white(const source_params& display, const part_frame& f) const {
   const glm::vec3 c = emitted(display, f);
   return (double(c.x) + double(c.y) + double(c.z)) / 3;

@@ -1,12 +1,17 @@
 #include "airr/layout/scene.hpp"
 
 #include <cmath>
+#include <numbers>
 
 #include "airr/core/files.hpp"
 
 namespace airr {
 
 std::string resolve_scene_path(const scene& s, const std::string& path) { return resolve_path(path, s.base_dir); }
+
+double room_luminance(const room_params& r) {
+  return r.illuminance_lux > 0 ? r.illuminance_lux / std::numbers::pi : r.luminance_cd_m2;
+}
 
 bool differ_in_placement_alone(const scene& a, const scene& b) {
   if (a.retroreflectors.size() != b.retroreflectors.size() || a.props.size() != b.props.size()) return false;

@@ -57,6 +57,8 @@ class eye_metrics {
       const double r = view().stray_ratio;
       return std::isnan(r) ? inf : r;  // none of the aerial image seen
     }
+    if (m == design_metric::contrast) return view().seen.contrast;
+    if (m == design_metric::legible_share) return view().seen.share_above.front();
     const psf_samples& p = psf();
     switch (m) {
       case design_metric::mean_mtf:
@@ -67,6 +69,8 @@ class eye_metrics {
         return p.offset_mm.empty() ? std::numeric_limits<double>::infinity() : energy_radius(p, 0.5);
       case design_metric::brightness:
         return p.brightness();
+      case design_metric::luminance_cd_m2:
+        return p.brightness() * white_radiance(s_.source);
       default:
         return 0;
     }
@@ -82,7 +86,7 @@ class eye_metrics {
     return *mtf_;
   }
   const eye_view_metrics& view() {
-    if (!view_) view_ = eye_view_from(s_, eye_, expressions_);
+    if (!view_) view_ = eye_view_from(s_, eye_, expressions_, {.contrast_thresholds = {spec_.legible_contrast}});
     return *view_;
   }
 
@@ -194,7 +198,7 @@ void check_design_expressions(const design_spec& spec) {
 void check_design_memory(const design_spec& spec, const std::string& what, std::size_t layouts) {
   auto takes_psf = [](design_metric m) {
     return metric_at_eye(m) && m != design_metric::visible_fraction && m != design_metric::stray_light &&
-           !metric_takes_expression(m);
+           m != design_metric::contrast && m != design_metric::legible_share && !metric_takes_expression(m);
   };
   const bool psfs = std::any_of(spec.objectives.begin(), spec.objectives.end(),
                                 [&](const design_objective& o) { return takes_psf(o.metric); }) ||

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <tuple>
 
 #include <tbb/parallel_for.h>
 
@@ -79,6 +80,18 @@ double percentile(std::vector<double> sorted, double p) {
 
 }  // namespace
 
+std::vector<std::size_t> worst_layouts(const tolerance_result& r, std::size_t count) {
+  std::vector<std::size_t> order(r.layouts.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  const auto badness = [&](std::size_t i) {
+    const tolerance_layout& l = r.layouts[i];
+    return std::tuple(!l.valid, l.broken.size(), -l.score);
+  };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return badness(a) > badness(b); });
+  order.resize(std::min(count, order.size()));
+  return order;
+}
+
 tolerance_result run_tolerance(const design_spec& spec, const scene& nominal,
                                const std::function<void(int, int)>& progress, const std::atomic<bool>* cancel,
                                const item_share& share) {
@@ -125,13 +138,22 @@ tolerance_result run_tolerance(const design_spec& spec, const scene& nominal,
       break;
     }
     const std::size_t end = std::min(draws.size(), first + batch_size);
-    for (const std::optional<design_evaluation>& e : evaluate_all(draws, first, end)) {
+    const std::vector<std::optional<design_evaluation>> evaluated = evaluate_all(draws, first, end);
+    for (std::size_t i = 0; i < evaluated.size(); ++i) {
+      const std::optional<design_evaluation>& e = evaluated[i];
+      tolerance_layout& layout = out.layouts.emplace_back();
+      for (std::size_t t = 0; t < spec.tolerances.size(); ++t)
+        layout.values.push_back(nominal_values[t] + draws[first + i][t]);
       ++out.samples;
       if (!e) {
         ++out.invalid;
         continue;
       }
       const std::vector<double> v = metric_values(*e);
+      layout.valid = true;
+      layout.metrics = v;
+      layout.score = e->score;
+      layout.broken = e->broken;
       for (std::size_t m = 0; m < v.size(); ++m) out.metrics[m].values.push_back(v[m]);
       if (e->feasible()) ++passing;
     }

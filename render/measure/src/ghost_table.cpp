@@ -48,7 +48,7 @@ bool retroreflected_class(const path_expression& e, const std::map<std::string, 
   bool any = false;
   for (const auto& [text, c] : seen) {
     if (!e.matches(c.label)) continue;
-    if (!retroreflected(c.label)) return false;
+    if (!aerial_image_path(c.label)) return false;
     any = true;
   }
   return any;
@@ -136,7 +136,7 @@ ghost_table compute_ghost_table(const scene& s, const ghost_params& p,
   std::size_t aerial_layer = ranked.size();
   for (std::size_t i = 0; i < ranked.size(); ++i) {
     layers->layers.push_back({"c" + std::to_string(i), path_expression::parse(ranked[i].second).bound(s, true)});
-    retro[i] = i < found ? retroreflected(seen.at(ranked[i].second).label)
+    retro[i] = i < found ? aerial_image_path(seen.at(ranked[i].second).label)
                          : retroreflected_class(layers->layers.back().expression, seen);
     if (aerial_layer == ranked.size() && i < found && retro[i]) aerial_layer = i;
   }

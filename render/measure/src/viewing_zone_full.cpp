@@ -30,6 +30,7 @@ constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
 struct eye_render {
   double aerial = 0, stray = 0, direct = 0;  // mean luminance of each inside the aerial outline
+  contrast_summary seen;                     // the aerial image against the rest, wholly inside it
   double stray_ratio() const { return aerial > 0 ? stray / aerial : nan; }
 };
 
@@ -54,9 +55,11 @@ scene seen_from(const scene& s, const glm::dvec3& eye, const full_zone_params& p
   return at;
 }
 
-// The components' mean luminance per sample over the aerial image's outline as the eye sees it.
+// The components' mean luminance per sample over the aerial image's outline as the eye sees it,
+// and the contrast there.
 eye_render outline_means(const std::vector<double>& components, const pinhole_camera& cam,
-                         const std::array<glm::dvec2, 4>& outline, std::uint64_t spp) {
+                         const std::array<glm::dvec2, 4>& outline, std::uint64_t spp,
+                         const std::vector<double>& thresholds = {}) {
   const int w = cam.width, h = cam.height;
   eye_render out;
   int inside = 0;
@@ -70,7 +73,8 @@ eye_render outline_means(const std::vector<double>& components, const pinhole_ca
         return rec709_luminance(v[0], v[1], v[2]);
       };
       out.aerial += luminance(component_aerial);
-      for (int comp : {component_direct, component_reflection, component_rest}) out.stray += luminance(comp);
+      for (int comp = 0; comp < component_count; ++comp)
+        if (comp != component_aerial) out.stray += luminance(comp);  // the room's light too
       out.direct += luminance(component_direct);
     }
   }
@@ -80,6 +84,7 @@ eye_render outline_means(const std::vector<double>& components, const pinhole_ca
     out.stray /= n;
     out.direct /= n;
   }
+  out.seen = contrast_inside(components, w, h, outline, thresholds, 1.0 / double(spp));
   return out;
 }
 
@@ -93,7 +98,8 @@ eye_render render_from(tracer_scene& ts, const embree_device& device, const scen
   const std::atomic<bool> never{false};
   std::uint64_t rays = 0;
   trace_rows(ts, 0, h, 0, p.render_spp, sums, cancel ? *cancel : never, rays, nullptr, &components);
-  return outline_means(components, ts.camera, aerial_outline(eye_scene, ts.camera), p.render_spp);
+  return outline_means(components, ts.camera, aerial_outline(eye_scene, ts.camera), p.render_spp,
+                       p.contrast_thresholds);
 }
 
 // The luminance of the display's emitting area, face on: its white's radiance times its image's mean.
@@ -135,7 +141,9 @@ eye_view_metrics eye_view_from(const scene& s, const glm::dvec3& eye, const std:
              expressions.empty() ? nullptr : &layer_sums);
   const std::array<glm::dvec2, 4> outline = aerial_outline(at, ts.camera);
   eye_view_metrics out;
-  out.stray_ratio = outline_means(components, ts.camera, outline, p.render_spp).stray_ratio();
+  const eye_render r = outline_means(components, ts.camera, outline, p.render_spp, p.contrast_thresholds);
+  out.stray_ratio = r.stray_ratio();
+  out.seen = r.seen;
   const image_rgb aerial = interleaved_image(components.data(), w, h, component_count, component_aerial);
   const glm::dvec2 aerial_centroid = luminance_centroid(aerial);
   for (std::size_t k = 0; k < expressions.size(); ++k) {
@@ -159,6 +167,14 @@ eye_view_metrics eye_view_from(const scene& s, const glm::dvec3& eye, const std:
   return out;
 }
 
+double legible_share(const full_zone_map& m, std::size_t k) {
+  const std::vector<double>& share = m.contrast_share.at(k);
+  if (share.empty()) return 0;
+  std::size_t legible = 0;
+  for (double v : share) legible += v >= legible_image_share;
+  return double(legible) / double(share.size());
+}
+
 double stray_light_ratio(const scene& s, const glm::dvec3& eye, const full_zone_params& p) {
   return eye_view_from(s, eye, {}, p).stray_ratio;
 }
@@ -176,14 +192,17 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
       p.rows_per_eye < 1) {
     throw input_error("viewing zone: full-pass parameters out of range");
   }
+  if (p.contrast_thresholds.size() > 16) throw input_error("viewing zone: at most 16 contrast thresholds");
+  for (double t : p.contrast_thresholds)
+    if (!std::isfinite(t) || t < 1 || t > 1e6) throw input_error("viewing zone: a contrast threshold is 1 to 1e6");
   if (s.retroreflectors.empty()) throw input_error("viewing zone: no retroreflector, no aerial image");
   {
-    // Each worker renders one eye and takes its PSF at a time; the maps hold five numbers an eye
-    // (twice when shared).
+    // Each worker renders one eye and takes its PSF at a time; the maps hold seven numbers an eye
+    // and one a contrast threshold (twice when shared).
     const std::uint64_t workers = std::max(1u, std::thread::hardware_concurrency());
     const std::uint64_t eyes = std::uint64_t(g.nx) * std::uint64_t(g.ny), side = std::uint64_t(p.render_size);
     const std::uint64_t need =
-        measuring_process_bytes + eyes * 80 +
+        measuring_process_bytes + eyes * 16 * (7 + p.contrast_thresholds.size()) +
         workers * (traced_pixels_memory_need(side * side, true) + psf_memory_need(p.psf_samples));
     check_memory_need("viewing zone: " + std::to_string(eyes) + " eyes of " + std::to_string(p.psf_samples) +
                           " PSF samples and a " + std::to_string(side) + " x " + std::to_string(side) + " render each",
@@ -198,6 +217,10 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
   out.mean_mtf.assign(n, nan);
   out.stray_ratio.assign(n, nan);
   out.direct.assign(n, nan);
+  out.luminance.assign(n, 0.0);
+  out.contrast.assign(n, 1.0);
+  out.thresholds = p.contrast_thresholds;
+  out.contrast_share.assign(p.contrast_thresholds.size(), std::vector<double>(n, 0.0));
   const viewing_parts parts(s, scene_prop_hits(s));
   const retro_model_list models = make_sheet_models(s);
   const embree_device device;
@@ -216,6 +239,9 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
     // Every eye is rendered: the display may be seen directly where the aerial image is not.
     const eye_render r = render_from(ts, device, eye, p, cancel);
     out.direct[e] = r.direct / display_luminance(ts);
+    out.luminance[e] = r.seen.aerial_luminance;
+    out.contrast[e] = r.seen.contrast;
+    for (std::size_t k = 0; k < out.contrast_share.size(); ++k) out.contrast_share[k][e] = r.seen.share_above[k];
     if (out.visible[e] > 0) {
       out.brightness[e] = r.aerial;
       out.stray_ratio[e] = r.stray_ratio();
@@ -249,17 +275,20 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
     if (progress) progress(done, int(n));
   };
   if (share) {
-    // Each eye's five numbers as a shared item (an MPI job's ranks); every caller gets them all.
-    std::vector<double>* maps[] = {&out.visible, &out.brightness, &out.mean_mtf, &out.stray_ratio, &out.direct};
-    const std::vector<double> values = share(n, 5, [&](std::size_t e, double* o) {
+    // Each eye's numbers as a shared item (an MPI job's ranks); every caller gets them all.
+    std::vector<std::vector<double>*> maps = {&out.visible, &out.brightness, &out.mean_mtf, &out.stray_ratio,
+                                              &out.direct,  &out.luminance,  &out.contrast};
+    for (auto& m : out.contrast_share) maps.push_back(&m);
+    const std::size_t count = maps.size();
+    const std::vector<double> values = share(n, count, [&](std::size_t e, double* o) {
       std::unique_ptr<tracer_scene> ts = take();
       one_eye(e, *ts);
       give_back(std::move(ts));
-      for (int k = 0; k < 5; ++k) o[k] = (*maps[k])[e];
+      for (std::size_t k = 0; k < count; ++k) o[k] = (*maps[k])[e];
       count_done();
     });
     for (std::size_t e = 0; e < n; ++e)
-      for (std::size_t k = 0; k < 5; ++k) (*maps[k])[e] = values[5 * e + k];
+      for (std::size_t k = 0; k < count; ++k) (*maps[k])[e] = values[count * e + k];
   } else {
     detail::parallel_rows(int(n), 0, [&](int e0, int e1) {
       std::unique_ptr<tracer_scene> ts = take();

@@ -372,6 +372,11 @@ void draw_layout_panel(studio& st) {
     props_section(st);
     ImGui::PopID();
   }
+  if (ImGui::CollapsingHeader("Environment")) {
+    ImGui::PushID("environment");
+    environment_section(st);
+    ImGui::PopID();
+  }
   if (ImGui::CollapsingHeader("Observer")) {
     ImGui::PushID("observer");
     observer_section(s);

@@ -1,14 +1,16 @@
 // The Tolerance window: assembly tolerances (from the layout panel's rows or the common ones), the
 // Monte Carlo's samples, and the result as `airr tolerance` reports it: each metric of the Optimise
 // window's objectives and constraints as a histogram with its statistics, the yield against the
-// constraints, and the sensitivity table (each tolerance alone), the largest change per metric
-// marked so the designer sees which tolerance to tighten.
+// constraints, the worst layouts with their drawn values, and the sensitivity table (each
+// tolerance alone), the largest change per metric marked so the designer sees which tolerance to
+// tighten.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include <imgui.h>
 
+#include "airr/core/error.hpp"
 #include "airr/ui/views/plot_widget.hpp"
 #include "design_widgets.hpp"
 
@@ -61,6 +63,36 @@ void metrics_line(const design_spec& spec) {
     names += (names.empty() ? "" : ", ") + std::string(to_string(c.metric)) + bound;
   }
   ImGui::TextWrapped("Metrics (the Optimise window's objectives and constraints): %s", names.c_str());
+}
+
+// The worst layouts drawn, with what was drawn for each tolerance, so the deviation that spoilt
+// one can be read off.
+void worst_layouts_table(const tolerance_result& r, const design_spec& spec) {
+  const std::vector<std::size_t> worst = worst_layouts(r, 5);
+  if (worst.empty()) return;
+  ImGui::TextUnformatted("Worst layouts: the values drawn, and what each broke");
+  const int columns = int(2 + spec.tolerances.size());
+  if (!ImGui::BeginTable("##worst", columns, ImGuiTableFlags_Borders | ImGuiTableFlags_SizingStretchProp)) return;
+  ImGui::TableSetupColumn("sample");
+  for (const design_tolerance& t : spec.tolerances) ImGui::TableSetupColumn(t.key.c_str());
+  ImGui::TableSetupColumn("result");
+  ImGui::TableHeadersRow();
+  for (std::size_t i : worst) {
+    const tolerance_layout& l = r.layouts[i];
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::Text("%zu", i);
+    for (double v : l.values) {
+      ImGui::TableNextColumn();
+      ImGui::Text("%.5g", v);
+    }
+    ImGui::TableNextColumn();
+    std::string result = l.valid ? "" : "no valid layout";
+    for (const std::string& b : l.broken) result += (result.empty() ? "" : "; ") + b;
+    if (result.empty()) result = "score " + number_text(l.score, 4);
+    ImGui::TextUnformatted(result.c_str());
+  }
+  ImGui::EndTable();
 }
 
 void result_section(studio& st) {
@@ -131,6 +163,7 @@ void result_section(studio& st) {
     ImGui::PopID();
     st.regions["tolerance_histogram_" + std::to_string(m)] = {hov.area[0], hov.area[1], hov.area[2], hov.area[3]};
   }
+  worst_layouts_table(r, spec);
 }
 
 }  // namespace

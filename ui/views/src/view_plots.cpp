@@ -27,18 +27,48 @@ bool start_full_zone(studio& st) {
   return true;
 }
 
+// The full pass's quantities from "brightness (full)" on, in the order of the zone menu; the
+// legibility maps are the share of the image at each default contrast threshold.
+static constexpr int first_legible_quantity = 6;
+static const std::vector<double>* zone_values(const full_zone_map& m, int quantity, std::vector<double>& shown) {
+  switch (quantity) {
+    case 1:
+      return &m.brightness;
+    case 2:
+      return &m.mean_mtf;
+    case 3:
+      return &m.stray_ratio;
+    case 4:
+      return &m.luminance;
+    case 5: {
+      // Against a dark background the contrast is infinite: shown at the highest threshold or more.
+      double top = 1;
+      for (double v : m.contrast) top = std::isfinite(v) ? std::max(top, v) : top;
+      for (double t : m.thresholds) top = std::max(top, t);
+      shown = m.contrast;
+      for (double& v : shown) v = std::min(v, top);
+      return &shown;
+    }
+    default:
+      return &m.contrast_share.at(std::size_t(quantity - first_legible_quantity));
+  }
+}
+
 // The viewing zone: the geometric visible fraction from the predicted plots, or a quantity of
 // the full pass (started on demand, for the current layout only).
 template <typename Keep>
 static void draw_viewing_zone(studio& st, const predicted_plots* pred, float h, const Keep& keep) {
-  static const char* const quantities[] = {"visible fraction", "brightness (full)", "mean MTF (full)",
-                                           "stray light (full)"};
+  static const char* const quantities[] = {"visible fraction",      "brightness (full)",   "mean MTF (full)",
+                                           "stray light (full)",    "luminance (full)",    "contrast (full)",
+                                           "legible at 1.5 (full)", "legible at 3 (full)", "legible at 25 (full)"};
   ImGui::SetNextItemWidth(10 * ImGui::GetFontSize());
   ImGui::Combo("viewing zone", &st.zone_quantity, quantities, IM_ARRAYSIZE(quantities));
   const eye_grid* grid = nullptr;
   const std::vector<double>* values = nullptr;
   double hi = 1;
   std::optional<full_zone_map> full;
+  std::vector<double> shown;  // the contrast, infinite values at its top
+  std::optional<double> legible;
   if (st.zone_quantity == 0) {
     if (pred && !pred->zone.visible.empty()) {
       grid = &pred->zone.grid;
@@ -58,8 +88,10 @@ static void draw_viewing_zone(studio& st, const predicted_plots* pred, float h, 
     if (current && !job->running()) full = job->result();
     if (full) {
       grid = &full->grid;
-      values = st.zone_quantity == 1 ? &full->brightness : st.zone_quantity == 2 ? &full->mean_mtf : &full->stray_ratio;
-      if (st.zone_quantity != 1) {
+      values = zone_values(*full, st.zone_quantity, shown);
+      if (st.zone_quantity >= first_legible_quantity) {
+        legible = legible_share(*full, std::size_t(st.zone_quantity - first_legible_quantity));
+      } else if (st.zone_quantity != 1) {
         hi = 0;
         for (double v : *values) hi = std::isfinite(v) ? std::max(hi, v) : hi;
         if (!(hi > 0)) hi = 1;
@@ -71,8 +103,13 @@ static void draw_viewing_zone(studio& st, const predicted_plots* pred, float h, 
   const plot_heatmap map{*values, g.nx, g.ny, g.x_min, g.x_max, g.y_min, g.y_max, 0.0, hi};
   const glm::dvec2 at = eye_grid_coordinates(st.doc, g, observer_position(st.doc));
   const std::vector<plot_curve> observer = {{"observer", {at.x}, {at.y}, IM_COL32(255, 255, 255, 255)}};
-  char title[96];
-  std::snprintf(title, sizeof title, "%s, 0 to %.3g", quantities[st.zone_quantity], hi);
+  char title[160];
+  if (legible) {
+    std::snprintf(title, sizeof title, "%s: share of the image; legible share of the zone %.2f",
+                  quantities[st.zone_quantity], *legible);
+  } else {
+    std::snprintf(title, sizeof title, "%s, 0 to %.3g", quantities[st.zone_quantity], hi);
+  }
   const double hx = 0.5 * (g.x_max - g.x_min) / std::max(1, g.nx - 1),
                hy = 0.5 * (g.y_max - g.y_min) / std::max(1, g.ny - 1);
   const plot_hover zone = draw_plot("zone", observer,

@@ -1,6 +1,6 @@
 // The render view: the progressive image with its statistics, pause/resume, exposure, zoom and
-// pan, the luminance view (false colour with its scale), and a cursor readout of the pixel value,
-// its luminance and its position on the aerial-image plane.
+// pan, the luminance and contrast views (false colour with their scales), and a cursor readout of
+// the pixel value, its luminance, its contrast and its position on the aerial-image plane.
 #include <algorithm>
 #include <cmath>
 
@@ -9,6 +9,7 @@
 #include "airr/core/color.hpp"
 #include "airr/formats/image.hpp"
 #include "airr/layout/layout.hpp"
+#include "airr/measure/contrast.hpp"
 #include "airr/render/render_metadata.hpp"
 #include "airr/render/tracer.hpp"
 #include "airr/ui/views/luminance_scale.hpp"
@@ -42,11 +43,28 @@ static void upload_pixels(studio& st, int width, int height, float exposure, con
   st.view.texture.upload(width, height, rgba);
   st.view.uploaded_exposure = exposure;
   st.view.uploaded_luminance = st.view.luminance;
+  st.view.uploaded_contrast = false;
 }
 
-// The luminance view's scale bar along the image area's right edge, a label at each decade.
-static void draw_scale_bar(studio& st, ImDrawList* dl, const ImVec2& origin, const ImVec2& area) {
-  const luminance_scale scale = luminance_scale::for_exposure(st.view.uploaded_exposure);
+// Uploads the contrast view of the snapshot's components.
+static void upload_contrast(studio& st, const render_snapshot& snap, float exposure) {
+  const contrast_scale scale;
+  std::vector<std::uint8_t> rgba(std::size_t(snap.width) * snap.height * 4);
+  for (std::size_t i = 0; i < std::size_t(snap.width) * snap.height; ++i) {
+    const auto c = scale.colour(snap.components->data() + 3 * component_count * i);
+    std::copy(c.begin(), c.end(), rgba.begin() + std::ptrdiff_t(4 * i));
+    rgba[4 * i + 3] = 255;
+  }
+  st.view.texture.upload(snap.width, snap.height, rgba);
+  st.view.uploaded_exposure = exposure;
+  st.view.uploaded_luminance = false;
+  st.view.uploaded_contrast = true;
+}
+
+// A false-colour scale bar along the image area's right edge, with labels at `ticks` (position
+// on the scale, text), kept as the screenshot region `name`.
+static void draw_scale_bar(studio& st, ImDrawList* dl, const ImVec2& origin, const ImVec2& area,
+                           const std::vector<std::pair<double, std::string>>& ticks, const char* name) {
   const float font = ImGui::GetFontSize();
   const float x1 = origin.x + area.x - 0.5f * font, x0 = x1 - 0.8f * font;
   const float y0 = origin.y + 0.5f * font, y1 = origin.y + area.y - 0.5f * font;
@@ -57,27 +75,54 @@ static void draw_scale_bar(studio& st, ImDrawList* dl, const ImVec2& origin, con
     dl->AddRectFilled(ImVec2(x0, yb), ImVec2(x1, ya), viridis((k + 0.5) / steps));
   }
   float label_x0 = x0;
-  for (int d = 0; d <= scale.decades; ++d) {
-    const float y = y1 - (y1 - y0) * float(d) / float(scale.decades);
-    char text[48];
-    std::snprintf(text, sizeof text, "%.3g%s", scale.bottom() * std::pow(10.0, d),
-                  in_cd_m2(st.doc.source) ? " cd/m2" : "");
-    const ImVec2 size = ImGui::CalcTextSize(text);
+  for (const auto& [position, text] : ticks) {
+    const float y = y1 - (y1 - y0) * float(position);
+    const ImVec2 size = ImGui::CalcTextSize(text.c_str());
     const ImVec2 at(x0 - size.x - 0.4f * font, std::clamp(y - 0.5f * size.y, y0, y1 - size.y));
     dl->AddRectFilled(at, ImVec2(at.x + size.x, at.y + size.y), IM_COL32(20, 20, 20, 200));
-    dl->AddText(at, IM_COL32(230, 230, 230, 255), text);
+    dl->AddText(at, IM_COL32(230, 230, 230, 255), text.c_str());
     dl->AddLine(ImVec2(x0 - 0.3f * font, y), ImVec2(x0, y), IM_COL32(230, 230, 230, 255));
     label_x0 = std::min(label_x0, at.x);
   }
-  st.regions["luminance_scale"] = {label_x0, y0, x1, y1};
+  st.regions[name] = {label_x0, y0, x1, y1};
+}
+
+// The luminance view's scale: a label at each decade.
+static void draw_luminance_scale(studio& st, ImDrawList* dl, const ImVec2& origin, const ImVec2& area) {
+  const luminance_scale scale = luminance_scale::for_exposure(st.view.uploaded_exposure);
+  std::vector<std::pair<double, std::string>> ticks;
+  for (int d = 0; d <= scale.decades; ++d) {
+    char text[48];
+    std::snprintf(text, sizeof text, "%.3g%s", scale.bottom() * std::pow(10.0, d),
+                  in_cd_m2(st.doc.source) ? " cd/m2" : "");
+    ticks.push_back({double(d) / scale.decades, text});
+  }
+  draw_scale_bar(st, dl, origin, area, ticks, "luminance_scale");
+}
+
+// The contrast view's scale: 1, the guidelines' thresholds and its top.
+static void draw_contrast_scale(studio& st, ImDrawList* dl, const ImVec2& origin, const ImVec2& area) {
+  const contrast_scale scale;
+  std::vector<std::pair<double, std::string>> ticks = {{0.0, "1"}};
+  for (double t : default_contrast_thresholds) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", t);
+    ticks.push_back({scale.position(t), text});
+  }
+  ticks.push_back({1.0, "100 contrast"});
+  draw_scale_bar(st, dl, origin, area, ticks, "contrast_scale");
 }
 
 static void upload_snapshot(studio& st, const render_snapshot& snap, float exposure) {
   const int component = shown_component(st, snap);
-  upload_pixels(st, snap.width, snap.height, exposure, [&](std::size_t i) {
-    return component < 0 ? snap.shown->data() + 3 * i
-                         : snap.components->data() + 3 * (component_count * i + std::size_t(component));
-  });
+  if (st.view.contrast && snap.components) {
+    upload_contrast(st, snap, exposure);
+  } else {
+    upload_pixels(st, snap.width, snap.height, exposure, [&](std::size_t i) {
+      return component < 0 ? snap.shown->data() + 3 * i
+                           : snap.components->data() + 3 * (component_count * i + std::size_t(component));
+    });
+  }
   st.view.uploaded_component = component;
   st.view.uploaded_ghost = -1;
   st.view.uploaded_generation = snap.generation;
@@ -102,7 +147,8 @@ void draw_render_view(studio& st, double now) {
              (snap.generation != st.view.uploaded_generation || snap.spp != st.view.uploaded_spp ||
               estimate_name(snap) != st.view.uploaded_estimate || exposure != st.view.uploaded_exposure ||
               shown_component(st, snap) != st.view.uploaded_component || st.view.uploaded_ghost >= 0 ||
-              st.view.luminance != st.view.uploaded_luminance)) {
+              st.view.luminance != st.view.uploaded_luminance ||
+              (st.view.contrast && snap.components) != st.view.uploaded_contrast)) {
     const bool first_of_edit = snap.generation != st.view.uploaded_generation;
     upload_snapshot(st, snap, exposure);
     if (first_of_edit && st.edit_time >= 0 && snap.generation == st.generation) {
@@ -146,20 +192,29 @@ void draw_render_view(studio& st, double now) {
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("0 EV shows a white source seen through a lossless retroreflector as white");
   ImGui::SameLine();
-  ImGui::Checkbox("luminance", &st.view.luminance);
+  if (ImGui::Checkbox("luminance", &st.view.luminance) && st.view.luminance) st.view.contrast = false;
   if (ImGui::IsItemHovered()) {
     ImGui::SetTooltip("Luminance (CIE Y) in false colour over three decades up to the exposure's white, in %s",
                       in_cd_m2(st.doc.source) ? "cd/m2" : "relative units (set the display's luminance for cd/m2)");
   }
   ImGui::SameLine();
+  if (ImGui::Checkbox("contrast", &st.view.contrast) && st.view.contrast) st.view.luminance = false;
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(
+        "Contrast (aerial + background) / background per pixel, the background everything but the aerial "
+        "image (the room's light included), in false colour from 1 to 100; 1.5 just visible, 3 usable, 25 best");
+  }
+  ImGui::SameLine();
   ImGui::SetNextItemWidth(9 * ImGui::GetFontSize());
-  static const char* const shows[] = {"whole image", "aerial image", "display, direct", "its reflection", "the rest"};
+  static const char* const shows[] = {"whole image",    "aerial image", "display, direct",
+                                      "its reflection", "the rest",     "room light"};
+  static_assert(IM_ARRAYSIZE(shows) == component_count + 1);
   int show = st.view.component + 1;
   if (ImGui::Combo("##component", &show, shows, IM_ARRAYSIZE(shows))) st.view.component = show - 1;
   if (ImGui::IsItemHovered()) {
     ImGui::SetTooltip(
         "The image's components: paths through a retroreflection (the aerial image), the display "
-        "seen directly, its plain reflection in the half mirror, and the rest");
+        "seen directly, its plain reflection in the half mirror, the rest, and the room's light (Environment)");
   }
   ImGui::SameLine();
   const double rays_per_s = snap.seconds > 0 ? double(snap.rays) / snap.seconds : 0.0;
@@ -209,7 +264,8 @@ void draw_render_view(studio& st, double now) {
   dl->AddImage(reinterpret_cast<ImTextureID>(static_cast<intptr_t>(st.view.texture.id())), p0,
                ImVec2(p0.x + size.x, p0.y + size.y));
   dl->PopClipRect();
-  if (st.view.uploaded_luminance) draw_scale_bar(st, dl, origin, area);
+  if (st.view.uploaded_luminance) draw_luminance_scale(st, dl, origin, area);
+  if (st.view.uploaded_contrast) draw_contrast_scale(st, dl, origin, area);
   st.regions["render_image"] = {std::max(p0.x, origin.x), std::max(p0.y, origin.y),
                                 std::min(p0.x + size.x, origin.x + area.x), std::min(p0.y + size.y, origin.y + area.y)};
   const glm::dvec2 centre = camera_project(make_camera(st.doc), aerial_image_center(st.doc));
@@ -235,6 +291,12 @@ void draw_render_view(studio& st, double now) {
                     v[0], v[1], v[2], rec709_luminance(v[0], v[1], v[2]), image_units(st.doc.source), x_mm, y_mm,
                     snap.mm_per_pixel);
       readout = buf;
+      if (snap.components) {
+        const auto [aerial, background] =
+            aerial_and_background(snap.components->data() + 3 * component_count * (std::size_t(iy) * snap.width + ix));
+        std::snprintf(buf, sizeof buf, "  contrast %.3g", pixel_contrast(aerial, background));
+        readout += buf;
+      }
     }
   }
   ImGui::TextUnformatted(readout.c_str());

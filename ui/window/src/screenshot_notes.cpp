@@ -57,6 +57,7 @@ void write_screenshot_notes(const studio& st, const std::string& path, int fw, i
   // What the render view shows and in which units.
   const nlohmann::json render_view = {{"units", image_units(st.doc.source)},
                                       {"luminance_view", st.view.uploaded_luminance},
+                                      {"contrast_view", st.view.uploaded_contrast},
                                       {"scale_top", luminance_scale::for_exposure(st.view.uploaded_exposure).top},
                                       {"exposure", st.view.uploaded_exposure}};
   airr::write_file_atomic(path, nlohmann::json{{"width", fw},

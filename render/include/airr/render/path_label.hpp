@@ -7,7 +7,9 @@
 
 namespace airr {
 
-enum class path_event_kind : std::uint8_t { display, eye, half_mirror, sheet, prop };
+// `ambient`: light from around the device (index: ambient_room, the room's uniform surround).
+enum class path_event_kind : std::uint8_t { display, eye, half_mirror, sheet, prop, ambient };
+inline constexpr std::uint16_t ambient_room = 0;
 
 struct path_event {
   path_event_kind kind = path_event_kind::display;
@@ -17,7 +19,7 @@ struct path_event {
   bool front = false;
   // half_mirror: the plate path's order (reflected: 0 the near face, k the far face after k - 1
   // round trips inside; transmitted: k round trips), 0 for a thin half mirror; sheet: its index
-  // in the scene; prop: its index among the scene's props.
+  // in the scene; prop: its index among the scene's props; ambient: which source.
   std::uint16_t index = 0;
 
   bool operator==(const path_event&) const = default;
@@ -37,8 +39,10 @@ struct path_label {
   const path_event& at(int i) const { return events[std::size_t(count - 1 - i)]; }
 };
 
-// Whether a sheet retroreflected the light on its way (the path is a share of the aerial image).
-inline bool retroreflected(const path_label& l) {
+// Whether the path is a share of the aerial image: the display's light a sheet retroreflected on
+// its way (ambient light a sheet returns is not).
+inline bool aerial_image_path(const path_label& l) {
+  if (l.count == 0 || l.at(0).kind != path_event_kind::display) return false;
   for (int i = 0; i < l.count; ++i) {
     const path_event& e = l.events[std::size_t(i)];
     if (e.kind == path_event_kind::sheet && e.taken) return true;

@@ -31,6 +31,7 @@ struct tracer_scene {
   pinhole_camera camera;
   std::shared_ptr<const image_rgb> texture;          // null: uniform white source
   std::shared_ptr<const emission_profile> emission;  // null: Lambertian
+  float room_luminance = 0;                          // the room's, what a path that leaves the scene sees
   retro_model_list retro;                            // one per sheet
   // The visible props, instanced after the sheets from instance id first_prop on.
   struct prop {
@@ -87,10 +88,11 @@ model_image_job control_variate_job(const tracer_scene& ts, bool quick = false);
 // The components of an image (spec section 8), by what a path met before the display: the aerial
 // image (at least one retroreflection), the display seen directly (no half-mirror reflection, no
 // prop), its plain reflection in the half mirror (one, no prop), and the rest (more, or light a
-// prop scattered or a sheet sent back without retroreflecting it). They add up to the image.
-enum image_component { component_aerial, component_direct, component_reflection, component_rest };
-inline constexpr int component_count = 4;
-inline constexpr const char* component_names[component_count] = {"aerial", "direct", "reflection", "rest"};
+// prop scattered or a sheet sent back without retroreflecting it); and ambient light (spec section
+// 11), the room's by any path. They add up to the image.
+enum image_component { component_aerial, component_direct, component_reflection, component_rest, component_room };
+inline constexpr int component_count = 5;
+inline constexpr const char* component_names[component_count] = {"aerial", "direct", "reflection", "rest", "room"};
 using component_radiance = std::array<glm::vec3, component_count>;
 
 // The pixel's random rotation of the low-discrepancy sequence its samples share.

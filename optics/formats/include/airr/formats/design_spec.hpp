@@ -27,6 +27,9 @@ enum class design_metric {
   stray_light,              // the stray-light ratio seen from the eye (a small render split into components)
   ghost_ratio,              // a path expression's light over the aerial image's, inside its outline, from the eye
   ghost_separation_arcmin,  // the angle between that light's centroid and the aerial image's, from the eye
+  luminance_cd_m2,          // the aerial image's: the model PSF's brightness times the display's white
+  contrast,                 // (aerial + background) / background of their mean luminances, from the eye
+  legible_share,            // the share of the aerial image seen at the spec's legible_contrast or more
   size_x_mm,                // the device's bounding box (display panel, half mirror, sheets) along x, y, z
   size_y_mm,
   size_z_mm,
@@ -111,6 +114,7 @@ struct design_spec {
   design_front front;  // from "pareto"
   std::vector<design_tolerance> tolerances;
   tolerance_settings tolerance;
+  double legible_contrast = 3;  // the contrast legible_share counts from
 };
 
 // Reads and checks a spec and its base scene; throws input_error "<file>: <field>: <problem>":

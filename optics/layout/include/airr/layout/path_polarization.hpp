@@ -65,6 +65,8 @@ struct path_polarization {
   // What the observer sees of the display's light per channel (1 for unpolarized light and no
   // analyzer): the display's state through its front films.
   glm::vec3 emitted(const source_params& display, const part_frame& f) const;
+  // What the observer sees of unpolarized light on the current segment, per channel.
+  glm::vec3 unpolarized_seen() const;
 
  private:
   void apply(const mueller& m, const polarization_frame& in, const polarization_frame& out);

@@ -160,6 +160,27 @@ struct observer_params {
   bool operator==(const observer_params&) const = default;
 };
 
+// The room around the device (spec section 11): a uniform surround, given by its luminance or by
+// the illuminance it makes on any plane, a horizontal one included (E = pi L). Ambient light is in
+// cd/m2, so a layout with any gives its display's luminance too (source.luminance_cd_m2).
+struct room_params {
+  double luminance_cd_m2 = 0.0;
+  double illuminance_lux = 0.0;  // set instead of the luminance: it is illuminance / pi
+
+  bool operator==(const room_params&) const = default;
+};
+
+struct environment_params {
+  room_params room;
+
+  bool operator==(const environment_params&) const = default;
+};
+
+// The room's luminance in cd/m2 (0: a dark room).
+double room_luminance(const room_params& r);
+// Whether the layout has ambient light.
+inline bool has_ambient_light(const environment_params& e) { return room_luminance(e.room) > 0; }
+
 struct render_params {
   int max_depth = 8;  // surface interactions per path
 
@@ -174,6 +195,7 @@ struct scene {
   std::vector<retroreflector_params> retroreflectors{retroreflector_params{}};  // at least one
   std::vector<prop_params> props;
   observer_params observer;
+  environment_params environment;
   render_params render;
   std::string base_dir;  // directory relative paths resolve against; not saved
 

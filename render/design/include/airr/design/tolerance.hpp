@@ -23,6 +23,16 @@ struct metric_distribution {
   double mean = 0, sd = 0, p5 = 0, p50 = 0, p95 = 0;
 };
 
+// One layout the Monte Carlo drew: each tolerance's value (its nominal plus the drawn offset, in
+// the spec's order), and what it made.
+struct tolerance_layout {
+  std::vector<double> values;
+  bool valid = false;               // a layout at all (else the rest is empty)
+  std::vector<double> metrics;      // objectives, then constraints
+  double score = 0;                 // design_score
+  std::vector<std::string> broken;  // its broken constraints, empty when it meets every one
+};
+
 struct tolerance_result {
   int samples = 0;
   int invalid = 0;                           // samples that made no valid layout (counted as failing)
@@ -31,8 +41,13 @@ struct tolerance_result {
   // sensitivity[t][m]: metric m's change per size of tolerance t (NaN where either side made no
   // valid layout)
   std::vector<std::vector<double>> sensitivity;
+  std::vector<tolerance_layout> layouts;  // every sample, in the order drawn
   bool cancelled = false;
 };
+
+// The indices of the `count` worst layouts: those that make no layout first, then those breaking
+// the most constraints, then the lowest scores.
+std::vector<std::size_t> worst_layouts(const tolerance_result& r, std::size_t count);
 
 // A metric's values counted in `bins` equal bins over their range, as a step line: each bin's two
 // edges at its count.

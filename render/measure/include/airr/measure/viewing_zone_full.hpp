@@ -2,8 +2,9 @@
 // The viewing zone's full pass (spec section 8): for every eye of a grid, besides the geometric
 // visible fraction, what the eye sees of the aerial image through the full model: its mean
 // brightness (relative to the best eye), the mean MTF over (0, 1] lp/mm of the model PSF at that
-// geometry, and the stray-light ratio and the display seen directly, from a small render split
-// into components. Props block and scatter as everywhere.
+// geometry, and the stray-light ratio, the display seen directly, the aerial image's luminance and
+// its contrast against the rest (contrast.hpp), from a small render split into components. Props
+// block and scatter as everywhere.
 #include <atomic>
 #include <functional>
 #include <string>
@@ -12,6 +13,7 @@
 #include "airr/core/item_share.hpp"
 #include "airr/layout/scene.hpp"
 #include "airr/layout/viewing_zone.hpp"
+#include "airr/measure/contrast.hpp"
 
 namespace airr {
 
@@ -20,6 +22,7 @@ struct full_zone_params {
   int render_size = 48;              // pixels per side of each eye's render of the aerial image
   std::uint64_t render_spp = 16;     // its samples per pixel
   std::uint64_t psf_samples = 4000;  // for the mean MTF
+  std::vector<double> contrast_thresholds = default_contrast_thresholds;
 };
 
 struct full_zone_map {
@@ -30,8 +33,19 @@ struct full_zone_map {
   // The display seen directly: the mean luminance of that component inside the aerial image's
   // outline, over the display's own face-on luminance (0 where it is hidden; NaN for a black display).
   std::vector<double> direct;
+  // The aerial image's mean luminance inside its outline (the image's units: cd/m2 when the
+  // display's luminance is given; 0 where none is seen), the contrast of the mean luminances (1
+  // where none is seen), and for each of the params' contrast thresholds the share of the
+  // outline's pixels whose contrast reaches it.
+  std::vector<double> luminance, contrast;
+  std::vector<double> thresholds;
+  std::vector<std::vector<double>> contrast_share;
   double seconds = 0;
 };
+
+// The legible share of the zone: the share of its eyes from which at least legible_image_share of
+// the aerial image reaches threshold k's contrast.
+double legible_share(const full_zone_map& m, std::size_t k);
 
 // The stray-light ratio at `eye` (the observer there, looking at the aerial image's centre): in a
 // small render (p's render size and samples), the light of every image component but the aerial
@@ -50,10 +64,12 @@ struct ghost_seen {
 ghost_seen ghost_from_eye(const scene& s, const glm::dvec3& eye, const std::string& expression,
                           const full_zone_params& p = {});
 
-// Both from one render: the stray-light ratio and each expression's ghost_seen, in their order.
+// All from one render: the stray-light ratio, each expression's ghost_seen, in their order, and the
+// aerial image against the rest (its share_above for p's contrast thresholds).
 struct eye_view_metrics {
   double stray_ratio = 0;
   std::vector<ghost_seen> ghosts;
+  contrast_summary seen;
 };
 eye_view_metrics eye_view_from(const scene& s, const glm::dvec3& eye, const std::vector<std::string>& expressions,
                                const full_zone_params& p = {});

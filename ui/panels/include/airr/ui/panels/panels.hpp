@@ -1,5 +1,5 @@
 #pragma once
-// The panels: what the user edits, one file each (panel_layout.cpp, panel_fit.cpp,
+// The panels: what the user edits, one file each (panel_layout.cpp, panel_environment.cpp, panel_fit.cpp,
 // panel_optimise.cpp, panel_tolerance.cpp, panel_ghosts.cpp; design_windows.cpp runs the
 // optimise and tolerance jobs).
 #include <string>
@@ -10,6 +10,8 @@
 namespace airr::ui {
 
 void draw_layout_panel(studio& st);
+// Its Environment section: the room's light (panel_environment.cpp).
+void environment_section(studio& st);
 
 void draw_fit_window(studio& st);
 // Starts predicting a preset for the first sheet's model in the background (the fit window shows

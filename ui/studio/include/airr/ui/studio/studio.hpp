@@ -49,6 +49,8 @@ struct render_view_state {
   int uploaded_ghost = -1;  // the ghost class shown instead of the render (-1: none)
   bool luminance = false;   // the luminance view: false colour with its scale (luminance_scale.hpp)
   bool uploaded_luminance = false;
+  bool contrast = false;  // the contrast view, likewise (it needs the image's components)
+  bool uploaded_contrast = false;
   float uploaded_exposure = -1;
   gl_texture texture;
 };

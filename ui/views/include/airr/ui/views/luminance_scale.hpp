@@ -1,7 +1,8 @@
 #pragma once
-// The render view's luminance view: each pixel's luminance (CIE Y of its linear RGB) in false
-// colour, viridis over `decades` decades of a logarithmic scale whose top is the luminance the
-// exposure shows as white.
+// The render view's false-colour scales. The luminance view: each pixel's luminance (CIE Y of its
+// linear RGB), viridis over `decades` decades of a logarithmic scale whose top is the luminance
+// the exposure shows as white. The contrast view: each pixel's contrast (measure/contrast.hpp),
+// viridis over a logarithmic scale from 1 (no aerial image) to `top`.
 #include <array>
 #include <cstdint>
 
@@ -19,6 +20,15 @@ struct luminance_scale {
   double position(double luminance) const;
   // The false colour of a pixel's linear RGB.
   std::array<std::uint8_t, 3> colour(const float* rgb) const;
+};
+
+struct contrast_scale {
+  double top = 100;
+
+  // 0 at a contrast of 1 (and below), 1 at the top (and above).
+  double position(double contrast) const;
+  // The false colour of a pixel's components (component_count RGB triples).
+  std::array<std::uint8_t, 3> colour(const float* components) const;
 };
 
 }  // namespace airr::ui
