@@ -54,9 +54,7 @@ std::string samples_csv(const airr::design_spec& spec, const airr::tolerance_res
       out << ',';
       if (l.valid) out << l.metrics[m];
     }
-    std::string broken;
-    for (const std::string& b : l.broken) broken += (broken.empty() ? "" : "; ") + b;
-    out << ",\"" << (l.valid ? broken : "no valid layout") << "\"\n";
+    out << ",\"" << airr::layout_failures(l) << "\"\n";
   }
   return out.str();
 }
@@ -140,8 +138,7 @@ void report(const options& opt, const airr::design_spec& spec, const airr::toler
     std::printf("  %zu:", i);
     for (std::size_t t = 0; t < l.values.size(); ++t)
       std::printf(" %s=%.6g", spec.tolerances[t].key.c_str(), l.values[t]);
-    std::string broken = l.valid ? "" : "no valid layout";
-    for (const std::string& b : l.broken) broken += (broken.empty() ? "" : "; ") + b;
+    const std::string broken = airr::layout_failures(l);
     std::printf("; %s\n", broken.empty() ? ("score " + airr::number_text(l.score)).c_str() : broken.c_str());
   }
   const std::string csv =

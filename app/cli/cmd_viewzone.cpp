@@ -67,12 +67,7 @@ void add_legibility_columns(const airr::scene& s, const airr::full_zone_map& map
                             std::vector<double>& shown) {
   double luminance_hi = 0, contrast_hi = 1;
   for (double v : map.luminance) luminance_hi = std::max(luminance_hi, v);
-  for (double v : map.contrast) contrast_hi = std::isfinite(v) ? std::max(contrast_hi, v) : contrast_hi;
-  // A dark background makes the contrast infinite: the heatmap tops out at the highest threshold
-  // or the highest finite contrast, whichever is more.
-  for (double t : map.thresholds) contrast_hi = std::max(contrast_hi, t);
-  shown = map.contrast;
-  for (double& v : shown) v = std::min(v, contrast_hi);
+  shown = airr::contrast_shown(map, contrast_hi);
   columns.push_back({"luminance", std::string("aerial image's mean luminance (") + airr::image_units(s.source) + ")",
                      "_luminance", &map.luminance, 0, luminance_hi > 0 ? luminance_hi : 1});
   columns.push_back(

@@ -59,7 +59,6 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   if (embree) ts.embree = std::move(embree);
   ts.texture = std::move(texture);
   ts.emission = std::move(emission);
-  ts.room_luminance = float(room_luminance(s.environment.room));
   ts.retro = std::move(models);
   ts.layout = s;
   derive_half_mirror_light(ts.layout.half_mirror);
@@ -224,6 +223,7 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
   constexpr bool with_polarization = polarized<Polarization>;
   pcg32& rng = n.rng;
   const auto& hm = ts.layout.half_mirror;
+  const float room = float(room_luminance(ts.layout.environment.room));
 
   path_stack<Polarization, Label> stack;
   stack.paths[stack.pending++] = {first.origin, first.dir, glm::vec3(1.0f), 0};
@@ -244,7 +244,7 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
         ++rays;
       }
       if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
-        if (ts.room_luminance > 0) see_room(ts, p, radiance, layers);
+        if (room > 0) see_room(room, p, radiance, layers);
         break;
       }
       if constexpr (std::is_same_v<Label, path_trail>) p.label.add_segment(p.origin, p.dir, rh.ray.tfar, p.throughput);

@@ -37,9 +37,9 @@ bool scatter_at_prop(const tracer_scene::prop& prop, const RTCRayHit& rh, path_s
 
 // A path that left the scene: the room's uniform, unpolarized surround (neutral white).
 template <class Polarization, class Label>
-void see_room(const tracer_scene& ts, path_state<Polarization, Label>& p, component_radiance& radiance,
+void see_room(float room_luminance, path_state<Polarization, Label>& p, component_radiance& radiance,
               layer_sink* layers) {
-  glm::vec3 L = p.throughput * ts.room_luminance;
+  glm::vec3 L = p.throughput * room_luminance;
   if constexpr (polarized<Polarization>) L *= p.pol.unpolarized_seen();
   radiance[component_room] += L;
   if constexpr (!std::is_same_v<Label, no_label>) {

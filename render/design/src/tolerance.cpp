@@ -80,6 +80,13 @@ double percentile(std::vector<double> sorted, double p) {
 
 }  // namespace
 
+std::string layout_failures(const tolerance_layout& l) {
+  if (!l.valid) return "no valid layout";
+  std::string out;
+  for (const std::string& b : l.broken) out += (out.empty() ? "" : "; ") + b;
+  return out;
+}
+
 std::vector<std::size_t> worst_layouts(const tolerance_result& r, std::size_t count) {
   std::vector<std::size_t> order(r.layouts.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;

@@ -167,6 +167,15 @@ eye_view_metrics eye_view_from(const scene& s, const glm::dvec3& eye, const std:
   return out;
 }
 
+std::vector<double> contrast_shown(const full_zone_map& m, double& top) {
+  top = 1;
+  for (double v : m.contrast) top = std::isfinite(v) ? std::max(top, v) : top;
+  for (double t : m.thresholds) top = std::max(top, t);
+  std::vector<double> shown = m.contrast;
+  for (double& v : shown) v = std::min(v, top);
+  return shown;
+}
+
 double legible_share(const full_zone_map& m, std::size_t k) {
   const std::vector<double>& share = m.contrast_share.at(k);
   if (share.empty()) return 0;

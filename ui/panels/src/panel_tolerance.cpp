@@ -87,8 +87,7 @@ void worst_layouts_table(const tolerance_result& r, const design_spec& spec) {
       ImGui::Text("%.5g", v);
     }
     ImGui::TableNextColumn();
-    std::string result = l.valid ? "" : "no valid layout";
-    for (const std::string& b : l.broken) result += (result.empty() ? "" : "; ") + b;
+    std::string result = layout_failures(l);
     if (result.empty()) result = "score " + number_text(l.score, 4);
     ImGui::TextUnformatted(result.c_str());
   }

@@ -41,12 +41,8 @@ static const std::vector<double>* zone_values(const full_zone_map& m, int quanti
     case 4:
       return &m.luminance;
     case 5: {
-      // Against a dark background the contrast is infinite: shown at the highest threshold or more.
       double top = 1;
-      for (double v : m.contrast) top = std::isfinite(v) ? std::max(top, v) : top;
-      for (double t : m.thresholds) top = std::max(top, t);
-      shown = m.contrast;
-      for (double& v : shown) v = std::min(v, top);
+      shown = contrast_shown(m, top);
       return &shown;
     }
     default:

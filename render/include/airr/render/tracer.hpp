@@ -31,7 +31,6 @@ struct tracer_scene {
   pinhole_camera camera;
   std::shared_ptr<const image_rgb> texture;          // null: uniform white source
   std::shared_ptr<const emission_profile> emission;  // null: Lambertian
-  float room_luminance = 0;                          // the room's, what a path that leaves the scene sees
   retro_model_list retro;                            // one per sheet
   // The visible props, instanced after the sheets from instance id first_prop on.
   struct prop {

@@ -45,6 +45,10 @@ struct tolerance_result {
   bool cancelled = false;
 };
 
+// What kept a layout from passing: "no valid layout", or its broken constraints joined by "; ";
+// empty when it meets every constraint.
+std::string layout_failures(const tolerance_layout& l);
+
 // The indices of the `count` worst layouts: those that make no layout first, then those breaking
 // the most constraints, then the lowest scores.
 std::vector<std::size_t> worst_layouts(const tolerance_result& r, std::size_t count);

@@ -43,6 +43,10 @@ struct full_zone_map {
   double seconds = 0;
 };
 
+// The contrast map as a heatmap shows it: against a dark background the contrast is infinite, so
+// the map tops out at its highest finite contrast or its highest threshold, whichever is more.
+std::vector<double> contrast_shown(const full_zone_map& m, double& top);
+
 // The legible share of the zone: the share of its eyes from which at least legible_image_share of
 // the aerial image reaches threshold k's contrast.
 double legible_share(const full_zone_map& m, std::size_t k);
