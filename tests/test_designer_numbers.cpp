@@ -122,7 +122,7 @@ TEST(DesignerNumbers, ExportWritesComponentLayersAndTheShownComponent) {
   st.session->wait_for(st.generation, 2);
   ASSERT_TRUE(ui::studio_export_render(st, dir.file("render.exr"))) << st.status;
   EXPECT_EQ(read_image_layer_names(dir.file("render.exr")),
-            (std::vector<std::string>{"aerial", "direct", "reflection", "rest", "room"}));
+            (std::vector<std::string>{"aerial", "direct", "luminaires", "reflection", "rest", "room", "sun"}));
   st.view.component = component_direct;
   ASSERT_TRUE(ui::studio_export_render(st, dir.file("render.png"))) << st.status;
   EXPECT_EQ(read_image_metadata(dir.file("render.png")).at("airr:component"), "direct");

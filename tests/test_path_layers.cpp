@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -172,10 +173,17 @@ TEST(PathExpressions, ComponentsPartitionTheLabels) {
   const path_layers layers = component_layers();
   const std::vector<path_event> middle = {H(true), H(false), H(true, 1), S(0, true), S(1, false), P(0)};
   pcg32 rng(3, 5);
-  const path_event room{path_event_kind::ambient, false, false, ambient_room};
+  // Ambient light, by any path, is its own component: the room's, the sun's, the luminaires'.
+  const std::array<std::pair<path_event, int>, 4> ambient_sources = {{
+      {{path_event_kind::ambient, false, false, ambient_room}, component_room},
+      {{path_event_kind::ambient, false, false, ambient_sun}, component_sun},
+      {{path_event_kind::ambient, false, false, ambient_first_luminaire}, component_luminaires},
+      {{path_event_kind::ambient, false, false, ambient_first_luminaire + 7}, component_luminaires},
+  }};
   for (int t = 0; t < 5000; ++t) {
-    const bool ambient = t % 5 == 0;  // the room's light, by any path, is its own component
-    std::vector<path_event> events = {ambient ? room : D};
+    const bool ambient = t % 5 == 0;
+    const auto& source = ambient_sources[std::size_t(t / 5) % ambient_sources.size()];
+    std::vector<path_event> events = {ambient ? source.first : D};
     int retro = 0, scattered = 0, reflections = 0;
     for (std::size_t n = std::size_t(rng.next_double() * 6); n > 0; --n) {
       const path_event e = middle[std::size_t(rng.next_double() * double(middle.size()))];
@@ -185,7 +193,7 @@ TEST(PathExpressions, ComponentsPartitionTheLabels) {
       reflections += e.kind == path_event_kind::half_mirror && e.taken;
     }
     events.push_back(E);
-    const int expected = ambient            ? component_room
+    const int expected = ambient            ? source.second
                          : retro > 0        ? component_aerial
                          : scattered > 0    ? component_rest
                          : reflections == 0 ? component_direct
@@ -244,7 +252,16 @@ TEST(PathLayers, PredefinedExpressionsReproduceTheComponentsBitForBit) {
   scene kiosk_in_a_room = wide("two_sheet_kiosk");
   kiosk_in_a_room.source.luminance_cd_m2 = 500;
   kiosk_in_a_room.environment.room.illuminance_lux = 500;
-  for (const scene& s : {looking_down(), looking_down("prism"), display_above(), kiosk_in_a_room}) {
+  luminaire_params ceiling;
+  ceiling.pose = {.center_mm = {0, 600, 300}, .pitch_deg = -90};
+  ceiling.luminance_cd_m2 = 3000;
+  kiosk_in_a_room.environment.luminaires.push_back(ceiling);
+  // From 30 degrees above, the half mirror shows the sky at an elevation of 60 degrees straight
+  // ahead: a sun there makes a glare spot.
+  scene bench_in_the_sun = looking_down();
+  bench_in_the_sun.source.luminance_cd_m2 = 500;
+  bench_in_the_sun.environment.sun = {.azimuth_deg = 0, .elevation_deg = 60, .illuminance_lux = 20000};
+  for (const scene& s : {looking_down(), looking_down("prism"), display_above(), kiosk_in_a_room, bench_in_the_sun}) {
     const render_snapshot snap = render_layers(s, component_layers(), true, 8);
     ASSERT_TRUE(snap.components);
     ASSERT_TRUE(snap.layers);

@@ -2,6 +2,7 @@
 //          [--field N ...] [--samples N] [--no-pixel] [--max-lp F] [--points N] [--set key=value ...]
 #include <chrono>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -162,6 +163,15 @@ void add_psf_command(CLI::App& app) {
     if (airr::in_cd_m2(s.source)) {
       std::printf("aerial image luminance: %.6g cd/m2 (the display's white at %.6g cd/m2)\n",
                   psf.brightness() * s.source.luminance_cd_m2, s.source.luminance_cd_m2);
+    }
+    {
+      // In the dark (no ambient light's contrast), from the scene's observer.
+      const double distance = glm::length(airr::observer_position(s) - airr::aerial_image_center(s));
+      const airr::legible_character c = airr::psf_legible_character(s, psf, std::numeric_limits<double>::infinity(),
+                                                                    distance, airr::legibility_criterion{});
+      std::printf(
+          "smallest legible character: %.4g mm (%.3g arcmin from the observer, %.0f mm away; bounded by the %s)\n",
+          c.height_mm, c.arcmin, distance, airr::to_string(c.limit));
     }
     std::printf("samples: %llu launched, %zu reach the source plane\n", static_cast<unsigned long long>(psf.launched),
                 psf.offset_mm.size());

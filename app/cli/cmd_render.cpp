@@ -64,9 +64,11 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--threads", opt->threads, "Worker threads (0: all cores)")->check(CLI::Range(0, 1024));
   auto* layers =
       cmd->add_flag("--components", opt->components,
-                    "EXR: also write the image's components as layers aerial, direct, reflection, rest, room");
+                    "EXR: also write the image's components as layers aerial, direct, reflection, rest, room, sun, "
+                    "luminaires");
   cmd->add_option("--component", opt->component,
-                  "Write one component instead of the whole image: aerial, direct, reflection, rest or room")
+                  "Write one component instead of the whole image: aerial, direct, reflection, rest, room, sun "
+                  "or luminaires")
       ->check(
           CLI::IsMember(std::vector<std::string>(std::begin(airr::component_names), std::end(airr::component_names))))
       ->excludes(layers);

@@ -2,6 +2,7 @@
 // image, and the project's image loader, into numpy arrays and dicts.
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -47,6 +48,9 @@ py::dict psf(const py_scene& ps, std::uint64_t samples, bool pixel, double max_l
     const auto curve = analysis::psf_mtf(p, {.max_lp_per_mm = max_lp_per_mm, .points = points, .pixel_mm = pixel_mm});
     const mtf_summary m = psf_route_mtf(p, pixel_mm);
     const double r50 = energy_radius(p);
+    const double distance = glm::length(observer_position(s) - aerial_image_center(s));
+    const legible_character legible =
+        psf_legible_character(s, p, std::numeric_limits<double>::infinity(), distance, legibility_criterion{});
     const psf_samples loose = sample_psf(s, models, {.samples = samples, .seed = s.seed, .stratified = false});
     const double half = extent_mm ? *extent_mm : analysis::psf_picture_half_width(loose, true);
     const analysis::psf_grid grid = analysis::psf_to_grid(loose, image_pixels, 2 * half / image_pixels);
@@ -60,6 +64,8 @@ py::dict psf(const py_scene& ps, std::uint64_t samples, bool pixel, double max_l
     out["brightness"] = p.brightness();
     out["luminance_cd_m2"] =
         in_cd_m2(s.source) ? py::object(py::float_(p.brightness() * s.source.luminance_cd_m2)) : py::none();
+    out["char_height_mm"] = legible.height_mm;
+    out["char_height_arcmin"] = legible.arcmin;
     out["launched"] = p.launched;
     out["reached"] = p.offset_mm.size();
     cv::Mat density(grid.size, grid.size, CV_64FC1, const_cast<double*>(grid.density.data()));
@@ -191,7 +197,9 @@ Returns a dict: "lp_per_mm" and "mtf" (the MTF curve, float64 arrays, with the c
 aperture unless pixel=False), "pixel_mm", "r50_mm" (50%-energy radius), "mean_mtf" (over (0, 1]
 lp/mm), "mtf50_lp_per_mm" (None when the MTF stays above 0.5), "brightness" (aerial radiance per
 unit source radiance), "luminance_cd_m2" (the aerial image's luminance, brightness times the
-display's source.luminance_cd_m2; None in relative units), "launched" and "reached" (samples), and the 2D PSF: "image", an
+display's source.luminance_cd_m2; None in relative units), "char_height_mm" and
+"char_height_arcmin" (the smallest legible character from the observer in the dark,
+docs/ambient-light.md), "launched" and "reached" (samples), and the 2D PSF: "image", an
 image_pixels x image_pixels float64 array of density per mm^2 (x right, y up, row 0 the top; it
 integrates to the brightness that falls inside it), "image_mm_per_pixel" (the picture spans
 extent_mm either side of the ideal point; default the square holding 99.8% of the PSF).)");

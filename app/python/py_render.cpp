@@ -128,7 +128,7 @@ a file the disk could not hold raises ValueError before anything is traced.)");
 Returns the linear image as a float32 array of shape (height, width, 3): the same pixels `airr
 render SCENE -o out.exr --spp N [--seed S]` writes for the same scene. With components=True
 returns (image, components), components a dict of the image's parts ("aerial", "direct",
-"reflection", "rest", "room"), arrays of the same shape that add up to the image. With layers, a dict
+"reflection", "rest", "room", "sun", "luminaires"), arrays of the same shape that add up to the image. With layers, a dict
 {name: path expression} (docs/path-expressions.md), as `airr render --layer NAME=EXPR`: returns
 (image, parts), parts holding each layer's light and "unmatched" (the paths no layer selects),
 and the components when asked too; a bad expression raises ValueError pointing at the character.

@@ -16,9 +16,9 @@ namespace airr {
 namespace {
 
 // Peak resident bytes of `airr render` per pixel and beyond the pixels, measured on the default
-// scene at 1024 x 1024 and 2048 x 2048 (1 spp): 852 and 1773 MB, 1209 and 3096 MB with the five
+// scene at 1024 x 1024 and 2048 x 2048 (1 spp): 852 and 1773 MB, 1277 and 3489 MB with the seven
 // components.
-constexpr double bytes_per_pixel = 300, bytes_per_pixel_components = 600;
+constexpr double bytes_per_pixel = 300, bytes_per_pixel_components = 720;
 constexpr double fixed_bytes = 540e6;
 // Peak resident bytes of `airr sweep --psf` (one point, one thread) beyond its 150 MB at the start:
 // 48 bytes a sample at 10 million samples, 58 at 30 million (the samples' arrays doubling as

@@ -22,7 +22,9 @@ std::string event_text(const path_event& e) {
     case path_event_kind::prop:
       return "P#" + std::to_string(e.index);
     case path_event_kind::ambient:
-      return "A:room";
+      if (e.index == ambient_room) return "A:room";
+      if (e.index == ambient_sun) return "A:sun";
+      return "A:luminaire" + std::to_string(e.index - ambient_first_luminaire);
   }
   return "?";
 }
@@ -35,7 +37,7 @@ std::string label_text(const path_label& l) {
 
 bool event_pattern::accepts(const path_event& e) const {
   return e.kind == kind && (taken < 0 || int(e.taken) == taken) && (front < 0 || int(e.front) == front) &&
-         (index == -1 || int(e.index) == index);
+         (index == -1 || int(e.index) == index || (index == any_luminaire && e.index >= ambient_first_luminaire));
 }
 
 // Recursive descent over the grammar of docs/path-expressions.md, building the Glushkov automaton:
@@ -256,8 +258,14 @@ class path_expression_parser {
         e.prop_name = w;
         e.index = -2;  // until bound to a scene's props
       } else if (e.kind == path_event_kind::ambient) {
-        if (w != "room") bad("A takes room, not '" + w + "'");
-        e.index = ambient_room;
+        if (w == "room" || w == "sun") {
+          e.index = w == "room" ? ambient_room : ambient_sun;
+        } else if (w.starts_with("luminaire") && w.size() <= 12 &&
+                   w.find_first_not_of("0123456789", 9) == std::string::npos) {
+          e.index = w.size() == 9 ? event_pattern::any_luminaire : ambient_first_luminaire + std::stoi(w.substr(9));
+        } else {
+          bad("A takes room, sun, luminaire or luminaireK (e.g. luminaire0), not '" + w + "'");
+        }
       } else {
         bad(std::string(e.kind == path_event_kind::display ? "D" : "E") + " takes no qualifier");
       }
@@ -329,11 +337,13 @@ path_layers path_layers::bound(const scene& s) const {
 
 path_layers component_layers() {
   // tracer.hpp's image components: at least one retroreflection; no half-mirror reflection, prop
-  // or sheet; one half-mirror reflection and nothing else; everything else; the room's light.
+  // or sheet; one half-mirror reflection and nothing else; everything else; the room's, the sun's
+  // and the luminaires' light.
   static const char* const expressions[] = {
       "D .* S:retro .* E", "D H:t* E",
       "D H:t* H:r H:t* E", "D [^S:retro]* (P | S:other) [^S:retro]* E | D H* H:r H* H:r H* E",
-      "A:room .* E",
+      "A:room .* E",       "A:sun .* E",
+      "A:luminaire .* E",
   };
   path_layers out;
   for (int k = 0; k < component_count; ++k)

@@ -17,8 +17,6 @@
 
 namespace airr {
 
-// Surfaces are infinitely thin; new rays start this far along to skip the surface they leave.
-static constexpr float ray_epsilon_mm = 1e-3f;
 // Camera rays of this many neighbouring pixels are intersected together.
 static constexpr int camera_stream = 64;
 
@@ -61,6 +59,7 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   ts.emission = std::move(emission);
   ts.retro = std::move(models);
   ts.layout = s;
+  ts.ambient = make_ambient_lights(s.environment);
   derive_half_mirror_light(ts.layout.half_mirror);
   ts.polarized = scene_polarizes(s) || ts.force_polarized || ts.stokes >= 0;
   if (ts.stokes >= 0) ts.use_model_image = false;  // it predicts what the eye sees, not S1 to S3
@@ -117,6 +116,7 @@ static glm::vec3 source_radiance(const tracer_scene& ts, const glm::dvec2& local
 }
 
 using tracer_path::component_of;
+using tracer_path::light_sampled;
 using tracer_path::meet_plate;
 using tracer_path::meet_thin_half_mirror;
 using tracer_path::no_label;
@@ -126,7 +126,8 @@ using tracer_path::path_state;
 using tracer_path::path_trail;
 using tracer_path::polarized;
 using tracer_path::scatter_at_prop;
-using tracer_path::see_room;
+using tracer_path::see_ambient;
+using tracer_path::see_luminaire;
 
 std::array<double, 6> pixel_sequence_rotation(const tracer_scene& ts, int px, int py) {
   pcg32 pixel_rng = sample_rng(std::uint64_t(py) * ts.camera.width + px, 0, ts.layout.seed ^ 0x5eedu);
@@ -223,7 +224,7 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
   constexpr bool with_polarization = polarized<Polarization>;
   pcg32& rng = n.rng;
   const auto& hm = ts.layout.half_mirror;
-  const float room = float(room_luminance(ts.layout.environment.room));
+  const ambient_lights& ambient = ts.ambient;
 
   path_stack<Polarization, Label> stack;
   stack.paths[stack.pending++] = {first.origin, first.dir, glm::vec3(1.0f), 0};
@@ -243,15 +244,27 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
         intersect(ts.embree->get(), rh);
         ++rays;
       }
-      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
-        if (room > 0) see_room(room, p, radiance, layers);
+      const bool missed = rh.hit.geomID == RTC_INVALID_GEOMETRY_ID;
+      if (!ambient.luminaires.empty()) {
+        const double t_max = missed ? std::numeric_limits<double>::infinity() : double(rh.ray.tfar);
+        const luminaire_hit lh = meet_luminaire(ambient, p.origin, p.dir, t_max);
+        if (lh.which >= 0) {
+          if (lh.front) see_luminaire(ts, lh.which, p, radiance, layers);
+          break;  // a luminaire's back is black
+        }
+      }
+      if (missed) {
+        if (ambient.room > 0)
+          see_ambient(p, p.throughput * ambient.room, component_room, ambient_room, radiance, layers);
+        if (sees_sun(ambient, p.dir) && !light_sampled(p))
+          see_ambient(p, p.throughput * ambient.sun, component_sun, ambient_sun, radiance, layers);
         break;
       }
       if constexpr (std::is_same_v<Label, path_trail>) p.label.add_segment(p.origin, p.dir, rh.ray.tfar, p.throughput);
 
       const unsigned part = rh.hit.instID[0];
       if (part >= ts.first_prop) {
-        if (!scatter_at_prop(ts.props[part - ts.first_prop], rh, p, rng)) break;
+        if (!scatter_at_prop(ts, ts.props[part - ts.first_prop], rh, p, rng, radiance, layers, rays)) break;
         continue;
       }
       const part_frame& f = ts.frames[part];

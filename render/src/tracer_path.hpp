@@ -17,6 +17,9 @@
 
 namespace airr {
 
+// Surfaces are infinitely thin; new rays start this far along to skip the surface they leave.
+inline constexpr float ray_epsilon_mm = 1e-3f;
+
 // Paths split into both half-mirror branches this many times (weights R and T, no noise);
 // after that one branch is chosen at random with weight R + T.
 inline constexpr int max_half_mirror_splits = 3;
@@ -59,6 +62,9 @@ struct path_state {
   // Each branch split off before any retroreflection takes the sample's first-retroreflection
   // numbers at its first sheet, as the control variate predicts every sheet with them.
   bool first_retro_used = false;
+  // The direction a Lambertian prop sent the path on, having sampled the sun and the luminaires
+  // from there (light_sampled): met along it, they are counted already.
+  glm::dvec3 light_sampled_dir{0.0};
   [[no_unique_address]] Polarization pol{};
   [[no_unique_address]] Label label{};
 };

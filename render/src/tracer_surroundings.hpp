@@ -1,8 +1,10 @@
 #pragma once
-// What a traced path meets besides the optical parts: the props it scatters at and the room it
-// sees when it leaves the scene (private to tracer.cpp).
+// What a traced path meets besides the optical parts: the props it scatters at, where it samples
+// the sun and the luminaires, and the ambient light it sees (private to tracer.cpp).
+#include <limits>
 #include <type_traits>
 
+#include "airr/core/embree.hpp"
 #include "airr/core/geometry.hpp"
 #include "airr/core/random.hpp"
 #include "airr/formats/mesh_gltf.hpp"
@@ -10,11 +12,98 @@
 
 namespace airr::tracer_path {
 
-// Scatters the path at a prop (a mirror reflection, or a Lambertian bounce drawn from the path's
-// generator), both sides alike; false when the prop absorbs it.
+// Ambient light L of source `source` (an ambient_* index) reaching the eye along `p`: its image
+// component, and the layers of p's label with the ambient event.
 template <class Polarization, class Label>
-bool scatter_at_prop(const tracer_scene::prop& prop, const RTCRayHit& rh, path_state<Polarization, Label>& p,
-                     pcg32& rng) {
+void see_ambient(const path_state<Polarization, Label>& p, glm::vec3 L, image_component component, std::uint16_t source,
+                 component_radiance& radiance, layer_sink* layers) {
+  if constexpr (polarized<Polarization>) L *= p.pol.unpolarized_seen();  // ambient light is unpolarized
+  radiance[component] += L;
+  if constexpr (!std::is_same_v<Label, no_label>) {
+    Label label = p.label;
+    label.push({path_event_kind::ambient, false, false, source});
+    layers->add(label, L);
+  }
+}
+
+// Whether the sun and the luminaires met along p's direction were sampled where it came from.
+template <class Polarization, class Label>
+bool light_sampled(const path_state<Polarization, Label>& p) {
+  return glm::dot(p.dir, p.light_sampled_dir) > 1 - 1e-9;
+}
+
+// The luminaire p met (at its front, where it emits).
+template <class Polarization, class Label>
+void see_luminaire(const tracer_scene& ts, int which, const path_state<Polarization, Label>& p,
+                   component_radiance& radiance, layer_sink* layers) {
+  if (light_sampled(p)) return;
+  see_ambient(p, p.throughput * ts.ambient.luminaires[std::size_t(which)].luminance, component_luminaires,
+              std::uint16_t(ambient_first_luminaire + which), radiance, layers);
+}
+
+// How much of the light along a straight line gets through to `from` over [0, t_max): the half
+// mirror passes its transmittance (its plate's offset ignored), anything else stops it.
+inline float transmittance_along(const tracer_scene& ts, glm::dvec3 from, const glm::dvec3& dir, double t_max,
+                                 std::uint64_t& rays) {
+  if (meet_luminaire(ts.ambient, from, dir, t_max).which >= 0) return 0;
+  float passed = 1;
+  for (int crossing = 0; crossing < 4; ++crossing) {
+    RTCRayHit rh = make_ray_hit(from, dir, ray_epsilon_mm);
+    rh.ray.tfar = float(std::min(t_max, double(std::numeric_limits<float>::max())));
+    intersect(ts.embree->get(), rh);
+    ++rays;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return passed;
+    if (rh.hit.instID[0] != part_half_mirror) return 0;
+    passed *= float(ts.layout.half_mirror.transmittance);
+    from += dir * double(rh.ray.tfar);
+    t_max -= double(rh.ray.tfar);
+  }
+  return 0;
+}
+
+// At a Lambertian prop of albedo `albedo` at p.origin, facing n (towards where p came from):
+// the light of the sun and of each luminaire it reflects towards the eye, each sampled once.
+template <class Polarization, class Label>
+void sample_lights(const tracer_scene& ts, const path_state<Polarization, Label>& p, const glm::dvec3& n,
+                   const glm::vec3& albedo, pcg32& rng, component_radiance& radiance, layer_sink* layers,
+                   std::uint64_t& rays) {
+  const ambient_lights& a = ts.ambient;
+  const glm::vec3 reflected = p.throughput * albedo * float(1 / pi);
+  if (a.sun > 0) {
+    const double u1 = rng.next_double(), u2 = rng.next_double();
+    const glm::dvec3 w = sun_sample_direction(a, u1, u2);
+    const double cos_here = glm::dot(n, w);
+    if (cos_here > 0) {
+      const float passed = transmittance_along(ts, p.origin, w, std::numeric_limits<double>::infinity(), rays);
+      // The disc's luminance times its solid angle is the illuminance it makes facing it.
+      if (passed > 0)
+        see_ambient(p, reflected * float(a.sun_lux * cos_here) * passed, component_sun, ambient_sun, radiance, layers);
+    }
+  }
+  for (std::size_t k = 0; k < a.luminaires.size(); ++k) {
+    const ambient_lights::luminaire& l = a.luminaires[k];
+    const double u1 = rng.next_double(), u2 = rng.next_double();
+    const glm::dvec3 to = luminaire_point(l, u1, u2) - p.origin;
+    const double r2 = glm::dot(to, to);
+    const glm::dvec3 w = to / std::sqrt(r2);
+    const double cos_here = glm::dot(n, w), cos_there = -glm::dot(l.frame.n, w);
+    if (cos_here <= 0 || cos_there <= 0 || !(l.luminance > 0)) continue;
+    const float passed = transmittance_along(ts, p.origin, w, std::sqrt(r2) * (1 - 1e-6), rays);
+    if (passed > 0) {
+      const double geometry = cos_here * cos_there * l.area_mm2 / r2;
+      see_ambient(p, reflected * l.luminance * float(geometry) * passed, component_luminaires,
+                  std::uint16_t(ambient_first_luminaire + k), radiance, layers);
+    }
+  }
+}
+
+// Scatters the path at a prop (a mirror reflection, or a Lambertian bounce drawn from the path's
+// generator, where the sun and the luminaires are sampled first), both sides alike; false when the
+// prop absorbs it.
+template <class Polarization, class Label>
+bool scatter_at_prop(const tracer_scene& ts, const tracer_scene::prop& prop, const RTCRayHit& rh,
+                     path_state<Polarization, Label>& p, pcg32& rng, component_radiance& radiance, layer_sink* layers,
+                     std::uint64_t& rays) {
   const surface_response s = prop_surface_of(prop.params, *prop.mesh, rh.hit.primID);
   if (s.kind == prop_surface::absorber) return false;
   p.label.push({path_event_kind::prop, false, false, prop.index});
@@ -26,26 +115,16 @@ bool scatter_at_prop(const tracer_scene::prop& prop, const RTCRayHit& rh, path_s
     p.dir = reflect(p.dir, n);
     if constexpr (polarized<Polarization>) p.pol.mirror(-p.dir);
   } else {
+    const bool sampled = ts.ambient.sun > 0 || !ts.ambient.luminaires.empty();
+    if (sampled) sample_lights(ts, p, n, s.reflectance, rng, radiance, layers, rays);
     const double u1 = rng.next_double(), u2 = rng.next_double();
     p.dir = glm::normalize(make_basis(n).to_world(cosine_hemisphere({u1, u2})));
+    if (sampled) p.light_sampled_dir = p.dir;
     if constexpr (polarized<Polarization>) p.pol.depolarize(-p.dir);
   }
   p.throughput *= s.reflectance;
   ++p.prop_scatterings;
   return true;
-}
-
-// A path that left the scene: the room's uniform, unpolarized surround (neutral white).
-template <class Polarization, class Label>
-void see_room(float room_luminance, path_state<Polarization, Label>& p, component_radiance& radiance,
-              layer_sink* layers) {
-  glm::vec3 L = p.throughput * room_luminance;
-  if constexpr (polarized<Polarization>) L *= p.pol.unpolarized_seen();
-  radiance[component_room] += L;
-  if constexpr (!std::is_same_v<Label, no_label>) {
-    p.label.push({path_event_kind::ambient, false, false, ambient_room});
-    layers->add(p.label, L);
-  }
 }
 
 }  // namespace airr::tracer_path

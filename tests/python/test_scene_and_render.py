@@ -26,7 +26,7 @@ def test_a_render_equals_airr_render_pixel_for_pixel(tmp_path, cli, small_scene)
 
 def test_components_add_up_to_the_image(small_scene):
     image, parts = airr.render(small_scene, spp=2, seed=1, components=True)
-    assert sorted(parts) == ["aerial", "direct", "reflection", "rest", "room"]
+    assert sorted(parts) == ["aerial", "direct", "luminaires", "reflection", "rest", "room", "sun"]
     total = sum(parts.values())
     assert np.allclose(total, image, rtol=1e-5, atol=1e-6)
     assert parts["aerial"].max() > 0
@@ -72,6 +72,20 @@ def test_the_room_is_its_own_component_in_cd_per_m2(small_scene):
         small_scene.set("environment.room.illuminance_lux", -1)
     with pytest.raises(ValueError, match="source.luminance_cd_m2"):
         small_scene.set("source.luminance_cd_m2", 0)
+
+
+def test_the_sun_and_a_luminaire_are_components_and_the_psf_gives_the_smallest_character(small_scene):
+    small_scene.set("source.luminance_cd_m2", 500)
+    small_scene.set("environment.sun.illuminance_lux", 50000)
+    small_scene.set("environment.sun.elevation_deg", 60)
+    small_scene.set("environment.luminaires", [{"luminance_cd_m2": 2000, "pose": {"center_mm": [0, 800, 200], "pitch_deg": -90}}])
+    image, parts = airr.render(small_scene, spp=2, seed=1, components=True)
+    assert {"sun", "luminaires"} <= set(parts)
+    assert np.allclose(sum(parts.values()), image, rtol=1e-5, atol=1e-3)
+    with pytest.raises(ValueError, match="below the horizon"):
+        small_scene.set("environment.sun.elevation_deg", -10)
+    p = airr.psf(small_scene, samples=20000)
+    assert math.isfinite(p["char_height_mm"]) and p["char_height_arcmin"] >= 16 - 1e-9
 
 
 BAD_SETS = [

@@ -14,7 +14,8 @@ namespace airr::analysis {
 // |E[exp(-2 pi i f x)]| at f = k * step, k = 0 .. count - 1, times the pixel's aperture. The phase
 // advances by one rotation per frequency step (a complex product instead of a cosine and a sine),
 // over blocks of samples in parallel joined in order, so the result does not depend on threads.
-static std::vector<double> mtf_on_grid(const psf_samples& psf, double step, int count, double pixel_mm) {
+static std::vector<double> mtf_on_grid(const psf_samples& psf, double step, int count, double pixel_mm,
+                                       bool along_y = false) {
   using cplx = std::complex<double>;
   constexpr std::size_t block = 4096;
   const std::size_t n = psf.offset_mm.size(), blocks = (n + block - 1) / block;
@@ -22,7 +23,8 @@ static std::vector<double> mtf_on_grid(const psf_samples& psf, double step, int 
   tbb::parallel_for(std::size_t(0), blocks, [&](std::size_t b) {
     std::vector<cplx>& acc = parts[b];
     for (std::size_t i = b * block; i < std::min(n, (b + 1) * block); ++i) {
-      const cplx turn = std::polar(1.0, -2.0 * std::numbers::pi * step * psf.offset_mm[i].x);
+      const double x = along_y ? psf.offset_mm[i].y : psf.offset_mm[i].x;
+      const cplx turn = std::polar(1.0, -2.0 * std::numbers::pi * step * x);
       cplx phase = psf.weight[i];
       for (int k = 0; k < count; ++k) {
         acc[k] += phase;
@@ -49,7 +51,7 @@ static std::vector<double> mtf_on_grid(const psf_samples& psf, double step, int 
 psf_mtf_curve psf_mtf(const psf_samples& psf, const psf_mtf_params& p) {
   psf_mtf_curve c;
   const double step = p.max_lp_per_mm / std::max(1, p.points - 1);
-  c.mtf = mtf_on_grid(psf, step, std::max(p.points, 0), p.pixel_mm);
+  c.mtf = mtf_on_grid(psf, step, std::max(p.points, 0), p.pixel_mm, p.along_y);
   for (int i = 0; i < p.points; ++i) c.lp_per_mm.push_back(p.max_lp_per_mm * i / std::max(1, p.points - 1));
   return c;
 }

@@ -37,6 +37,7 @@ constexpr std::array<metric_name, design_metric_count> metric_names = {{
     {design_metric::luminance_cd_m2, "luminance_cd_m2", true},
     {design_metric::contrast, "contrast", true},
     {design_metric::legible_share, "legible_share", true},
+    {design_metric::char_height_mm, "char_height_mm", true},
     {design_metric::size_x_mm, "size_x_mm", false},
     {design_metric::size_y_mm, "size_y_mm", false},
     {design_metric::size_z_mm, "size_z_mm", false},
@@ -86,6 +87,20 @@ over_eyes read_over(json_reader& r, double& threshold) {
 }
 
 // "eye_zone": {"shape": "plane" or "sphere", "distance_mm", "x": [lo, hi], "y": [lo, hi], "n": [nx, ny]}.
+static legibility_criterion read_legibility(json_reader r) {
+  legibility_criterion c;
+  const auto in = [&](const char* key, double& v, double lo, double hi) {
+    r.number(key, v);
+    if (!(v >= lo && v <= hi))
+      r.fail(r.field(key), "must be in [" + number_text(lo) + ", " + number_text(hi) + "] (is " + number_text(v) + ")");
+  };
+  in("cycles_per_height", c.cycles_per_height, 0.5, 10);
+  in("modulation", c.modulation, 1e-3, 1);
+  in("min_arcmin", c.min_arcmin, 0, 600);
+  r.finish();
+  return c;
+}
+
 eye_grid read_eye_zone(json_reader z) {
   eye_grid g;
   std::string shape = "plane";
@@ -200,6 +215,7 @@ design_spec read_design_spec(const nlohmann::json& j, const std::string& path, c
   r.number("legible_contrast", spec.legible_contrast);
   if (!(spec.legible_contrast >= 1 && spec.legible_contrast <= 1e6))
     r.fail("legible_contrast", "must be in [1, 1e6] (is " + number_text(spec.legible_contrast) + ")");
+  if (r.has("legibility")) spec.legibility = read_legibility(r.child("legibility"));
   if (spec.eyes_mm.empty() && !spec.eye_zone) spec.eyes_mm.push_back(observer_position(spec.base));
   each_object(r, "objectives", true, [&](json_reader& o, std::size_t) {
     design_objective obj;
@@ -298,6 +314,11 @@ std::string design_spec_text(const design_spec& spec) {
                      {"n", {z->nx, z->ny}}};
   }
   if (spec.legible_contrast != 3) j["legible_contrast"] = spec.legible_contrast;
+  if (spec.legibility != legibility_criterion{}) {
+    j["legibility"] = {{"cycles_per_height", spec.legibility.cycles_per_height},
+                       {"modulation", spec.legibility.modulation},
+                       {"min_arcmin", spec.legibility.min_arcmin}};
+  }
   j["objectives"] = nlohmann::ordered_json::array();
   for (const design_objective& o : spec.objectives) {
     nlohmann::ordered_json obj = {{"metric", to_string(o.metric)}};

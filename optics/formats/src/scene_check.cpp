@@ -105,6 +105,29 @@ struct checker {
     range(field + ".pitch_deg", p.pitch_deg, -360, 360);
     range(field + ".roll_deg", p.roll_deg, -360, 360);
   }
+  void environment(const environment_params& e) const {
+    range("environment.room.luminance_cd_m2", e.room.luminance_cd_m2, 0, 1e9);
+    range("environment.room.illuminance_lux", e.room.illuminance_lux, 0, 1e9);
+    if (e.room.luminance_cd_m2 > 0 && e.room.illuminance_lux > 0)
+      fail("environment.room", "give luminance_cd_m2 or illuminance_lux, not both");
+    range("environment.sun.illuminance_lux", e.sun.illuminance_lux, 0, max_sun_illuminance_lux);
+    range("environment.sun.azimuth_deg", e.sun.azimuth_deg, -360, 360);
+    range("environment.sun.elevation_deg", e.sun.elevation_deg, -90, 90);
+    if (e.sun.illuminance_lux > 0 && e.sun.elevation_deg <= 0)
+      fail("environment.sun.elevation_deg", "the sun is below the horizon (its elevation must be above 0 degrees)");
+    for (std::size_t i = 0; i < e.luminaires.size(); ++i) {
+      const luminaire_params& l = e.luminaires[i];
+      const std::string field = "environment.luminaires[" + std::to_string(i) + "]";
+      pose(field + ".pose", l.pose);
+      // A luminaire of zero area would need an infinite luminance for its flux.
+      range(field + ".width_mm", l.width_mm, min_part_size_mm, max_distance_mm);
+      if (l.shape == luminaire_shape::rectangle)
+        range(field + ".height_mm", l.height_mm, min_part_size_mm, max_distance_mm);
+      range(field + ".luminance_cd_m2", l.luminance_cd_m2, 0, 1e9);
+      range(field + ".flux_lm", l.flux_lm, 0, 1e8);
+      if (l.luminance_cd_m2 > 0 && l.flux_lm > 0) fail(field, "give luminance_cd_m2 or flux_lm, not both");
+    }
+  }
 };
 }  // namespace
 
@@ -114,10 +137,7 @@ void validate_scene(const scene& s, const std::string& origin) {
   c.range("source.intensity", s.source.intensity, 0, 1e9);
   c.range("source.luminance_cd_m2", s.source.luminance_cd_m2, 0, 1e9);
   c.range("source.bezel_mm", s.source.bezel_mm, 0, 1e4);
-  c.range("environment.room.luminance_cd_m2", s.environment.room.luminance_cd_m2, 0, 1e9);
-  c.range("environment.room.illuminance_lux", s.environment.room.illuminance_lux, 0, 1e9);
-  if (s.environment.room.luminance_cd_m2 > 0 && s.environment.room.illuminance_lux > 0)
-    c.fail("environment.room", "give luminance_cd_m2 or illuminance_lux, not both");
+  c.environment(s.environment);
   if (has_ambient_light(s.environment) && !in_cd_m2(s.source))
     c.fail("environment",
            "ambient light is in cd/m2, so the display's luminance must be given too (source.luminance_cd_m2)");

@@ -15,6 +15,7 @@
 #include "airr/models/preset.hpp"
 #include "airr/models/retro_model.hpp"
 #include "json_enum.hpp"
+#include "scene_json_environment.hpp"
 #include "scene_json_polarization.hpp"
 
 namespace airr {
@@ -51,10 +52,6 @@ scene rebase_scene_paths(const scene& s, const std::string& new_dir) {
 // ---------------------------------------------------------------- writing
 
 static json optional_number(const std::optional<double>& v) { return v ? json(*v) : json(nullptr); }
-
-static json pose_to_json(const pose& p) {
-  return {{"center_mm", p.center_mm}, {"yaw_deg", p.yaw_deg}, {"pitch_deg", p.pitch_deg}, {"roll_deg", p.roll_deg}};
-}
 
 static json part_json(const part_params& p, json_form form) {
   json j = {{"mesh", p.mesh}, {"width_mm", p.width_mm}, {"height_mm", p.height_mm}, {"pose", pose_to_json(p.pose)}};
@@ -128,12 +125,7 @@ json scene_to_json(const scene& s, json_form form) {
       {"render", {{"max_depth", s.render.max_depth}}},
   };
   if (form == json_form::complete || o.analyzer_deg) out["observer"]["analyzer_deg"] = optional_number(o.analyzer_deg);
-  // Written only when set, so layouts in a dark room keep their form.
-  if (form == json_form::complete || s.environment != environment_params{}) {
-    const room_params& room = s.environment.room;
-    out["environment"] = {
-        {"room", {{"luminance_cd_m2", room.luminance_cd_m2}, {"illuminance_lux", room.illuminance_lux}}}};
-  }
+  if (environment_written(s.environment, form)) out["environment"] = environment_to_json(s.environment);
   // Written only when there are any, so layouts without props keep their form.
   if (!s.props.empty()) {
     json props = json::array();
@@ -144,14 +136,6 @@ json scene_to_json(const scene& s, json_form form) {
 }
 
 // ---------------------------------------------------------------- reading
-
-static void read_pose(json_reader r, pose& p) {
-  r.numbers("center_mm", p.center_mm);
-  r.number("yaw_deg", p.yaw_deg);
-  r.number("pitch_deg", p.pitch_deg);
-  r.number("roll_deg", p.roll_deg);
-  r.finish();
-}
 
 // The fields every part has; the caller reads its own and finishes.
 static void read_part(json_reader& r, part_params& p) {
@@ -270,16 +254,7 @@ static scene scene_from_json_v2(json_reader& r) {
       read_prop(json_reader(list[i], r.origin(), "props[" + std::to_string(i) + "]"), s.props[i]);
   }
   if (r.has("observer")) read_observer(r.child("observer"), s.observer);
-  if (r.has("environment")) {
-    auto c = r.child("environment");
-    if (c.has("room")) {
-      auto room = c.child("room");
-      room.number("luminance_cd_m2", s.environment.room.luminance_cd_m2);
-      room.number("illuminance_lux", s.environment.room.illuminance_lux);
-      room.finish();
-    }
-    c.finish();
-  }
+  if (r.has("environment")) read_environment(r.child("environment"), s.environment);
   if (r.has("render")) {
     auto c = r.child("render");
     c.integer("max_depth", s.render.max_depth);

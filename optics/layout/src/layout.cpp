@@ -82,6 +82,15 @@ double emission_at(const emission_profile* profile, const part_frame& display, c
   return profile->at(degrees(std::acos(std::clamp(-glm::dot(towards_display, display.n), -1.0, 1.0))));
 }
 
+glm::dvec3 sun_direction(const sun_params& s) {
+  const glm::dvec2 az = sin_cos_deg(s.azimuth_deg), el = sin_cos_deg(s.elevation_deg);
+  return {az[0] * el[1], el[0], az[1] * el[1]};
+}
+
+part_frame luminaire_frame(const luminaire_params& l) {
+  return pose_frame(l.pose, l.width_mm, l.shape == luminaire_shape::disc ? l.width_mm : l.height_mm);
+}
+
 part_frame source_frame(const scene& s) { return pose_frame(s.source.pose, s.source.width_mm, s.source.height_mm); }
 
 part_frame source_panel_frame(const scene& s) {

@@ -13,6 +13,27 @@ double room_luminance(const room_params& r) {
   return r.illuminance_lux > 0 ? r.illuminance_lux / std::numbers::pi : r.luminance_cd_m2;
 }
 
+double sun_luminance(const sun_params& s) {
+  const double half_angle = sun_angular_diameter_deg / 2 * std::numbers::pi / 180;
+  return s.illuminance_lux / (2 * std::numbers::pi * (1 - std::cos(half_angle)));
+}
+
+double luminaire_area_mm2(const luminaire_params& l) {
+  return l.shape == luminaire_shape::disc ? std::numbers::pi / 4 * l.width_mm * l.width_mm : l.width_mm * l.height_mm;
+}
+
+double luminaire_luminance(const luminaire_params& l) {
+  if (l.flux_lm > 0) return l.flux_lm / (std::numbers::pi * luminaire_area_mm2(l) * 1e-6);
+  return l.luminance_cd_m2;
+}
+
+bool has_ambient_light(const environment_params& e) {
+  if (room_luminance(e.room) > 0 || e.sun.illuminance_lux > 0) return true;
+  for (const auto& l : e.luminaires)
+    if (luminaire_luminance(l) > 0) return true;
+  return false;
+}
+
 bool differ_in_placement_alone(const scene& a, const scene& b) {
   if (a.retroreflectors.size() != b.retroreflectors.size() || a.props.size() != b.props.size()) return false;
   scene moved = b;

@@ -9,6 +9,7 @@
 #include "airr/analysis/slanted_edge_mtf.hpp"
 #include "airr/core/error.hpp"
 #include "airr/core/geometry.hpp"
+#include "airr/formats/image.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/layout/sheet_models.hpp"
 #include "airr/models/retro_model.hpp"
@@ -32,6 +33,28 @@ mtf_summary psf_route_mtf(const psf_samples& psf, double pixel_mm) {
   const auto curve = analysis::psf_mtf(psf, {.max_lp_per_mm = top, .points = 161, .pixel_mm = pixel_mm});
   if (const double f = analysis::psf_mtf50(curve); f > 0) m.mtf50_lp_per_mm = f;
   return m;
+}
+
+double display_pixel_mm(const scene& s) {
+  if (s.source.image.empty()) return 0;
+  const auto img = cached_image_pixels(resolve_scene_path(s, s.source.image));
+  return std::max(s.source.width_mm / img->width, s.source.height_mm / img->height);
+}
+
+legible_character psf_legible_character(const scene& s, const psf_samples& psf, double contrast, double distance_mm,
+                                        const legibility_criterion& criterion) {
+  constexpr double top = 20;  // lp/mm: finer than any eye resolves at reading distance
+  if (psf.offset_mm.empty())
+    return smallest_legible_character([](double) { return 0.0; }, top, contrast, distance_mm, 0, criterion);
+  const auto x = analysis::psf_mtf(psf, {.max_lp_per_mm = top, .points = 801});
+  const auto y = analysis::psf_mtf(psf, {.max_lp_per_mm = top, .points = 801, .along_y = true});
+  const auto mtf_at = [&](double f) {
+    const double at = std::clamp(f / top * 800, 0.0, 800.0);
+    const std::size_t i = std::min<std::size_t>(std::size_t(at), 799);
+    const double t = at - double(i);
+    return std::min((1 - t) * x.mtf[i] + t * x.mtf[i + 1], (1 - t) * y.mtf[i] + t * y.mtf[i + 1]);
+  };
+  return smallest_legible_character(mtf_at, top, contrast, distance_mm, display_pixel_mm(s), criterion);
 }
 
 scene with_edge_chart(scene s, const std::string& chart_path) {

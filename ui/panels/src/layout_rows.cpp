@@ -61,4 +61,19 @@ std::optional<design_pick> take_design_pick() {
   return p;
 }
 
+// The pose rows of a part: centre and the three angles.
+void edit_pose(pose& p, double reach_mm, const std::string& part) {
+  static const char* axes[3] = {"centre x", "centre y", "centre z"};
+  for (int i = 0; i < 3; ++i) {
+    edit_number(axes[i], p.center_mm[i], -reach_mm, reach_mm, "mm", "%.1f", nullptr,
+                part + ".pose.center_mm." + std::to_string(i));
+  }
+  edit_number("yaw", p.yaw_deg, -180, 180, "deg", "%.1f", "turns the part about the world's y axis",
+              part + ".pose.yaw_deg");
+  edit_number("pitch", p.pitch_deg, -180, 180, "deg", "%.1f", "raises the part's normal towards +y",
+              part + ".pose.pitch_deg");
+  edit_number("roll", p.roll_deg, -180, 180, "deg", "%.1f", "turns the part about its own normal",
+              part + ".pose.roll_deg");
+}
+
 }  // namespace airr::ui

@@ -4,6 +4,8 @@
 #include <optional>
 #include <string>
 
+#include "airr/layout/scene.hpp"
+
 namespace airr::ui {
 
 // One row: slider over [lo, hi], a typed field (may go beyond the slider), label with unit. With
@@ -11,6 +13,8 @@ namespace airr::ui {
 bool edit_number(const char* label, double& v, double lo, double hi, const char* unit, const char* fmt = "%.2f",
                  const char* help = nullptr, const std::string& key = {});
 bool edit_int(const char* label, int& v, int lo, int hi, const char* unit);
+// The pose rows of a part: centre and the three angles; `part` is its --set key, e.g. "half_mirror".
+void edit_pose(pose& p, double reach_mm, const std::string& part);
 
 // A row the designer picked, by its --set key, from the row's context menu: a variable of the
 // Optimise window or a tolerance of the Tolerance window; taken once.

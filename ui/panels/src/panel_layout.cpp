@@ -19,22 +19,6 @@ namespace airr::ui {
 
 namespace {
 
-// The pose rows of a part: centre and the three angles.
-// `part`: the part's --set key, e.g. "half_mirror".
-void edit_pose(pose& p, double reach_mm, const std::string& part) {
-  static const char* axes[3] = {"centre x", "centre y", "centre z"};
-  for (int i = 0; i < 3; ++i) {
-    edit_number(axes[i], p.center_mm[i], -reach_mm, reach_mm, "mm", "%.1f", nullptr,
-                part + ".pose.center_mm." + std::to_string(i));
-  }
-  edit_number("yaw", p.yaw_deg, -180, 180, "deg", "%.1f", "turns the part about the world's y axis",
-              part + ".pose.yaw_deg");
-  edit_number("pitch", p.pitch_deg, -180, 180, "deg", "%.1f", "raises the part's normal towards +y",
-              part + ".pose.pitch_deg");
-  edit_number("roll", p.roll_deg, -180, 180, "deg", "%.1f", "turns the part about its own normal",
-              part + ".pose.roll_deg");
-}
-
 void edit_part_size(part_params& p, double max_mm, const std::string& part) {
   edit_number("width", p.width_mm, 1, max_mm, "mm", "%.1f", nullptr, part + ".width_mm");
   edit_number("height", p.height_mm, 1, max_mm, "mm", "%.1f", nullptr, part + ".height_mm");
@@ -372,7 +356,9 @@ void draw_layout_panel(studio& st) {
     props_section(st);
     ImGui::PopID();
   }
-  if (ImGui::CollapsingHeader("Environment")) {
+  // Open from the start when the layout has ambient light, so that it is seen.
+  if (ImGui::CollapsingHeader("Environment",
+                              has_ambient_light(st.doc.environment) ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
     ImGui::PushID("environment");
     environment_section(st);
     ImGui::PopID();

@@ -202,19 +202,20 @@ void draw_render_view(studio& st, double now) {
   if (ImGui::IsItemHovered()) {
     ImGui::SetTooltip(
         "Contrast (aerial + background) / background per pixel, the background everything but the aerial "
-        "image (the room's light included), in false colour from 1 to 100; 1.5 just visible, 3 usable, 25 best");
+        "image (ambient light included), in false colour from 1 to 100; 1.5 just visible, 3 usable, 25 best");
   }
   ImGui::SameLine();
   ImGui::SetNextItemWidth(9 * ImGui::GetFontSize());
-  static const char* const shows[] = {"whole image",    "aerial image", "display, direct",
-                                      "its reflection", "the rest",     "room light"};
+  static const char* const shows[] = {"whole image", "aerial image", "display, direct", "its reflection",
+                                      "the rest",    "room light",   "sunlight",        "luminaires' light"};
   static_assert(IM_ARRAYSIZE(shows) == component_count + 1);
   int show = st.view.component + 1;
   if (ImGui::Combo("##component", &show, shows, IM_ARRAYSIZE(shows))) st.view.component = show - 1;
   if (ImGui::IsItemHovered()) {
     ImGui::SetTooltip(
         "The image's components: paths through a retroreflection (the aerial image), the display "
-        "seen directly, its plain reflection in the half mirror, the rest, and the room's light (Environment)");
+        "seen directly, its plain reflection in the half mirror, the rest, and the room's, the sun's and the "
+        "luminaires' light (Environment)");
   }
   ImGui::SameLine();
   const double rays_per_s = snap.seconds > 0 ? double(snap.rays) / snap.seconds : 0.0;

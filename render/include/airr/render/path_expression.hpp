@@ -18,9 +18,12 @@ struct event_pattern {
   path_event_kind kind = path_event_kind::display;
   int taken = -1;  // H: r 1, t 0; S: retro 1, other 0
   int front = -1;
-  int index = -1;         // H: the plate order; S: the sheet; P: the prop (from its name when bound)
+  // H: the plate order; S: the sheet; P: the prop (from its name when bound); A: the source
+  // (any_luminaire: every luminaire).
+  int index = -1;
   std::string prop_name;  // P:name, resolved to `index` by bind
 
+  static constexpr int any_luminaire = -3;
   bool accepts(const path_event& e) const;
 };
 

@@ -7,9 +7,12 @@
 
 namespace airr {
 
-// `ambient`: light from around the device (index: ambient_room, the room's uniform surround).
+// `ambient`: light from around the device (index: ambient_room, the room's uniform surround;
+// ambient_sun; luminaire k: ambient_first_luminaire + k).
 enum class path_event_kind : std::uint8_t { display, eye, half_mirror, sheet, prop, ambient };
 inline constexpr std::uint16_t ambient_room = 0;
+inline constexpr std::uint16_t ambient_sun = 1;
+inline constexpr std::uint16_t ambient_first_luminaire = 2;
 
 struct path_event {
   path_event_kind kind = path_event_kind::display;

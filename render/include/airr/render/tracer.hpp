@@ -17,6 +17,7 @@
 #include "airr/layout/scene.hpp"
 #include "airr/models/emission_profile.hpp"
 #include "airr/models/retro_model.hpp"
+#include "airr/render/ambient_lights.hpp"
 #include "airr/render/embree_scene.hpp"
 #include "airr/render/layout_model_image.hpp"
 #include "airr/render/path_expression.hpp"
@@ -42,6 +43,7 @@ struct tracer_scene {
   std::vector<prop> props;
   unsigned first_prop = part_first_sheet;
   std::unique_ptr<embree_instanced_scene> embree;
+  ambient_lights ambient;  // the layout's room, sun and luminaires
   // The model image, the control variate of every pixel's estimate (null: none, the plain
   // estimator); see update_model_image.
   bool use_model_image = true;
@@ -88,10 +90,19 @@ model_image_job control_variate_job(const tracer_scene& ts, bool quick = false);
 // image (at least one retroreflection), the display seen directly (no half-mirror reflection, no
 // prop), its plain reflection in the half mirror (one, no prop), and the rest (more, or light a
 // prop scattered or a sheet sent back without retroreflecting it); and ambient light (spec section
-// 11), the room's by any path. They add up to the image.
-enum image_component { component_aerial, component_direct, component_reflection, component_rest, component_room };
-inline constexpr int component_count = 5;
-inline constexpr const char* component_names[component_count] = {"aerial", "direct", "reflection", "rest", "room"};
+// 11) by any path: the room's, the sun's and the luminaires'. They add up to the image.
+enum image_component {
+  component_aerial,
+  component_direct,
+  component_reflection,
+  component_rest,
+  component_room,
+  component_sun,
+  component_luminaires
+};
+inline constexpr int component_count = 7;
+inline constexpr const char* component_names[component_count] = {"aerial", "direct", "reflection", "rest",
+                                                                 "room",   "sun",    "luminaires"};
 using component_radiance = std::array<glm::vec3, component_count>;
 
 // The pixel's random rotation of the low-discrepancy sequence its samples share.

@@ -1,6 +1,7 @@
 #pragma once
 // MTF of the model PSF: |E[exp(-2 pi i f x)]| over the PSF's offsets along the measurement
-// direction (x: what a near-vertical edge measures), optionally times a square pixel's aperture.
+// direction (x: what a near-vertical edge measures; or y), optionally times a square pixel's
+// aperture.
 #include <vector>
 
 #include "airr/layout/psf.hpp"
@@ -11,6 +12,7 @@ struct psf_mtf_params {
   double max_lp_per_mm = 2.0;
   int points = 101;       // frequencies 0 .. max, evenly spaced
   double pixel_mm = 0.0;  // > 0: include the aperture of a pixel this wide on the aerial-image plane
+  bool along_y = false;   // measure along the image's y (what horizontal strokes need) instead of x
 };
 
 struct psf_mtf_curve {

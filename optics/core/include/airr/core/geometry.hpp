@@ -32,6 +32,13 @@ inline glm::dvec3 cosine_hemisphere(const glm::dvec2& u) {
   return {s * std::cos(phi), s * std::sin(phi), std::sqrt(std::max(0.0, 1 - u.x))};
 }
 
+// A point uniformly distributed over the unit disc, from u in [0, 1)^2.
+inline glm::dvec2 uniform_disc(const glm::dvec2& u) {
+  const double r = std::sqrt(u.x);
+  const double phi = 2 * pi * u.y;
+  return {r * std::cos(phi), r * std::sin(phi)};
+}
+
 // An orthonormal basis (t, b, n) around a unit vector n, continuous except at n.z = -1
 // (Duff et al., "Building an orthonormal basis, revisited").
 struct basis {

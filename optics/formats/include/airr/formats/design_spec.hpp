@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "airr/formats/scene_json.hpp"
+#include "airr/layout/legibility.hpp"
 #include "airr/layout/scene.hpp"
 #include "airr/layout/viewing_zone.hpp"
 
@@ -30,6 +31,7 @@ enum class design_metric {
   luminance_cd_m2,          // the aerial image's: the model PSF's brightness times the display's white
   contrast,                 // (aerial + background) / background of their mean luminances, from the eye
   legible_share,            // the share of the aerial image seen at the spec's legible_contrast or more
+  char_height_mm,           // the smallest legible character on the aerial image (the spec's legibility)
   size_x_mm,                // the device's bounding box (display panel, half mirror, sheets) along x, y, z
   size_y_mm,
   size_z_mm,
@@ -114,7 +116,8 @@ struct design_spec {
   design_front front;  // from "pareto"
   std::vector<design_tolerance> tolerances;
   tolerance_settings tolerance;
-  double legible_contrast = 3;  // the contrast legible_share counts from
+  double legible_contrast = 3;      // the contrast legible_share counts from
+  legibility_criterion legibility;  // what char_height_mm counts as legible
 };
 
 // Reads and checks a spec and its base scene; throws input_error "<file>: <field>: <problem>":

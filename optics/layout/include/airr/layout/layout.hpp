@@ -29,6 +29,11 @@ glm::dmat4 prop_transform(const prop_params& p);
 std::shared_ptr<const emission_profile> scene_emission_profile(const scene& s);
 double emission_at(const emission_profile* profile, const part_frame& display, const glm::dvec3& towards_display);
 
+// The unit direction towards the sun's centre, and a luminaire's frame (for a disc, width and
+// height are its diameter).
+glm::dvec3 sun_direction(const sun_params& s);
+part_frame luminaire_frame(const luminaire_params& l);
+
 // The display's emitting area, and the whole panel including its bezel.
 part_frame source_frame(const scene& s);
 part_frame source_panel_frame(const scene& s);

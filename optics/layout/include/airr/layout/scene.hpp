@@ -170,16 +170,55 @@ struct room_params {
   bool operator==(const room_params&) const = default;
 };
 
+// The sun (spec section 11): a disc of sun_angular_diameter_deg in the direction given by its
+// azimuth (from +z towards +x, as the observer's orbit) and its elevation above the horizon (+y
+// up), making illuminance_lux on a plane facing it (0: no sun).
+struct sun_params {
+  double azimuth_deg = 0;
+  double elevation_deg = 45;
+  double illuminance_lux = 0;
+
+  bool operator==(const sun_params&) const = default;
+};
+inline constexpr double sun_angular_diameter_deg = 0.53;
+// The brightest sun a scene takes, in lux (the clear-sky sun at noon makes about 100,000).
+inline constexpr double max_sun_illuminance_lux = 150000;
+
+// A luminaire: an emitting rectangle (width x height) or disc (width_mm its diameter) at a pose,
+// Lambertian, from its front (the pose's normal) only; e.g. a ceiling panel facing down (pitch
+// -90). Its brightness is a luminance, or a luminous flux (luminance = flux / (pi x area)).
+enum class luminaire_shape { rectangle, disc };
+struct luminaire_params {
+  std::string name;
+  luminaire_shape shape = luminaire_shape::rectangle;
+  airr::pose pose;
+  double width_mm = 600.0;
+  double height_mm = 600.0;
+  double luminance_cd_m2 = 0.0;
+  double flux_lm = 0.0;
+
+  bool operator==(const luminaire_params&) const = default;
+};
+// Most luminaires in one layout.
+inline constexpr int max_luminaires = 32;
+
 struct environment_params {
   room_params room;
+  sun_params sun;
+  std::vector<luminaire_params> luminaires;
 
   bool operator==(const environment_params&) const = default;
 };
 
 // The room's luminance in cd/m2 (0: a dark room).
 double room_luminance(const room_params& r);
+// The sun's luminance in cd/m2: its illuminance over the solid angle of its disc.
+double sun_luminance(const sun_params& s);
+// A luminaire's emitting area in mm2, and its luminance in cd/m2.
+double luminaire_area_mm2(const luminaire_params& l);
+double luminaire_luminance(const luminaire_params& l);
 // Whether the layout has ambient light.
-inline bool has_ambient_light(const environment_params& e) { return room_luminance(e.room) > 0; }
+bool has_ambient_light(const environment_params& e);
 
 struct render_params {
   int max_depth = 8;  // surface interactions per path

@@ -7,6 +7,7 @@
 
 #include <opencv2/core.hpp>
 
+#include "airr/layout/legibility.hpp"
 #include "airr/layout/psf.hpp"
 #include "airr/layout/scene.hpp"
 #include "airr/layout/sheet_models.hpp"
@@ -28,6 +29,14 @@ psf_samples scene_psf(const scene& s, const retro_model_list& models, std::uint6
 
 // MTF of a sampled PSF times a square pixel's aperture (pixel_mm = 0: the optics alone).
 mtf_summary psf_route_mtf(const psf_samples& psf, double pixel_mm);
+
+// The display's pixel pitch in mm (the coarser of its two axes; 0 for a uniform display).
+double display_pixel_mm(const scene& s);
+// The smallest legible character on the aerial image (spec section 11) seen from `distance_mm` at
+// `contrast`: the model PSF's MTF (the worse of x and y, searched to 20 lp/mm) and the display's
+// pixels.
+legible_character psf_legible_character(const scene& s, const psf_samples& psf, double contrast, double distance_mm,
+                                        const legibility_criterion& criterion);
 
 // The scene with the source showing `chart_path` (an edge chart) instead of its image.
 scene with_edge_chart(scene s, const std::string& chart_path);
