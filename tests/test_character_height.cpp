@@ -9,11 +9,17 @@
 #include <limits>
 #include <numbers>
 
+#include "airr/core/files.hpp"
 #include "airr/core/geometry.hpp"
+#include "airr/design/metrics.hpp"
+#include "airr/formats/design_spec.hpp"
 #include "airr/formats/image.hpp"
+#include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
 #include "airr/layout/legibility.hpp"
 #include "airr/measure/mtf_routes.hpp"
+#include "airr/measure/viewing_zone_full.hpp"
+#include "error_of.hpp"
 #include "test_helpers.hpp"
 
 using namespace airr;
@@ -96,4 +102,52 @@ TEST(CharacterHeight, ATiltedRfAnSheetGrowsItAsItsR50Predicts) {
   std::printf("grown %.4f times, r50 predicts %.4f\n", grown, predicted);
   EXPECT_GT(grown, 1.0);
   EXPECT_NEAR(grown, predicted, 0.1 * predicted);
+}
+
+TEST(CharacterHeight, TheZoneMapsItFromEachEye) {
+  // The ideal sheet: from every eye that sees the aerial image, the eye's 16 arcmin bound; in a
+  // 10,000 lx room the contrast (1.05) leaves too little modulation for any size.
+  eye_grid g;
+  g.nx = g.ny = 3;
+  g.x_min = g.y_min = -60;
+  g.x_max = g.y_max = 60;
+  const full_zone_params p{.render_size = 16, .render_spp = 2, .psf_samples = 200};
+  scene s = test::white_bench(500, 16);
+  const full_zone_map dark = full_viewing_zone(s, g, p);
+  s.environment.room.illuminance_lux = 10000;
+  const full_zone_map bright = full_viewing_zone(s, g, p);
+  int seen = 0;
+  for (std::size_t e = 0; e < dark.visible.size(); ++e) {
+    if (!(dark.visible[e] > 0)) continue;
+    ++seen;
+    EXPECT_NEAR(dark.char_arcmin[e], 16, 1e-9) << e;
+    const double distance =
+        glm::length(eye_position(s, g, g.x_at(int(e % 3)), g.y_at(int(e / 3))) - aerial_image_center(s));
+    EXPECT_NEAR(dark.char_height_mm[e], distance * std::tan(radians(16.0 / 60)), 1e-9) << e;
+    EXPECT_TRUE(std::isinf(bright.char_height_mm[e])) << e;
+  }
+  EXPECT_GT(seen, 0);
+}
+
+TEST(CharacterHeight, TheDesignMetricTakesTheSpecsCriterion) {
+  // On the ideal bench in the dark the metric is the eye's bound from the observer; a spec asking
+  // for 30 arcmin gets 30; a criterion out of range is an error naming its field.
+  test::temp_dir dir;
+  const std::string scene_path = dir.file("bench.json");
+  save_scene(test::white_bench(500, 16), scene_path);
+  const auto spec_with = [&](const std::string& members) {
+    const std::string path = dir.file("spec.json");
+    write_file_atomic(path, R"({"format": "airr-design", "version": 1, "scene": ")" + scene_path + R"(", )" + members +
+                                R"(, "objectives": [{"metric": "char_height_mm", "goal": "minimise"}]})");
+    return load_design_spec(path);
+  };
+  const design_spec plain = spec_with(R"("legible_contrast": 3)");
+  const double distance = glm::length(observer_position(plain.base) - aerial_image_center(plain.base));
+  EXPECT_NEAR(evaluate_design(plain, plain.base).objective_values[0], distance * std::tan(radians(16.0 / 60)), 1e-9);
+  const design_spec strict = spec_with(R"("legibility": {"min_arcmin": 30})");
+  EXPECT_EQ(strict.legibility.min_arcmin, 30);
+  EXPECT_NEAR(evaluate_design(strict, strict.base).objective_values[0], distance * std::tan(radians(30.0 / 60)), 1e-9);
+  EXPECT_NE(design_spec_text(strict).find("\"min_arcmin\""), std::string::npos);
+  const std::string bad = test::error_of([&] { spec_with(R"("legibility": {"modulation": 2})"); });
+  EXPECT_NE(bad.find("legibility.modulation"), std::string::npos) << bad;
 }

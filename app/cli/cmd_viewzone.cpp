@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -78,6 +79,17 @@ void add_legibility_columns(const airr::scene& s, const airr::full_zone_map& map
     std::snprintf(title, sizeof title, "share of the aerial image at contrast >= %g", map.thresholds[k]);
     columns.push_back({name, title, std::string("_") + name, &map.contrast_share[k], 0, 1});
   }
+  // The character maps' heatmaps span their finite values (infinite: nothing legible there).
+  const auto add_finite = [&](const char* name, const char* title, const char* suffix, const std::vector<double>& v) {
+    double lo = std::numeric_limits<double>::infinity(), hi = 0;
+    for (double x : v)
+      if (std::isfinite(x)) lo = std::min(lo, x), hi = std::max(hi, x);
+    if (!(hi > lo)) lo = 0, hi = std::max(hi, 1.0);
+    columns.push_back({name, title, suffix, &v, lo, hi});
+  };
+  add_finite("char_height_mm", "smallest legible character (mm on the aerial image)", "_char_height",
+             map.char_height_mm);
+  add_finite("char_height_arcmin", "smallest legible character (arcmin)", "_char_arcmin", map.char_arcmin);
 }
 
 void print_legibility(const airr::scene& s, const airr::full_zone_map& map) {
@@ -88,6 +100,12 @@ void print_legibility(const airr::scene& s, const airr::full_zone_map& map) {
     std::printf("legible share of the zone at contrast %g: %.4f (eyes seeing %.0f%% of the image at that contrast)\n",
                 map.thresholds[k], airr::legible_share(map, k), 100 * airr::legible_image_share);
   }
+  double smallest = std::numeric_limits<double>::infinity();
+  std::size_t at = 0;
+  for (std::size_t e = 0; e < map.char_height_mm.size(); ++e)
+    if (map.char_height_mm[e] < smallest) smallest = map.char_height_mm[e], at = e;
+  if (std::isfinite(smallest))
+    std::printf("smallest legible character: %.4g mm (%.3g arcmin) at the best eye\n", smallest, map.char_arcmin[at]);
 }
 
 }  // namespace

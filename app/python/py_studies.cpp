@@ -123,6 +123,8 @@ py::dict viewzone(const py_scene& ps, bool sphere, double distance_mm, int grid,
     out["direct"] = grid_array(map.direct, g.ny, g.nx);
     out["luminance"] = grid_array(map.luminance, g.ny, g.nx);
     out["contrast"] = grid_array(map.contrast, g.ny, g.nx);
+    out["char_height_mm"] = grid_array(map.char_height_mm, g.ny, g.nx);
+    out["char_height_arcmin"] = grid_array(map.char_arcmin, g.ny, g.nx);
     py::dict shares, legible;
     for (std::size_t k = 0; k < map.thresholds.size(); ++k) {
       shares[py::float_(map.thresholds[k])] = grid_array(map.contrast_share[k], g.ny, g.nx);
@@ -272,8 +274,9 @@ grid float64 arrays (row j at y[j]): "visible" (the visible fraction), and with 
 of the aerial image is seen), "luminance" (the aerial image's mean, cd/m2 when the display's is
 given), "contrast" ((aerial + background) / background of the mean luminances; inf against a
 dark background), "contrast_share" ({threshold: the share of the image reaching it}, thresholds
-1.5, 3 and 25) and "legible_share" ({threshold: the share of the eyes seeing 90% of the image at
-it}).)");
+1.5, 3 and 25), "legible_share" ({threshold: the share of the eyes seeing 90% of the image at
+it}) and "char_height_mm" and "char_height_arcmin" (the smallest legible character; inf where
+the contrast leaves too little).)");
   m.def("optimise", &optimise, py::arg("spec"), py::kw_only(), py::arg("output") = py::none(),
         py::arg("progress") = py::none(),
         R"(Searches a design spec's variables for the best layout, as `airr optimise` does (docs/design.md).

@@ -68,6 +68,7 @@ def test_the_room_is_its_own_component_in_cd_per_m2(small_scene):
     zone = airr.viewzone(small_scene, grid=3, full=True, spp=2)
     assert zone["contrast"].shape == (3, 3) and sorted(zone["legible_share"]) == [1.5, 3.0, 25.0]
     assert np.all(zone["contrast"] >= 1) and zone["luminance"].max() > 0
+    assert zone["char_height_arcmin"].shape == (3, 3) and np.nanmin(zone["char_height_arcmin"]) >= 16 - 1e-9
     with pytest.raises(ValueError, match="environment.room.illuminance_lux"):
         small_scene.set("environment.room.illuminance_lux", -1)
     with pytest.raises(ValueError, match="source.luminance_cd_m2"):

@@ -211,7 +211,7 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
     const std::uint64_t workers = std::max(1u, std::thread::hardware_concurrency());
     const std::uint64_t eyes = std::uint64_t(g.nx) * std::uint64_t(g.ny), side = std::uint64_t(p.render_size);
     const std::uint64_t need =
-        measuring_process_bytes + eyes * 16 * (7 + p.contrast_thresholds.size()) +
+        measuring_process_bytes + eyes * 16 * (9 + p.contrast_thresholds.size()) +
         workers * (traced_pixels_memory_need(side * side, true) + psf_memory_need(p.psf_samples));
     check_memory_need("viewing zone: " + std::to_string(eyes) + " eyes of " + std::to_string(p.psf_samples) +
                           " PSF samples and a " + std::to_string(side) + " x " + std::to_string(side) + " render each",
@@ -230,6 +230,8 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
   out.contrast.assign(n, 1.0);
   out.thresholds = p.contrast_thresholds;
   out.contrast_share.assign(p.contrast_thresholds.size(), std::vector<double>(n, 0.0));
+  out.char_height_mm.assign(n, nan);
+  out.char_arcmin.assign(n, nan);
   const viewing_parts parts(s, scene_prop_hits(s));
   const retro_model_list models = make_sheet_models(s);
   const embree_device device;
@@ -255,7 +257,12 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
       out.brightness[e] = r.aerial;
       out.stray_ratio[e] = r.stray_ratio();
       try {
-        out.mean_mtf[e] = psf_route_mtf(scene_psf(eye, models, p.psf_samples), 0.0).mean_mtf;
+        const psf_samples psf = scene_psf(eye, models, p.psf_samples);
+        out.mean_mtf[e] = psf_route_mtf(psf, 0.0).mean_mtf;
+        const double distance = glm::length(aerial_image_center(eye) - observer_position(eye));
+        const legible_character c = psf_legible_character(eye, psf, r.seen.contrast, distance, p.legibility);
+        out.char_height_mm[e] = c.height_mm;
+        out.char_arcmin[e] = c.arcmin;
       } catch (const input_error&) {
         // The chief ray through the aerial image's centre misses every sheet from here.
       }
@@ -285,8 +292,9 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
   };
   if (share) {
     // Each eye's numbers as a shared item (an MPI job's ranks); every caller gets them all.
-    std::vector<std::vector<double>*> maps = {&out.visible, &out.brightness, &out.mean_mtf, &out.stray_ratio,
-                                              &out.direct,  &out.luminance,  &out.contrast};
+    std::vector<std::vector<double>*> maps = {&out.visible,     &out.brightness,     &out.mean_mtf,
+                                              &out.stray_ratio, &out.direct,         &out.luminance,
+                                              &out.contrast,    &out.char_height_mm, &out.char_arcmin};
     for (auto& m : out.contrast_share) maps.push_back(&m);
     const std::size_t count = maps.size();
     const std::vector<double> values = share(n, count, [&](std::size_t e, double* o) {

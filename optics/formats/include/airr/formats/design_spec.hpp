@@ -116,8 +116,8 @@ struct design_spec {
   design_front front;  // from "pareto"
   std::vector<design_tolerance> tolerances;
   tolerance_settings tolerance;
-  double legible_contrast = 3;      // the contrast legible_share counts from
-  legibility_criterion legibility;  // what char_height_mm counts as legible
+  double legible_contrast = 3;        // the contrast legible_share counts from
+  legibility_criterion legibility{};  // what char_height_mm counts as legible
 };
 
 // Reads and checks a spec and its base scene; throws input_error "<file>: <field>: <problem>":

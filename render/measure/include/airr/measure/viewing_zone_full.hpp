@@ -3,14 +3,15 @@
 // visible fraction, what the eye sees of the aerial image through the full model: its mean
 // brightness (relative to the best eye), the mean MTF over (0, 1] lp/mm of the model PSF at that
 // geometry, and the stray-light ratio, the display seen directly, the aerial image's luminance and
-// its contrast against the rest (contrast.hpp), from a small render split into components. Props
-// block and scatter as everywhere.
+// its contrast against the rest (contrast.hpp), from a small render split into components, and the
+// smallest legible character from both. Props block and scatter as everywhere.
 #include <atomic>
 #include <functional>
 #include <string>
 #include <vector>
 
 #include "airr/core/item_share.hpp"
+#include "airr/layout/legibility.hpp"
 #include "airr/layout/scene.hpp"
 #include "airr/layout/viewing_zone.hpp"
 #include "airr/measure/contrast.hpp"
@@ -23,6 +24,7 @@ struct full_zone_params {
   std::uint64_t render_spp = 16;     // its samples per pixel
   std::uint64_t psf_samples = 4000;  // for the mean MTF
   std::vector<double> contrast_thresholds = default_contrast_thresholds;
+  legibility_criterion legibility{};  // for the smallest legible character
 };
 
 struct full_zone_map {
@@ -40,6 +42,10 @@ struct full_zone_map {
   std::vector<double> luminance, contrast;
   std::vector<double> thresholds;
   std::vector<std::vector<double>> contrast_share;
+  // The smallest legible character on the aerial image from each eye, in mm and in arcmin
+  // (legibility.hpp, with the eye's contrast; infinite where the contrast leaves too little, NaN
+  // where nothing of the aerial image is seen).
+  std::vector<double> char_height_mm, char_arcmin;
   double seconds = 0;
 };
 
