@@ -59,7 +59,7 @@ TEST(CharacterHeight, OnTheIdealSheetOnlyTheEyeAndThePixelsLimitIt) {
   scene s = test::white_bench(500, 16);
   const psf_samples psf = scene_psf(s, 2000);
   const double distance = glm::length(observer_position(s) - aerial_image_center(s));
-  const legible_character eye = psf_legible_character(s, psf, inf, distance, {});
+  const legible_character eye = psf_legible_character(s, psf, inf, {});
   std::printf("ideal sheet at %.1f mm: %.4f mm, %.3f arcmin (%s)\n", distance, eye.height_mm, eye.arcmin,
               to_string(eye.limit));
   EXPECT_EQ(eye.limit, legibility_limit::eye);
@@ -74,7 +74,7 @@ TEST(CharacterHeight, OnTheIdealSheetOnlyTheEyeAndThePixelsLimitIt) {
   write_image(dir.file("coarse.png"), img, {});
   s.source.image = dir.file("coarse.png");
   const double pitch = std::max(s.source.width_mm, s.source.height_mm) / 64;
-  const legible_character pixels = psf_legible_character(s, psf, inf, distance, {});
+  const legible_character pixels = psf_legible_character(s, psf, inf, {});
   std::printf("the same with 64 pixels over %.1f mm: %.4f mm (%s)\n", s.source.width_mm, pixels.height_mm,
               to_string(pixels.limit));
   EXPECT_EQ(pixels.limit, legibility_limit::pixels);
@@ -90,8 +90,7 @@ TEST(CharacterHeight, ATiltedRfAnSheetGrowsItAsItsR50Predicts) {
     scene s = test::chart_scene("rf-an", 16, tilt);
     s.source.image.clear();
     const psf_samples psf = scene_psf(s, 200000);
-    const double distance = glm::length(observer_position(s) - aerial_image_center(s));
-    const legible_character c = psf_legible_character(s, psf, inf, distance, {});
+    const legible_character c = psf_legible_character(s, psf, inf, {});
     heights.push_back(c.height_mm);
     radii.push_back(energy_radius(psf, 0.5));
     std::printf("RF-AN at tilt %.0f: r50 %.4f mm, smallest character %.4f mm (%.2f arcmin, %s)\n", tilt, radii.back(),

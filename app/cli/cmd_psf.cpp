@@ -167,8 +167,8 @@ void add_psf_command(CLI::App& app) {
     {
       // In the dark (no ambient light's contrast), from the scene's observer.
       const double distance = glm::length(airr::observer_position(s) - airr::aerial_image_center(s));
-      const airr::legible_character c = airr::psf_legible_character(s, psf, std::numeric_limits<double>::infinity(),
-                                                                    distance, airr::legibility_criterion{});
+      const airr::legible_character c =
+          airr::psf_legible_character(s, psf, std::numeric_limits<double>::infinity(), airr::legibility_criterion{});
       std::printf(
           "smallest legible character: %.4g mm (%.3g arcmin from the observer, %.0f mm away; bounded by the %s)\n",
           c.height_mm, c.arcmin, distance, airr::to_string(c.limit));

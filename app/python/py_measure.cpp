@@ -48,9 +48,8 @@ py::dict psf(const py_scene& ps, std::uint64_t samples, bool pixel, double max_l
     const auto curve = analysis::psf_mtf(p, {.max_lp_per_mm = max_lp_per_mm, .points = points, .pixel_mm = pixel_mm});
     const mtf_summary m = psf_route_mtf(p, pixel_mm);
     const double r50 = energy_radius(p);
-    const double distance = glm::length(observer_position(s) - aerial_image_center(s));
     const legible_character legible =
-        psf_legible_character(s, p, std::numeric_limits<double>::infinity(), distance, legibility_criterion{});
+        psf_legible_character(s, p, std::numeric_limits<double>::infinity(), legibility_criterion{});
     const psf_samples loose = sample_psf(s, models, {.samples = samples, .seed = s.seed, .stratified = false});
     const double half = extent_mm ? *extent_mm : analysis::psf_picture_half_width(loose, true);
     const analysis::psf_grid grid = analysis::psf_to_grid(loose, image_pixels, 2 * half / image_pixels);

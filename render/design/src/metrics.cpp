@@ -59,10 +59,8 @@ class eye_metrics {
     }
     if (m == design_metric::contrast) return view().seen.contrast;
     if (m == design_metric::legible_share) return view().seen.share_above.front();
-    if (m == design_metric::char_height_mm) {
-      const double distance = glm::length(aerial_image_center(s_) - eye_);
-      return psf_legible_character(s_, psf(), view().seen.contrast, distance, spec_.legibility).height_mm;
-    }
+    if (m == design_metric::char_height_mm)
+      return psf_legible_character(s_, psf(), view().seen.contrast, spec_.legibility).height_mm;
     const psf_samples& p = psf();
     switch (m) {
       case design_metric::mean_mtf:

@@ -41,8 +41,9 @@ double display_pixel_mm(const scene& s) {
   return std::max(s.source.width_mm / img->width, s.source.height_mm / img->height);
 }
 
-legible_character psf_legible_character(const scene& s, const psf_samples& psf, double contrast, double distance_mm,
+legible_character psf_legible_character(const scene& s, const psf_samples& psf, double contrast,
                                         const legibility_criterion& criterion) {
+  const double distance_mm = glm::length(observer_position(s) - aerial_image_center(s));
   constexpr double top = 20;  // lp/mm: finer than any eye resolves at reading distance
   if (psf.offset_mm.empty())
     return smallest_legible_character([](double) { return 0.0; }, top, contrast, distance_mm, 0, criterion);

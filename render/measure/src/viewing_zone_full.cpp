@@ -259,8 +259,7 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
       try {
         const psf_samples psf = scene_psf(eye, models, p.psf_samples);
         out.mean_mtf[e] = psf_route_mtf(psf, 0.0).mean_mtf;
-        const double distance = glm::length(aerial_image_center(eye) - observer_position(eye));
-        const legible_character c = psf_legible_character(eye, psf, r.seen.contrast, distance, p.legibility);
+        const legible_character c = psf_legible_character(eye, psf, r.seen.contrast, p.legibility);
         out.char_height_mm[e] = c.height_mm;
         out.char_arcmin[e] = c.arcmin;
       } catch (const input_error&) {

@@ -32,10 +32,10 @@ mtf_summary psf_route_mtf(const psf_samples& psf, double pixel_mm);
 
 // The display's pixel pitch in mm (the coarser of its two axes; 0 for a uniform display).
 double display_pixel_mm(const scene& s);
-// The smallest legible character on the aerial image (spec section 11) seen from `distance_mm` at
-// `contrast`: the model PSF's MTF (the worse of x and y, searched to 20 lp/mm) and the display's
-// pixels.
-legible_character psf_legible_character(const scene& s, const psf_samples& psf, double contrast, double distance_mm,
+// The smallest legible character on the aerial image (spec section 11) seen from the scene's
+// observer at `contrast`: the model PSF's MTF (the worse of x and y, searched to 20 lp/mm) and the
+// display's pixels.
+legible_character psf_legible_character(const scene& s, const psf_samples& psf, double contrast,
                                         const legibility_criterion& criterion);
 
 // The scene with the source showing `chart_path` (an edge chart) instead of its image.
