@@ -1,5 +1,6 @@
 // `airr bench --noise` end to end on a small image: pairs rendered through `airr render`, the law,
-// the forecast, and a side-by-side comparison (here with the same build, so the ratio is near 1).
+// the forecast, and a side-by-side comparison (here with the same build, so the ratio is near 1);
+// --memory and --model-image likewise.
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -28,6 +29,28 @@ TEST(BenchNoise, BadComparisonBuildIsNamed) {
   const test::command_result r = test::run_cli("bench --noise --size 16 --compare /nonexistent/airr");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.out.find("/nonexistent/airr: not an executable airr"), std::string::npos) << r.out;
+}
+
+// `airr bench --memory` on small images: four renders of this build, each with its peak, and the
+// bytes a pixel with and without components.
+TEST(BenchMemory, ReportsPeaksAndBytesAPixel) {
+  const test::command_result r = test::run_cli("bench --memory --size 128");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  int rows = 0;
+  std::istringstream in(r.out);
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream row(line);
+    std::string build, size, components;
+    double peak = 0, seconds = 0;
+    if (!(row >> build >> size >> size >> components >> peak >> seconds) || build != "this") continue;
+    ++rows;
+    EXPECT_TRUE(size == "64^2" || size == "128^2") << line;
+    EXPECT_TRUE(components == "yes" || components == "no") << line;
+    EXPECT_GT(peak, 10.0) << line;  // megabytes: the libraries alone take more
+  }
+  EXPECT_EQ(rows, 4) << r.out;
+  EXPECT_NE(r.out.find("bytes a pixel"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("with components"), std::string::npos) << r.out;
 }
 
 // `airr bench --model-image` on a small image: one line per preset, tilt and quality, whose parts

@@ -2,8 +2,10 @@
 // predictions of those samples then gives the estimate the control variate would have given from
 // the start, to the bit, so nothing is lost and nothing biased.
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -123,4 +125,38 @@ TEST(LateControlVariate, SessionImageAtItsTargetIsTheControlVariates) {
   accumulation p(plain);
   ASSERT_TRUE(p.trace(plain, 0, first.spp));
   EXPECT_TRUE(*first.rgb == p.estimate(plain, first.spp));
+}
+
+// Paused and resumed again and again while it traces: a cancelled wave keeps the rows it finished
+// and the next one brings the others level (no copy of the sums undoes it), and the control
+// variate's predictions follow each row's own samples, so the image at the target is the same to
+// the bit. Images come only with the target's snapshot when the session is asked so.
+TEST(LateControlVariate, PausesMidWaveChangeNothing) {
+  const scene s = test::chart_scene("rf-an", 96, 20);
+  const std::uint64_t spp = 12;
+  render_session session(s, {.threads = 2, .target_spp = spp, .preview_stride = 1, .final_images_only = true});
+  int pauses = 0;
+  for (; pauses < 200; ++pauses) {
+    const render_snapshot now = session.snapshot();
+    if (now.spp >= spp) break;
+    EXPECT_FALSE(now.rgb) << "an image before the target, at " << now.spp << " spp";
+    std::this_thread::sleep_for(std::chrono::milliseconds(1 + pauses % 7));
+    session.set_paused(true);
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    session.set_paused(false);
+  }
+  const render_snapshot done = session.wait_for(0, spp);
+  std::printf("paused %d times on the way to %llu spp\n", pauses, static_cast<unsigned long long>(spp));
+  EXPECT_GT(pauses, 3);
+  ASSERT_EQ(done.spp, spp);
+  ASSERT_TRUE(done.rgb);
+
+  embree_device device;
+  tracer_scene ts;
+  build_tracer_scene(ts, device, s);
+  update_model_image(ts);
+  ASSERT_TRUE(ts.model);
+  accumulation acc(ts);
+  ASSERT_TRUE(acc.trace(ts, 0, spp));
+  EXPECT_TRUE(*done.rgb == acc.estimate(ts, spp));
 }

@@ -189,7 +189,7 @@ TEST(ResourceLimits, LibraryMessagesDoNotLeakAroundTheErrorLine) {
 
 // A full disk while a render is written (a file-size limit of a few KiB, as `ulimit -f` sets): one
 // line naming the output, and the render already there is untouched with nothing left beside it.
-// The largest render accepted, 8192 x 4096 with components (about 18.8 GB), under an 8 GB
+// The largest render accepted, 8192 x 4096 with components (about 14.7 GB), under an 8 GB
 // address-space limit: refused before it starts with one line naming the need and the limit
 // (it used to abort with std::bad_alloc after 18 s); a small render under the same limit runs.
 TEST(ResourceLimits, ARenderBeyondTheProcesssMemoryIsRefusedBeforeItStarts) {

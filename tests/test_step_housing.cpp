@@ -221,7 +221,35 @@ TEST(StepHousing, DamagedFilesAreClearErrors) {
   write_file_atomic(half, text.substr(0, text.size() / 2));
   write_file_atomic(prose, "This housing was drawn in a CAD program.\n");
   write_file_atomic(shapeless, text.substr(0, text.find("DATA;")) + "DATA;\nENDSEC;\nEND-ISO-10303-21;\n");
-  for (const std::string& path : {empty, half, prose, shapeless}) {
+  // What the fuzzer found would crash the reader: a direction turned to garbage, a vertex naming a
+  // point that is not there, a point whose type is garbled, an oriented edge built on itself. Each
+  // file is refused, naming what is wrong.
+  const auto mangled = [&](const std::string& name, const std::string& find, std::size_t offset,
+                           const std::string& insert, std::size_t erase = 0) {
+    std::string t = text;
+    const std::size_t at = t.find(find);
+    EXPECT_NE(at, std::string::npos) << find;
+    if (at != std::string::npos) t.replace(at + offset, erase, insert);
+    write_file_atomic(dir.file(name), t);
+    return dir.file(name);
+  };
+  const std::string garbled = mangled("garbled.step", "= DIRECTION(", 0, "2212Geom_Surface(", 12),
+                    dangling = mangled("dangling.step", "VERTEX_POINT('',#", 17, "9999"),
+                    untyped = mangled("untyped.step", "= CARTESIAN_POINT(", 8, "\xff\xff", 6);
+  std::string looped = text;
+  const std::size_t edge = looped.find("= ORIENTED_EDGE('',*,*,#");
+  ASSERT_NE(edge, std::string::npos);
+  const std::size_t self = looped.rfind('#', edge), target = edge + std::string("= ORIENTED_EDGE('',*,*,").size();
+  const std::string self_id = looped.substr(self, looped.find_first_of(" =", self) - self);
+  looped.replace(target, looped.find(',', target) - target, self_id);
+  write_file_atomic(dir.file("looped.step"), looped);
+  const std::string cycle = dir.file("looped.step");
+  EXPECT_NE(test::error_of([&] { load_step_mesh(garbled, "", 0.05); }).find("which the file does not define"),
+            std::string::npos);
+  EXPECT_NE(test::error_of([&] { load_step_mesh(dangling, "", 0.05); }).find("9999"), std::string::npos);
+  EXPECT_NE(test::error_of([&] { load_step_mesh(untyped, "", 0.05); }).find("Line "), std::string::npos);
+  EXPECT_NE(test::error_of([&] { load_step_mesh(cycle, "", 0.05); }).find("oriented edge"), std::string::npos);
+  for (const std::string& path : {empty, half, prose, shapeless, garbled, dangling, untyped, cycle}) {
     const std::string e = test::error_of([&] { load_step_mesh(path, "", 0.05); });
     EXPECT_EQ(e.rfind(path + ": ", 0), 0u) << e;
     EXPECT_EQ(e.find('\n'), std::string::npos) << e;

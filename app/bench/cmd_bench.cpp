@@ -21,6 +21,7 @@
 #include "airr/render/tracer.hpp"
 #include "bench/designer_latency_bench.hpp"
 #include "bench/drag_bench.hpp"
+#include "bench/memory_bench.hpp"
 #include "bench/model_error_bench.hpp"
 #include "bench/model_image_bench.hpp"
 #include "bench/noise_bench.hpp"
@@ -85,6 +86,7 @@ void add_bench_command(CLI::App& app) {
     int runs = 3;
     std::vector<double> model_error_tilts;
     std::uint64_t prop_triangles = 0;
+    bool memory = false;
   };
   auto opt = std::make_shared<options>();
   auto* cmd = app.add_subcommand(
@@ -113,13 +115,17 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--runs", opt->runs, "With --model-image: runs per case (the median is reported)")
       ->check(CLI::Range(1, 100));
   cmd->add_option("--tilts", opt->model_error_tilts, "With --model-error or --model-image: sheet tilts (deg)");
+  cmd->add_flag("--memory", opt->memory,
+                "Instead: the peak resident memory of airr render (1 spp) at half --size and at --size (default 4096), "
+                "with and without --components, and the bytes a pixel costs");
   cmd->add_option("--prop-triangles", opt->prop_triangles,
                   "Instead: what a housing prop of this many triangles costs (load, Embree build, rays/s with and "
                   "without it)")
       ->check(CLI::Range(10, 20'000'000));
-  cmd->add_option("--compare", opt->noise_options.compare,
-                  "With --noise, --model-image or --model-error: also measure another build's airr executable, side "
-                  "by side");
+  cmd->add_option(
+      "--compare", opt->noise_options.compare,
+      "With --noise, --model-image, --model-error or --memory: also measure another build's airr executable, side "
+      "by side");
   cmd->add_option("--noise-spp", opt->noise_options.spp,
                   "With --noise: samples per pixel of the measured render pairs (two or more)")
       ->check(CLI::Range(1, 1 << 20))
@@ -164,6 +170,15 @@ void add_bench_command(CLI::App& app) {
       if (cmd->count("--size")) d.size = opt->noise_options.size;
       if (cmd->count("--edits")) d.edits = opt->edits;
       run_drag_bench(d);
+      return;
+    }
+    if (opt->memory) {
+      memory_bench_options m;
+      m.scene_path = std::filesystem::absolute(opt->scene_path).string();
+      if (cmd->count("--size")) m.size = opt->noise_options.size;
+      m.compare = opt->noise_options.compare;
+      m.threads = opt->noise_options.threads;
+      run_memory_bench(m);
       return;
     }
     if (opt->prop_triangles > 0) {

@@ -1,7 +1,5 @@
 #include "bench/noise_bench.hpp"
 
-#include <unistd.h>
-
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -16,20 +14,6 @@
 namespace fs = std::filesystem;
 
 namespace {
-
-// A fresh directory for the renders, removed when done.
-struct scratch {
-  fs::path path;
-  scratch() {
-    std::string tmpl = (fs::temp_directory_path() / "airr-noise-XXXXXX").string();
-    if (!::mkdtemp(tmpl.data())) throw airr::input_error("noise: cannot create a temporary directory in /tmp");
-    path = tmpl;
-  }
-  ~scratch() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
 
 // One `airr render` of the preset's scene; returns the image and the wall time.
 airr::image_rgb render_once(const build_under_test& b, const noise_bench_options& o, const std::string& preset,
@@ -62,7 +46,7 @@ struct build_result {
 };
 
 build_result measure(const build_under_test& b, const noise_bench_options& o, const std::string& preset) {
-  scratch dir;
+  const scratch_dir dir("noise");
   build_result r;
   for (std::uint64_t spp : o.spp) {
     double t1 = 0, t2 = 0;

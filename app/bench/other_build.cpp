@@ -47,3 +47,15 @@ std::string run_build(const build_under_test& b, const std::string& args, const 
   }
   return out;
 }
+
+scratch_dir::scratch_dir(const std::string& what) {
+  std::string tmpl = (fs::temp_directory_path() / ("airr-" + what + "-XXXXXX")).string();
+  if (!::mkdtemp(tmpl.data()))
+    throw airr::input_error(what + ": cannot create a temporary directory in " + fs::temp_directory_path().string());
+  path = tmpl;
+}
+
+scratch_dir::~scratch_dir() {
+  std::error_code ec;
+  fs::remove_all(path, ec);
+}

@@ -1,5 +1,6 @@
 #pragma once
 // Another build's airr, measured side by side with this one (airr bench ... --compare).
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -18,3 +19,13 @@ std::vector<build_under_test> builds_under_test(const std::string& compare);
 // Runs the build with `args` (shell words, already quoted) and returns what it printed on standard
 // output; input_error naming `what` and the last line it printed when it fails.
 std::string run_build(const build_under_test& b, const std::string& args, const std::string& what);
+
+// A fresh directory under the system's temporary folder for a benchmark's renders (`what` names
+// the benchmark in its name and errors), removed with everything in it when done.
+struct scratch_dir {
+  std::filesystem::path path;
+  explicit scratch_dir(const std::string& what);
+  ~scratch_dir();
+  scratch_dir(const scratch_dir&) = delete;
+  scratch_dir& operator=(const scratch_dir&) = delete;
+};

@@ -115,8 +115,11 @@ void add_render_command(CLI::App& app) {
       path_layers = std::make_shared<const airr::path_layers>(airr::parse_layer_arguments(opt->layers, s, taken));
     }
     std::optional<airr::shard_index> shard;  // this process's rows go to a shard file
-    airr::session_params params{
-        .threads = opt->threads, .target_spp = opt->spp, .components = split, .layers = path_layers};
+    airr::session_params params{.threads = opt->threads,
+                                .target_spp = opt->spp,
+                                .components = split,
+                                .layers = path_layers,
+                                .final_images_only = true};
     if (!opt->shard.empty()) {
       if (job.size > 1) throw airr::input_error("--shard: not under mpirun or srun, whose ranks split the render");
       shard = airr::parse_shard(opt->shard, "--shard");
@@ -142,19 +145,21 @@ void add_render_command(CLI::App& app) {
       airr::check_ray_file(opt->rays, s, opt->ray_params);
     }
     airr::check_render_memory(s, params);  // refused before anything is allocated
-    airr::render_session session(s, params);
+    // Ended before the images are written: its sums are not needed then (render/memory_need).
+    std::optional<airr::render_session> session(std::in_place, s, params);
     std::optional<progress_bar> bar;
     if (job.root()) bar.emplace(job.size > 1 ? "render (" + std::to_string(job.size) + " ranks)" : "render");
     // The job's progress is its slowest rank's: every rank counts, each time, until all are done.
     std::function<std::uint64_t(std::uint64_t)> job_spp;
     if (job.size > 1) job_spp = job_min;
     const airr::render_snapshot snap = airr::render_to_spp(
-        session, opt->spp,
+        *session, opt->spp,
         [&](std::uint64_t job_spp) {
           if (bar) bar->update(double(job_spp) / double(opt->spp), std::to_string(job_spp) + " spp");
           return true;
         },
         std::chrono::milliseconds(0), job_spp);
+    session.reset();
     if (bar)
       bar->finish(std::to_string(snap.spp) + " spp, " +
                   std::to_string(std::uint64_t(snap.rays / std::max(snap.seconds, 1e-9))) + " rays/s");

@@ -126,8 +126,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0.0, 3600.0));
   cli.add_option("--zone", opt.zone,
                  "The viewing zone shows this quantity; a scripted run computes the full pass before its screenshot")
-      ->check(CLI::IsMember({"visible", "brightness", "mtf", "stray", "luminance", "contrast", "legible-1.5",
-                             "legible-3", "legible-25"}));
+      ->check(CLI::IsMember(
+          std::vector<std::string>(std::begin(airr::ui::zone_quantity_keys), std::end(airr::ui::zone_quantity_keys))));
   cli.add_option("--plots", opt.plots, "The Plots window opens on this tab (mtf or bokeh)")
       ->check(CLI::IsMember({"mtf", "bokeh"}));
   cli.add_option("--component", opt.component, "The render view shows one component of the image")
@@ -226,10 +226,8 @@ int main(int argc, char** argv) {
   st.view.contrast = opt.contrast_view;
   st.plots_tab = opt.plots == "bokeh" ? 1 : 0;
   st.select_plots_tab = true;
-  const char* const zone_quantities[] = {"visible",  "brightness",  "mtf",       "stray",     "luminance",
-                                         "contrast", "legible-1.5", "legible-3", "legible-25"};
-  for (int k = 0; k < int(std::size(zone_quantities)); ++k) {
-    if (opt.zone == zone_quantities[k]) st.zone_quantity = k;
+  for (int k = 0; k < int(std::size(airr::ui::zone_quantity_keys)); ++k) {
+    if (opt.zone == airr::ui::zone_quantity_keys[k]) st.zone_quantity = k;
   }
   st.keep_recovery = opt.frames == 0 && opt.bench_edits == 0;
   if (opt.soak.seconds > 0) {

@@ -57,7 +57,8 @@ py::object render(const py_scene& ps, std::uint64_t spp, std::optional<std::uint
                                 .target_spp = spp,
                                 .components = components,
                                 .layers = path_layers,
-                                .build_cancel = &build_cancel};
+                                .build_cancel = &build_cancel,
+                                .final_images_only = true};
     check_render_memory(s, params);  // refused before anything is allocated
     auto building = std::async(std::launch::async, [&] { return std::make_unique<render_session>(s, params); });
     while (building.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready)

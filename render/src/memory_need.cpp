@@ -15,11 +15,17 @@ namespace airr {
 
 namespace {
 
-// Peak resident bytes of `airr render` per pixel and beyond the pixels, measured on the default
-// scene at 1024 x 1024 and 2048 x 2048 (1 spp): 852 and 1773 MB, 1277 and 3489 MB with the seven
-// components.
-constexpr double bytes_per_pixel = 300, bytes_per_pixel_components = 720;
-constexpr double fixed_bytes = 540e6;
+// Peak resident bytes of `airr render` (its session publishing images only at the target) per
+// pixel and beyond the pixels, measured by `airr bench --memory` on the default scene from 2048^2 to
+// 4096^2 (1 spp): 168 bytes a pixel, 420 with the seven components, 553 MB besides. About: sums 96
+// (the samples and the odd ones, and the model image's predictions of each, as doubles), 168 more
+// by component; images: 24 (the estimate and its odd half), 84 more by component; the model image
+// 60 (its pixels' paths, its image and the layout's).
+constexpr double final_bytes_per_pixel = 168, final_bytes_per_pixel_components = 420;
+// A session publishing every wave (the designer) holds a wave's new images beside the last:
+// 48 bytes a pixel more (the estimate, its odd half and the shown mix), 84 more by component.
+constexpr double wave_images_bytes = 48, wave_images_bytes_components = 48 + 84;
+constexpr double fixed_bytes = 560e6;
 // Peak resident bytes of `airr sweep --psf` (one point, one thread) beyond its 150 MB at the start:
 // 48 bytes a sample at 10 million samples, 58 at 30 million (the samples' arrays doubling as
 // they grow); two points on two threads took twice one point's.
@@ -72,11 +78,13 @@ std::uint64_t render_memory_need(const scene& s, const session_params& p) {
   const std::uint64_t pixels = std::uint64_t(s.observer.width) * std::uint64_t(s.observer.height);
   // A path-expression layer: its double sums, the snapshot's floats and the image written of them.
   const std::uint64_t layers = p.layers ? pixels * 60 * p.layers->count() : 0;
-  return std::uint64_t(fixed_bytes) + traced_pixels_memory_need(pixels, p.components) + layers;
+  return std::uint64_t(fixed_bytes) + traced_pixels_memory_need(pixels, p.components, p.final_images_only) + layers;
 }
 
-std::uint64_t traced_pixels_memory_need(std::uint64_t pixels, bool components) {
-  return std::uint64_t(double(pixels) * (components ? bytes_per_pixel_components : bytes_per_pixel));
+std::uint64_t traced_pixels_memory_need(std::uint64_t pixels, bool components, bool final_images_only) {
+  double bytes = components ? final_bytes_per_pixel_components : final_bytes_per_pixel;
+  if (!final_images_only) bytes += components ? wave_images_bytes_components : wave_images_bytes;
+  return std::uint64_t(double(pixels) * bytes);
 }
 
 void check_render_memory(const scene& s, const session_params& p) {

@@ -25,7 +25,7 @@ void model_image_steps::assign_bin(const std::vector<model_bin>& bins, model_pix
   px.bin = k;
   if (k + 1 < n) {
     const double a0 = bins[std::size_t(k)].theta_deg, a1 = bins[std::size_t(k + 1)].theta_deg;
-    px.mix = a1 > a0 ? std::clamp((px.theta_deg - a0) / (a1 - a0), 0.0, 1.0) : 0.0;
+    px.mix = a1 > a0 ? float(std::clamp((px.theta_deg - a0) / (a1 - a0), 0.0, 1.0)) : 0.0f;
   }
 }
 
@@ -132,7 +132,7 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
                      (own_grids ? m->display->spectra_seconds : 0.0);
   double lo = INFINITY, hi = -INFINITY;
   for (const model_pixel& px : m->pixels) {
-    if (px.ok) lo = std::min(lo, px.theta_deg), hi = std::max(hi, px.theta_deg);
+    if (px.ok) lo = std::min(lo, double(px.theta_deg)), hi = std::max(hi, double(px.theta_deg));
   }
   if (!(lo <= hi)) return nullptr;
 

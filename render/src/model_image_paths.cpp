@@ -110,13 +110,13 @@ std::vector<model_pixel> map_pixels(const std::vector<pixel_path>& paths, const 
     for (std::size_t i = std::size_t(y0) * w; i < std::size_t(y1) * w; ++i) {
       if (!paths[i].ok) continue;
       model_pixel& px = pixels[i];
-      for (int g : {model_fine, model_tail}) px.node[g] = maps[g].node(paths[i].display);
+      for (int g : {model_fine, model_tail}) px.node[g] = glm::vec2(maps[g].node(paths[i].display));
       // Landing outside the tail's padded grid, it is farther from the display than any kernel
       // offset. (Outside the fine grid, only the fine part sees nothing, in both uses alike.)
       const glm::dvec2 t = px.node[model_tail];
       px.ok = t.x >= 0 && t.y >= 0 && t.x < tail.padded.width - 1 && t.y < tail.padded.height - 1;
-      px.theta_deg = polar_angle_deg(glm::normalize(paths[i].wi));
-      px.profile = paths[i].profile;
+      px.theta_deg = float(polar_angle_deg(glm::normalize(paths[i].wi)));
+      px.profile = float(paths[i].profile);
     }
   });
   return pixels;

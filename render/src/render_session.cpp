@@ -147,16 +147,22 @@ void render_session::traced_rows(const Body& body) const {
   detail::parallel_rows(end - first, params_.threads, [&](int y0, int y1) { body(first + y0, first + y1); });
 }
 
-bool render_session::render_wave(std::uint64_t first, std::uint64_t count, accumulation& acc, std::uint64_t& rays) {
+bool render_session::render_wave(std::uint64_t end, accumulation& acc, std::uint64_t& rays) {
   std::atomic<std::uint64_t> total_rays{0};
   std::atomic<bool> complete{true};
   traced_rows([&](int y0, int y1) {
     if (params_.background_priority) lower_thread_priority();
     std::uint64_t local = 0;
-    if (!trace_rows(scene_, y0, y1, first, count, acc.sums, cancel_, local, &acc.odd_sums,
-                    params_.components ? &acc.component_sums : nullptr, &acc.predictions,
-                    params_.layers ? &acc.layer_sums : nullptr)) {
-      complete = false;
+    for (int y = y0; y < y1; ++y) {
+      std::uint64_t& done = acc.row_spp[std::size_t(y)];
+      if (done >= end) continue;
+      if (!trace_rows(scene_, y, y + 1, done, end - done, acc.sums, cancel_, local, &acc.odd_sums,
+                      params_.components ? &acc.component_sums : nullptr, &acc.predictions,
+                      params_.layers ? &acc.layer_sums : nullptr)) {
+        complete = false;
+        break;
+      }
+      done = end;
     }
     total_rays += local;
   });
@@ -193,6 +199,20 @@ bool render_session::render_preview(std::vector<float>& rgb, std::uint64_t& rays
 
 void render_session::publish(std::uint64_t gen, std::uint64_t spp, const accumulation& acc, std::uint64_t rays,
                              double seconds) {
+  bool images = true;
+  if (params_.final_images_only) {
+    std::lock_guard lock(mutex_);
+    images = spp >= target_spp_;
+    if (!images && gen == generation_) {
+      snapshot_.generation = gen;
+      snapshot_.spp = spp;
+      snapshot_.rays = rays;
+      snapshot_.seconds = seconds;
+      snapshot_.edit_seconds = seconds_since_edit();
+      changed_.notify_all();
+    }
+  }
+  if (!images) return;
   // Each pixel's estimate is the model image's value plus the mean of its samples less their
   // predictions.
   const std::vector<float>* model = scene_.model ? &scene_.model->image.rgb : nullptr;
@@ -255,7 +275,11 @@ void render_session::publish(std::uint64_t gen, std::uint64_t spp, const accumul
   snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
   snapshot_.rgb = std::move(rgb);
   snapshot_.odd_rgb = std::move(odd);
-  show_best();
+  if (params_.final_images_only) {
+    snapshot_.shown = snapshot_.rgb;
+  } else {
+    show_best();
+  }
   snapshot_.components = std::move(components);
   snapshot_.layers = std::move(layers);
   snapshot_.layer_names = std::move(layer_names);
@@ -286,7 +310,7 @@ void render_session::run() {
 
 void render_session::run_loop() {
   using clock = std::chrono::steady_clock;
-  accumulation acc, wave;
+  accumulation acc;
   std::uint64_t gen = 0, spp = 0, rays = 0, next_wave = 1;
   double seconds = 0;
   // The control variate's model image of the layout in scene_, computed beside the tracer from its
@@ -320,6 +344,11 @@ void render_session::run_loop() {
     acc.component_sums.assign(params_.components ? component_count * acc.sums.size() : 0, 0.0);
     acc.layer_sums.assign(scene_.layers ? scene_.layers->count() * acc.sums.size() : 0, 0.0);
     acc.predictions = {acc.sums, acc.sums};
+    acc.row_spp.assign(std::size_t(scene_.camera.height), 0);
+  };
+  // The most samples a row holds: spp, or more in rows a cancelled wave finished.
+  const auto rows_end = [&] {
+    return acc.row_spp.empty() ? 0 : *std::max_element(acc.row_spp.begin(), acc.row_spp.end());
   };
   {
     // Entered again after a failure with an edit waiting: that edit's layout gets the sums.
@@ -407,7 +436,10 @@ void render_session::run_loop() {
       std::atomic<bool> complete{true};
       traced_rows([&](int y0, int y1) {
         if (params_.background_priority) lower_thread_priority();
-        if (!add_predictions(scene_, y0, y1, 0, spp, acc.predictions, cancel_)) complete = false;
+        for (int y = y0; y < y1 && complete; ++y) {
+          if (!add_predictions(scene_, y, y + 1, 0, acc.row_spp[std::size_t(y)], acc.predictions, cancel_))
+            complete = false;
+        }
       });
       if (!complete || cancel_) {
         scene_.model.reset();
@@ -416,17 +448,16 @@ void render_session::run_loop() {
         continue;
       }
       model_arrived.reset();
-      if (spp > 0) publish(gen, spp, acc, rays, seconds);
+      if (spp > 0 && rows_end() == spp) publish(gen, spp, acc, rays, seconds);
       continue;
     }
     const auto t0 = clock::now();
-    wave = acc;  // a cancelled wave leaves the accumulation untouched
-    std::uint64_t wave_rays = 0;
-    if (!render_wave(spp, count, wave, wave_rays)) continue;
-    std::swap(acc, wave);
-    spp += count;
-    rays += wave_rays;
+    // The rows a cancelled wave finished keep their samples: this wave brings the others level.
+    const std::uint64_t end = std::max(spp + count, rows_end());
+    const bool whole = render_wave(end, acc, rays);
     seconds += std::chrono::duration<double>(clock::now() - t0).count();
+    if (!whole) continue;
+    spp = end;
     next_wave = std::min(2 * next_wave, params_.max_wave_spp);  // capped: doubling forever would overflow
     publish(gen, spp, acc, rays, seconds);
     if (model_wanted) {

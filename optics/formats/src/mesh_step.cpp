@@ -8,6 +8,7 @@
 
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <IFSelect_ReturnStatus.hxx>
+#include <Interface_Check.hxx>
 #include <Interface_InterfaceModel.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
@@ -15,6 +16,7 @@
 #include <STEPCAFControl_Reader.hxx>
 #include <STEPControl_Reader.hxx>
 #include <Standard_Failure.hxx>
+#include <StepData_StepModel.hxx>
 #include <StepVisual_FillAreaStyle.hxx>
 #include <StepVisual_FillAreaStyleColour.hxx>
 #include <StepVisual_FillStyleSelect.hxx>
@@ -29,13 +31,14 @@
 
 #include "airr/core/error.hpp"
 #include "airr/core/files.hpp"
+#include "step_references.hpp"
 
 namespace airr {
 
 namespace {
 
-// The largest STEP file read (a housing of millions of faces is far smaller).
-constexpr std::uintmax_t max_step_bytes = std::uintmax_t(1) << 30;
+// The largest STEP file read, as any text file (a housing of millions of faces is far smaller).
+constexpr std::uintmax_t max_step_bytes = max_text_file_bytes;
 
 std::string label_name(const TDF_Label& label) {
   Handle(TDataStd_Name) name;
@@ -81,14 +84,25 @@ void append_leaf(const XCAFPrs_DocumentNode& leaf, triangle_mesh& out,
   }
 }
 
-// Open CASCADE reads a face's colour without checking it is there: a fill colour that names none
-// would crash the reader (fuzzing found it), so such a file is refused first.
-void check_styles(STEPCAFControl_Reader& reader, const std::string& path) {
+// Open CASCADE's transfer follows references without checking they are there: a line the parser
+// could not read (the entities naming it left with nothing), an entity of the wrong type or a
+// fill colour that names none would crash it (fuzzing found each), so such a file is refused first.
+void check_entities(STEPCAFControl_Reader& reader, const std::string& path) {
   const Handle(Interface_InterfaceModel) model = reader.Reader().Model();
   if (model.IsNull()) return;
   const auto refuse = [&](int i, const char* what) {
     throw input_error(path + ": entity " + std::to_string(i) + ", a fill style, " + what);
   };
+  // Syntax errors and references to entities that are not there.
+  const Handle(Interface_Check) global = model->GlobalCheck();
+  if (!global.IsNull() && global->NbFails() > 0) throw input_error(path + ": " + one_line(global->CFail(1)));
+  const Handle(StepData_StepModel) step = reader.Reader().StepModel();
+  for (int i = 1; i <= model->NbEntities() && !step.IsNull(); ++i) {
+    if (!model->IsErrorEntity(i)) continue;
+    const Handle(Interface_Check)& check = model->Check(i, true);
+    const std::string why = !check.IsNull() && check->NbFails() > 0 ? one_line(check->CFail(1)) : "unreadable";
+    throw input_error(path + ": entity #" + std::to_string(step->IdentLabel(model->Value(i))) + ": " + why);
+  }
   for (int i = 1; i <= model->NbEntities(); ++i) {
     const auto colour = Handle(StepVisual_FillAreaStyleColour)::DownCast(model->Value(i));
     if (!colour.IsNull() && colour->FillColour().IsNull()) refuse(i, "names no colour");
@@ -120,8 +134,10 @@ triangle_mesh read_step(const std::string& path, const std::string& node, double
   STEPCAFControl_Reader reader;
   reader.SetColorMode(true);
   reader.SetNameMode(true);
+  if (const std::string fault = step_reference_fault(read_text_file(path)); !fault.empty())
+    throw input_error(path + ": " + fault);
   if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) throw input_error(path + ": not a readable STEP file");
-  check_styles(reader, path);
+  check_entities(reader, path);
   if (!reader.Transfer(doc)) throw input_error(path + ": its shapes could not be read");
 
   const Handle(XCAFDoc_ShapeTool) shapes = XCAFDoc_DocumentTool::ShapeTool(doc->Main());

@@ -91,6 +91,20 @@ part_frame luminaire_frame(const luminaire_params& l) {
   return pose_frame(l.pose, l.width_mm, l.shape == luminaire_shape::disc ? l.width_mm : l.height_mm);
 }
 
+std::vector<glm::dvec3> luminaire_outline(const luminaire_params& l, int sides) {
+  const part_frame f = luminaire_frame(l);
+  if (l.shape == luminaire_shape::rectangle) {
+    const auto k = corners(f);
+    return {k.begin(), k.end()};
+  }
+  std::vector<glm::dvec3> out;
+  for (int j = 0; j < sides; ++j) {
+    const double a = 2 * pi * j / sides;
+    out.push_back(f.center + f.width / 2 * (std::cos(a) * f.u + std::sin(a) * f.v));
+  }
+  return out;
+}
+
 part_frame source_frame(const scene& s) { return pose_frame(s.source.pose, s.source.width_mm, s.source.height_mm); }
 
 part_frame source_panel_frame(const scene& s) {

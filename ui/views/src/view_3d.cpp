@@ -1,6 +1,6 @@
-// The 3D layout view: the parts, the props, the aerial image, a few ideal light paths and the
-// observer, shaded by OpenGL; drag to orbit, right- or middle-drag to pan, the wheel to zoom,
-// double-click to frame everything again.
+// The 3D layout view: the parts, the props, the luminaires, the aerial image, a few ideal light
+// paths and the observer, shaded by OpenGL; drag to orbit, right- or middle-drag to pan, the wheel
+// to zoom, double-click to frame everything again.
 #include <algorithm>
 #include <cmath>
 
@@ -107,6 +107,15 @@ std::vector<gl_draw_item> layout_items(const scene& s,
     it.colour = prop_colour(p, *it.mesh);
     items.push_back(std::move(it));
   }
+  // The luminaires (Environment), lit on both sides here: a fan over their outline.
+  for (const luminaire_params& l : s.environment.luminaires) {
+    const std::vector<glm::dvec3> edge = luminaire_outline(l);
+    const glm::dvec3 centre = luminaire_frame(l).center;
+    std::vector<glm::vec3> fan;
+    for (std::size_t k = 0; k < edge.size(); ++k)
+      fan.insert(fan.end(), {glm::vec3(centre), glm::vec3(edge[k]), glm::vec3(edge[(k + 1) % edge.size()])});
+    solid(std::move(fan), {1.0f, 0.94f, 0.59f, 1});
+  }
   // Ideal light paths through the aerial image's centre and four points towards its corners.
   std::vector<glm::vec3> rays;
   for (const auto& [x, y] : {std::pair{0.0, 0.0}, {-0.35, -0.35}, {0.35, -0.35}, {0.35, 0.35}, {-0.35, 0.35}}) {
@@ -147,6 +156,9 @@ std::pair<glm::vec3, float> extent(const scene& s, const std::vector<mesh_bounds
     for (const auto& c : corners(f)) grow(c);
   }
   grow(observer_position(s));
+  for (const luminaire_params& l : s.environment.luminaires) {
+    for (const glm::dvec3& p : luminaire_outline(l)) grow(p);
+  }
   for (std::size_t i = 0; i < s.props.size() && i < prop_bounds.size(); ++i) {
     const mesh_bounds& b = prop_bounds[i];
     if (!s.props[i].visible || b.lo == b.hi) continue;

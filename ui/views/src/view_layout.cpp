@@ -100,19 +100,9 @@ void draw_projection(studio& st, projection proj, ImVec2 canvas0, ImVec2 canvas,
   for (const auto& [f, style] : v.parts) outline(f, style.colour, style.width * lw);
   // The luminaires (Environment), where the view reaches them: a disc as a polygon.
   for (const luminaire_params& l : s.environment.luminaires) {
-    const part_frame f = luminaire_frame(l);
-    if (l.shape == luminaire_shape::rectangle) {
-      outline(f, IM_COL32(255, 240, 150, 230), lw);
-      continue;
-    }
-    constexpr int sides = 24;
-    for (int k = 0; k < sides; ++k) {
-      const auto at = [&](int j) {
-        const double a = 2 * pi * j / sides;
-        return f.center + f.width / 2 * (std::cos(a) * f.u + std::sin(a) * f.v);
-      };
-      seg(at(k), at(k + 1), IM_COL32(255, 240, 150, 230), lw);
-    }
+    const std::vector<glm::dvec3> edge = luminaire_outline(l);
+    for (std::size_t k = 0; k < edge.size(); ++k)
+      seg(edge[k], edge[(k + 1) % edge.size()], IM_COL32(255, 240, 150, 230), lw);
   }
   outline(v.emitting, IM_COL32(255, 255, 255, 255), 3 * lw);  // the emitting area inside the bezel
   outline(aerial, IM_COL32(255, 120, 200, 255), 2 * lw);

@@ -29,7 +29,7 @@ bool start_full_zone(studio& st) {
 
 // The full pass's quantities from "brightness (full)" on, in the order of the zone menu; the
 // legibility maps are the share of the image at each default contrast threshold.
-static constexpr int first_legible_quantity = 6;
+static constexpr int first_legible_quantity = 6, first_char_quantity = 9;
 static const std::vector<double>* zone_values(const full_zone_map& m, int quantity, std::vector<double>& shown) {
   switch (quantity) {
     case 1:
@@ -45,18 +45,39 @@ static const std::vector<double>* zone_values(const full_zone_map& m, int quanti
       shown = contrast_shown(m, top);
       return &shown;
     }
+    case first_char_quantity: {
+      // Illegible eyes (an infinite height) at the top of the scale, with the largest legible one.
+      double top = 0;
+      for (double v : m.char_height_mm) top = std::isfinite(v) ? std::max(top, v) : top;
+      shown = m.char_height_mm;
+      for (double& v : shown) v = std::isinf(v) ? top : v;
+      return &shown;
+    }
     default:
       return &m.contrast_share.at(std::size_t(quantity - first_legible_quantity));
   }
+}
+
+// The eye from which the smallest character is legible (the eye count when every eye's is
+// infinite or unseen).
+static std::size_t best_character_eye(const full_zone_map& m) {
+  const std::vector<double>& h = m.char_height_mm;
+  std::size_t best = h.size();
+  for (std::size_t e = 0; e < h.size(); ++e) {
+    if (std::isfinite(h[e]) && (best == h.size() || h[e] < h[best])) best = e;
+  }
+  return best;
 }
 
 // The viewing zone: the geometric visible fraction from the predicted plots, or a quantity of
 // the full pass (started on demand, for the current layout only).
 template <typename Keep>
 static void draw_viewing_zone(studio& st, const predicted_plots* pred, float h, const Keep& keep) {
-  static const char* const quantities[] = {"visible fraction",      "brightness (full)",   "mean MTF (full)",
-                                           "stray light (full)",    "luminance (full)",    "contrast (full)",
-                                           "legible at 1.5 (full)", "legible at 3 (full)", "legible at 25 (full)"};
+  static const char* const quantities[] = {"visible fraction",         "brightness (full)",   "mean MTF (full)",
+                                           "stray light (full)",       "luminance (full)",    "contrast (full)",
+                                           "legible at 1.5 (full)",    "legible at 3 (full)", "legible at 25 (full)",
+                                           "smallest character (full)"};
+  static_assert(IM_ARRAYSIZE(quantities) == IM_ARRAYSIZE(zone_quantity_keys));
   ImGui::SetNextItemWidth(10 * ImGui::GetFontSize());
   ImGui::Combo("viewing zone", &st.zone_quantity, quantities, IM_ARRAYSIZE(quantities));
   const eye_grid* grid = nullptr;
@@ -85,7 +106,7 @@ static void draw_viewing_zone(studio& st, const predicted_plots* pred, float h, 
     if (full) {
       grid = &full->grid;
       values = zone_values(*full, st.zone_quantity, shown);
-      if (st.zone_quantity >= first_legible_quantity) {
+      if (st.zone_quantity >= first_legible_quantity && st.zone_quantity < first_char_quantity) {
         legible = legible_share(*full, std::size_t(st.zone_quantity - first_legible_quantity));
       } else if (st.zone_quantity != 1) {
         hi = 0;
@@ -96,13 +117,30 @@ static void draw_viewing_zone(studio& st, const predicted_plots* pred, float h, 
   }
   if (!grid || !values) return;
   const eye_grid& g = *grid;
-  const plot_heatmap map{*values, g.nx, g.ny, g.x_min, g.x_max, g.y_min, g.y_max, 0.0, hi};
+  // The character heights span a narrow band: the scale starts at the smallest.
+  double lo = 0;
+  if (full && st.zone_quantity == first_char_quantity) {
+    lo = hi;
+    for (double v : *values) lo = std::isfinite(v) ? std::min(lo, v) : lo;
+    if (!(lo < hi)) lo = 0;
+  }
+  const plot_heatmap map{*values, g.nx, g.ny, g.x_min, g.x_max, g.y_min, g.y_max, lo, hi};
   const glm::dvec2 at = eye_grid_coordinates(st.doc, g, observer_position(st.doc));
-  const std::vector<plot_curve> observer = {{"observer", {at.x}, {at.y}, IM_COL32(255, 255, 255, 255)}};
+  std::vector<plot_curve> observer = {{"observer", {at.x}, {at.y}, IM_COL32(255, 255, 255, 255)}};
   char title[160];
+  const std::size_t eyes = values->size();
+  const std::size_t best_eye = full && st.zone_quantity == first_char_quantity ? best_character_eye(*full) : eyes;
+  const bool best = best_eye < eyes;
+  if (best) {
+    const int ix = int(best_eye) % g.nx, iy = int(best_eye) / g.nx;
+    observer.push_back({"best eye", {g.x_at(ix)}, {g.y_at(iy)}, IM_COL32(255, 90, 90, 255)});
+  }
   if (legible) {
     std::snprintf(title, sizeof title, "%s: share of the image; legible share of the zone %.2f",
                   quantities[st.zone_quantity], *legible);
+  } else if (full && st.zone_quantity == first_char_quantity) {
+    std::snprintf(title, sizeof title, best ? "smallest character, %.3g to %.3g mm" : "illegible from every eye", lo,
+                  hi);
   } else {
     std::snprintf(title, sizeof title, "%s, 0 to %.3g", quantities[st.zone_quantity], hi);
   }
@@ -126,6 +164,12 @@ static void draw_viewing_zone(studio& st, const predicted_plots* pred, float h, 
   } else if (full) {
     ImGui::TextDisabled("full pass %.1f s (%d x %d eyes); grey: nothing seen; click: move the observer", full->seconds,
                         g.nx, g.ny);
+    if (best) {
+      ImGui::TextDisabled(
+          "best eye (red): %.3g mm, %.3g arcmin; the top of the scale also holds the eyes where the "
+          "contrast leaves too little for any character",
+          full->char_height_mm[best_eye], full->char_arcmin[best_eye]);
+    }
   }
   if (zone.clicked) {
     place_observer(st.doc, g, zone.x, zone.y);

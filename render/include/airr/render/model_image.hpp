@@ -83,14 +83,15 @@ struct model_bin {
   glm::dmat2 jitter_mm{0.0};  // display-plane offset (u, v) per unit of pixel jitter (columns: x, y)
 };
 
-// A pixel's ideal path: camera -> half mirror -> the sheet -> straight back -> display.
+// A pixel's ideal path: camera -> half mirror -> the sheet -> straight back -> display. Single
+// precision, as its image is (36 bytes a pixel, held for as long as the model image is).
 struct model_pixel {
-  bool ok = false;       // false: the ideal path misses a part; the model predicts nothing here
-  glm::dvec2 node[2]{};  // where it lands, in each padded grid's node coordinates
-  double profile = 1;    // the display's relative luminance towards the half mirror
-  double theta_deg = 0;  // incidence on the sheet
-  int bin = 0;           // between bins `bin` and `bin + 1`, the latter with weight `mix`
-  double mix = 0;
+  glm::vec2 node[2]{};  // where it lands, in each padded grid's node coordinates
+  float profile = 1;    // the display's relative luminance towards the half mirror
+  float theta_deg = 0;  // incidence on the sheet
+  float mix = 0;        // between bins `bin` and `bin + 1`, the latter with weight `mix`
+  int bin = 0;
+  bool ok = false;  // false: the ideal path misses a part; the model predicts nothing here
 };
 
 // The bins' correlated grids and the grids' mappings (kept with keep_correlations).

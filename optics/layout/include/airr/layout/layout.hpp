@@ -33,6 +33,8 @@ double emission_at(const emission_profile* profile, const part_frame& display, c
 // height are its diameter).
 glm::dvec3 sun_direction(const sun_params& s);
 part_frame luminaire_frame(const luminaire_params& l);
+// The luminaire's edge as the views draw it: a rectangle's four corners, a disc's `sides` points.
+std::vector<glm::dvec3> luminaire_outline(const luminaire_params& l, int sides = 24);
 
 // The display's emitting area, and the whole panel including its bezel.
 part_frame source_frame(const scene& s);

@@ -19,5 +19,10 @@ void draw_bokeh_tab(studio& st);
 // Starts the viewing zone's full pass for the applied layout, on the predicted map's sphere
 // (false while the predicted plots are not yet those of the current layout).
 bool start_full_zone(studio& st);
+// The viewing zone's quantities, in the order of its menu (studio::zone_quantity), as
+// airr-studio --zone names them; all but the first come from the full pass.
+inline constexpr const char* zone_quantity_keys[] = {"visible",    "brightness", "mtf",         "stray",
+                                                     "luminance",  "contrast",   "legible-1.5", "legible-3",
+                                                     "legible-25", "char-height"};
 
 }  // namespace airr::ui

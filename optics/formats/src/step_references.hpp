@@ -1,0 +1,14 @@
+#pragma once
+// What Open CASCADE's STEP reader would crash on before it could say anything, found in the text
+// first: a reference to an entity the file does not define, and an oriented edge whose edge is
+// itself an oriented edge (which STEP forbids: the reader's own check then recurses for ever).
+#include <string>
+#include <string_view>
+
+namespace airr {
+
+// The first such fault in a STEP file's text, as "entity #12 refers to #34, which the file does not
+// define"; empty when there is none.
+std::string step_reference_fault(std::string_view text);
+
+}  // namespace airr

@@ -1,0 +1,86 @@
+// The device in its room, in the designer under Xvfb: the viewing zone maps the smallest legible
+// character and marks the best eye; a ceiling luminaire shows in the layout views, 3D included.
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "airr/core/assets.hpp"
+#include "airr/formats/scene_json.hpp"
+#include "gui_test_support.hpp"
+#include "test_helpers.hpp"
+
+using namespace airr;
+using namespace airr::test::gui;
+
+namespace {
+
+std::string default_scene() { return asset_dir() + "/scenes/default.json"; }
+
+// Warm white pixels: a luminaire's face, shaded (the light paths' yellow has less blue).
+int luminaire_pixels(const rgb8_image& img, const std::array<int, 4>& r) {
+  int n = 0;
+  for (int y = r[1]; y < r[3]; ++y) {
+    for (int x = r[0]; x < r[2]; ++x) {
+      const unsigned char* p = img.at(x, y);
+      n += p[0] > 150 && p[0] >= p[1] && p[1] > 0.85 * p[0] && p[2] > 0.5 * p[0] && p[2] < p[1] - 20;
+    }
+  }
+  return n;
+}
+
+}  // namespace
+
+// The full pass's smallest legible character (scripted: it runs to its end before the
+// screenshot): a heatmap whose largest heights reach viridis' top, grey where nothing is seen,
+// and the best eye marked in red.
+TEST(GuiEnvironment, TheViewingZoneMapsTheSmallestLegibleCharacter) {
+  test::temp_dir dir;
+  const std::string shot = dir.file("zone.png");
+  const studio_run run = run_studio(dir, default_scene() + " --zone char-height --frames 10 --screenshot " + shot);
+  ASSERT_EQ(run.status, 0) << run.log;
+  const rgb8_image img = read_png(shot);
+  ASSERT_GT(img.width, 0) << "no screenshot: " << run.log;
+  const auto regions = nlohmann::json::parse(std::ifstream(shot + ".json"));
+  const auto zone = region(regions, "plot_zone");
+  EXPECT_GT(curve_pixels(img, zone, {253, 231, 37}), 20) << "the largest heights";
+  EXPECT_GT(curve_pixels(img, zone, {110, 110, 110}), 200) << "nothing seen";
+  EXPECT_GT(curve_pixels(img, zone, {255, 90, 90}), 5) << "the best eye";
+}
+
+// A ceiling panel over the device: drawn in the top view as its outline and in the 3D view as a
+// lit face, which the same scene without it lacks.
+TEST(GuiEnvironment, ALuminaireShowsInTheLayoutViews) {
+  test::temp_dir dir;
+  scene s = load_scene(default_scene());
+  s.source.image = resolve_scene_path(s, s.source.image);  // the copies live elsewhere
+  s.source.luminance_cd_m2 = 500;                          // ambient light needs photometric units
+  luminaire_params panel;
+  panel.name = "ceiling";
+  panel.width_mm = panel.height_mm = 240;
+  panel.luminance_cd_m2 = 3000;
+  panel.pose = {.center_mm = {0, 260, 0}, .pitch_deg = -90};
+  std::ofstream(dir.file("dark.json")) << scene_to_json(s).dump(1);
+  s.environment.luminaires.push_back(panel);
+  std::ofstream(dir.file("lit.json")) << scene_to_json(s).dump(1);
+
+  int face[2] = {0, 0};
+  for (int lit = 0; lit < 2; ++lit) {
+    const std::string shot = dir.file(lit ? "lit.png" : "dark.png");
+    const studio_run run =
+        run_studio(dir, dir.file(lit ? "lit.json" : "dark.json") + " --frames 20 --screenshot " + shot);
+    ASSERT_EQ(run.status, 0) << run.log;
+    const rgb8_image img = read_png(shot);
+    ASSERT_GT(img.width, 0) << run.log;
+    const auto regions = nlohmann::json::parse(std::ifstream(shot + ".json"));
+    face[lit] = luminaire_pixels(img, region(regions, "layout_3d"));
+    const int outline = curve_pixels(img, region(regions, "layout_top"), {255, 240, 150});
+    std::printf("%s: %d warm pixels in the 3D view, %d outline pixels in the top view\n", lit ? "lit" : "dark",
+                face[lit], outline);
+    if (lit) {
+      EXPECT_GT(outline, 20) << "the panel's edge in the top view";
+    }
+  }
+  EXPECT_GT(face[1], face[0] + 200) << "the panel's face in the 3D view";
+}
