@@ -54,6 +54,18 @@ struct accumulation {
   }
 };
 
+// The image of `spp` samples traced at once with the control variate there from the start.
+std::vector<float> control_variate_estimate(const scene& s, std::uint64_t spp) {
+  embree_device device;
+  tracer_scene ts;
+  build_tracer_scene(ts, device, s);
+  update_model_image(ts);
+  EXPECT_TRUE(ts.model);
+  accumulation acc(ts);
+  EXPECT_TRUE(acc.trace(ts, 0, spp));
+  return acc.estimate(ts, spp);
+}
+
 }  // namespace
 
 TEST(LateControlVariate, PredictionsAddedLaterAreThoseOfTheControlVariate) {
@@ -109,14 +121,8 @@ TEST(LateControlVariate, SessionImageAtItsTargetIsTheControlVariates) {
   const render_snapshot done = session.wait_for(gen, spp);
   ASSERT_EQ(done.spp, spp);
 
+  EXPECT_TRUE(*done.rgb == control_variate_estimate(b, spp));
   embree_device device;
-  tracer_scene ts;
-  build_tracer_scene(ts, device, b);
-  update_model_image(ts);
-  ASSERT_TRUE(ts.model);
-  accumulation acc(ts);
-  ASSERT_TRUE(acc.trace(ts, 0, spp));
-  EXPECT_TRUE(*done.rgb == acc.estimate(ts, spp));
 
   // The first traced image came before the control variate (at 48 x 48 a wave takes about a
   // millisecond, the model image a hundred times that): the plain samples' mean.
@@ -151,12 +157,5 @@ TEST(LateControlVariate, PausesMidWaveChangeNothing) {
   ASSERT_EQ(done.spp, spp);
   ASSERT_TRUE(done.rgb);
 
-  embree_device device;
-  tracer_scene ts;
-  build_tracer_scene(ts, device, s);
-  update_model_image(ts);
-  ASSERT_TRUE(ts.model);
-  accumulation acc(ts);
-  ASSERT_TRUE(acc.trace(ts, 0, spp));
-  EXPECT_TRUE(*done.rgb == acc.estimate(ts, spp));
+  EXPECT_TRUE(*done.rgb == control_variate_estimate(s, spp));
 }
