@@ -222,7 +222,8 @@ TEST(StepHousing, DamagedFilesAreClearErrors) {
   write_file_atomic(prose, "This housing was drawn in a CAD program.\n");
   write_file_atomic(shapeless, text.substr(0, text.find("DATA;")) + "DATA;\nENDSEC;\nEND-ISO-10303-21;\n");
   // What the fuzzer found would crash the reader: a direction turned to garbage, a vertex naming a
-  // point that is not there, a point whose type is garbled, an oriented edge built on itself. Each
+  // point that is not there, a point whose type is garbled, an oriented edge built on itself, an
+  // entity defined twice. Each
   // file is refused, naming what is wrong.
   const auto mangled = [&](const std::string& name, const std::string& find, std::size_t offset,
                            const std::string& insert, std::size_t erase = 0) {
@@ -235,7 +236,8 @@ TEST(StepHousing, DamagedFilesAreClearErrors) {
   };
   const std::string garbled = mangled("garbled.step", "= DIRECTION(", 0, "2212Geom_Surface(", 12),
                     dangling = mangled("dangling.step", "VERTEX_POINT('',#", 17, "9999"),
-                    untyped = mangled("untyped.step", "= CARTESIAN_POINT(", 8, "\xff\xff", 6);
+                    untyped = mangled("untyped.step", "= CARTESIAN_POINT(", 8, "\xff\xff", 6),
+                    twice = mangled("twice.step", "DATA;", 5, "\n#1 = CARTESIAN_POINT('',(0.,0.,0.));");
   std::string looped = text;
   const std::size_t edge = looped.find("= ORIENTED_EDGE('',*,*,#");
   ASSERT_NE(edge, std::string::npos);
@@ -249,7 +251,8 @@ TEST(StepHousing, DamagedFilesAreClearErrors) {
   EXPECT_NE(test::error_of([&] { load_step_mesh(dangling, "", 0.05); }).find("9999"), std::string::npos);
   EXPECT_NE(test::error_of([&] { load_step_mesh(untyped, "", 0.05); }).find("Line "), std::string::npos);
   EXPECT_NE(test::error_of([&] { load_step_mesh(cycle, "", 0.05); }).find("oriented edge"), std::string::npos);
-  for (const std::string& path : {empty, half, prose, shapeless, garbled, dangling, untyped, cycle}) {
+  EXPECT_NE(test::error_of([&] { load_step_mesh(twice, "", 0.05); }).find("#1 is defined twice"), std::string::npos);
+  for (const std::string& path : {empty, half, prose, shapeless, garbled, dangling, untyped, cycle, twice}) {
     const std::string e = test::error_of([&] { load_step_mesh(path, "", 0.05); });
     EXPECT_EQ(e.rfind(path + ": ", 0), 0u) << e;
     EXPECT_EQ(e.find('\n'), std::string::npos) << e;

@@ -49,6 +49,7 @@ std::string step_reference_fault(std::string_view text) {
       std::size_t k = j;
       while (k < n && std::isspace(static_cast<unsigned char>(text[k]))) ++k;
       if (!inside && k < n && text[k] == '=') {
+        if (defined.count(id)) return "entity #" + std::to_string(id) + " is defined twice";
         current = id;
         inside = &defined[id];
         for (++k; k < n && std::isspace(static_cast<unsigned char>(text[k])); ++k) {
