@@ -223,8 +223,7 @@ TEST(StepHousing, DamagedFilesAreClearErrors) {
   write_file_atomic(shapeless, text.substr(0, text.find("DATA;")) + "DATA;\nENDSEC;\nEND-ISO-10303-21;\n");
   // What the fuzzer found would crash the reader: a direction turned to garbage, a vertex naming a
   // point that is not there, a point whose type is garbled, an oriented edge built on itself, an
-  // entity defined twice. Each
-  // file is refused, naming what is wrong.
+  // entity defined twice. Each file is refused, naming what is wrong.
   const auto mangled = [&](const std::string& name, const std::string& find, std::size_t offset,
                            const std::string& insert, std::size_t erase = 0) {
     std::string t = text;
@@ -246,13 +245,36 @@ TEST(StepHousing, DamagedFilesAreClearErrors) {
   looped.replace(target, looped.find(',', target) - target, self_id);
   write_file_atomic(dir.file("looped.step"), looped);
   const std::string cycle = dir.file("looped.step");
+  // The same loop behind a name whose last quote doubles: the reader ends the string at the quote
+  // before the comma and reads the loop; a scan taking '' as one quote would skip it.
+  std::string hidden_text = looped;
+  hidden_text.replace(edge + std::string("= ORIENTED_EDGE(").size(), 2, "'it''");
+  write_file_atomic(dir.file("hidden.step"), hidden_text);
+  const std::string hidden = dir.file("hidden.step");
+  // A line whose vector's direction is the line: references that go round in a loop.
+  std::string ring_text = text;
+  const std::size_t line = ring_text.find("= LINE('',#");
+  ASSERT_NE(line, std::string::npos);
+  const std::size_t line_id = ring_text.rfind('#', line), point_ref = ring_text.find(",#", line) + 1,
+                    vector_ref = ring_text.find(",#", point_ref) + 1;
+  const std::string line_name = ring_text.substr(line_id, ring_text.find_first_of(" =", line_id) - line_id),
+                    vector_name = ring_text.substr(vector_ref, ring_text.find(')', vector_ref) - vector_ref);
+  const std::string vector_start = vector_name + " = VECTOR('',";
+  const std::size_t direction = ring_text.find(vector_start) + vector_start.size();
+  ring_text.replace(direction, ring_text.find(',', direction) - direction, line_name);
+  write_file_atomic(dir.file("ring.step"), ring_text);
+  const std::string ring = dir.file("ring.step");
   EXPECT_NE(test::error_of([&] { load_step_mesh(garbled, "", 0.05); }).find("which the file does not define"),
             std::string::npos);
   EXPECT_NE(test::error_of([&] { load_step_mesh(dangling, "", 0.05); }).find("9999"), std::string::npos);
   EXPECT_NE(test::error_of([&] { load_step_mesh(untyped, "", 0.05); }).find("Line "), std::string::npos);
   EXPECT_NE(test::error_of([&] { load_step_mesh(cycle, "", 0.05); }).find("oriented edge"), std::string::npos);
+  EXPECT_NE(test::error_of([&] { load_step_mesh(hidden, "", 0.05); }).find("oriented edge"), std::string::npos);
+  const std::string ring_error = test::error_of([&] { load_step_mesh(ring, "", 0.05); });
+  EXPECT_NE(ring_error.find("refers back to " + line_name), std::string::npos) << ring_error;
   EXPECT_NE(test::error_of([&] { load_step_mesh(twice, "", 0.05); }).find("#1 is defined twice"), std::string::npos);
-  for (const std::string& path : {empty, half, prose, shapeless, garbled, dangling, untyped, cycle, twice}) {
+  for (const std::string& path :
+       {empty, half, prose, shapeless, garbled, dangling, untyped, cycle, hidden, ring, twice}) {
     const std::string e = test::error_of([&] { load_step_mesh(path, "", 0.05); });
     EXPECT_EQ(e.rfind(path + ": ", 0), 0u) << e;
     EXPECT_EQ(e.find('\n'), std::string::npos) << e;

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <vector>
 
 #include "airr/core/error.hpp"
@@ -45,9 +46,8 @@ measured_run run_measured(const std::vector<std::string>& args, const fs::path& 
   r.peak_mb = double(usage.ru_maxrss) / 1024.0;  // kilobytes on Linux
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
     std::ifstream in(log);
-    std::string line, last;
-    while (std::getline(in, line)) last = line.empty() ? last : line;
-    throw airr::input_error(what + ": " + args[0] + " render failed: " + last);
+    const std::string said((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    throw airr::input_error(what + ": " + args[0] + " render failed: " + last_line(said));
   }
   return r;
 }

@@ -35,17 +35,16 @@ std::string run_build(const build_under_test& b, const std::string& args, const 
   std::size_t n;
   while ((n = std::fread(buf.data(), 1, buf.size(), pipe.get())) > 0) out.append(buf.data(), n);
   const int status = ::pclose(pipe.release());
-  if (status != 0) {
-    std::string last;
-    std::size_t end = out.find_last_not_of('\n');
-    if (end != std::string::npos) {
-      const std::size_t begin = out.rfind('\n', end);
-      last = out.substr(begin == std::string::npos ? 0 : begin + 1,
-                        end + 1 - (begin == std::string::npos ? 0 : begin + 1));
-    }
-    throw airr::input_error(what + ": " + b.airr + " failed: " + last);
-  }
+  if (status != 0) throw airr::input_error(what + ": " + b.airr + " failed: " + last_line(out));
   return out;
+}
+
+std::string last_line(const std::string& text) {
+  const std::size_t end = text.find_last_not_of('\n');
+  if (end == std::string::npos) return {};
+  const std::size_t begin = text.rfind('\n', end);
+  const std::size_t from = begin == std::string::npos ? 0 : begin + 1;
+  return text.substr(from, end + 1 - from);
 }
 
 scratch_dir::scratch_dir(const std::string& what) {

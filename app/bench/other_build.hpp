@@ -20,6 +20,9 @@ std::vector<build_under_test> builds_under_test(const std::string& compare);
 // output; input_error naming `what` and the last line it printed when it fails.
 std::string run_build(const build_under_test& b, const std::string& args, const std::string& what);
 
+// The last line of `text` that is not empty (what a failed run said last).
+std::string last_line(const std::string& text);
+
 // A fresh directory under the system's temporary folder for a benchmark's renders (`what` names
 // the benchmark in its name and errors), removed with everything in it when done.
 struct scratch_dir {

@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <sstream>
+#include <utility>
 
 #include <BRepMesh_IncrementalMesh.hxx>
 #include <IFSelect_ReturnStatus.hxx>
@@ -134,9 +136,12 @@ triangle_mesh read_step(const std::string& path, const std::string& node, double
   STEPCAFControl_Reader reader;
   reader.SetColorMode(true);
   reader.SetNameMode(true);
-  if (const std::string fault = step_reference_fault(read_text_file(path)); !fault.empty())
-    throw input_error(path + ": " + fault);
-  if (reader.ReadFile(path.c_str()) != IFSelect_RetDone) throw input_error(path + ": not a readable STEP file");
+  std::string text = read_text_file(path);
+  if (const std::string fault = step_reference_fault(text); !fault.empty()) throw input_error(path + ": " + fault);
+  // The text scanned above is the text read: the file is not opened twice.
+  std::istringstream stream(std::move(text));
+  if (reader.ChangeReader().ReadStream(path.c_str(), stream) != IFSelect_RetDone)
+    throw input_error(path + ": not a readable STEP file");
   check_entities(reader, path);
   if (!reader.Transfer(doc)) throw input_error(path + ": its shapes could not be read");
 

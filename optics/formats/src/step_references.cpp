@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cstdint>
+#include <limits>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -10,74 +11,123 @@ namespace airr {
 
 namespace {
 
-struct instance {
-  std::string type;                  // the keyword after '=' (empty for a complex instance)
-  std::vector<std::uint64_t> names;  // the entities its parameters name
-};
+// Where a string that opens at `open` ends, as Open CASCADE's reader (7.6) reads it: at the first
+// quote followed by blanks and then ',' or ')' (a quote elsewhere, '' included, stays in the string;
+// a string never closed runs to the end). Read any other way, the scan would skip what the reader
+// takes as instances, or take what it skips.
+std::size_t string_end(std::string_view text, std::size_t open) {
+  const std::size_t n = text.size();
+  for (std::size_t q = text.find('\'', open + 1); q != std::string_view::npos; q = text.find('\'', q + 1)) {
+    std::size_t k = q + 1;
+    while (k < n && (text[k] == ' ' || text[k] == '"' || text[k] == '\n' || text[k] == '\r')) ++k;
+    if (k < n && (text[k] == ',' || text[k] == ')')) return q;
+  }
+  return std::string_view::npos;
+}
+
+// The blanks the reader allows between an instance's name and its '='.
+bool blank(char c) { return c == ' ' || c == '\t'; }
+
+// A loop of references, as "entity #12 refers back to #34, which refers to it": the reader
+// follows references depth first and would go round for ever. Depth first here too, on a stack of
+// our own (a file may nest millions deep).
+std::string reference_loop(const std::vector<std::uint64_t>& ids,
+                           const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges) {
+  const std::size_t m = ids.size();
+  std::vector<std::uint32_t> first(m + 1, 0), targets(edges.size());
+  for (const auto& [from, to] : edges) ++first[from + 1];
+  for (std::size_t i = 0; i < m; ++i) first[i + 1] += first[i];
+  std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
+  for (const auto& [from, to] : edges) targets[fill[from]++] = to;
+  enum : std::uint8_t { unseen, on_path, done };
+  std::vector<std::uint8_t> state(m, unseen);
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> path;  // (entity, its next reference)
+  for (std::uint32_t root = 0; root < m; ++root) {
+    if (state[root] != unseen) continue;
+    state[root] = on_path;
+    path.push_back({root, first[root]});
+    while (!path.empty()) {
+      const std::uint32_t u = path.back().first, e = path.back().second;
+      if (e == first[u + 1]) {
+        state[u] = done;
+        path.pop_back();
+        continue;
+      }
+      ++path.back().second;
+      const std::uint32_t v = targets[e];
+      if (state[v] == on_path)
+        return "entity #" + std::to_string(ids[u]) + " refers back to #" + std::to_string(ids[v]) +
+               ", which refers to it (its references go round in a loop)";
+      if (state[v] == unseen) {
+        state[v] = on_path;
+        path.push_back({v, first[v]});
+      }
+    }
+  }
+  return {};
+}
 
 }  // namespace
 
 std::string step_reference_fault(std::string_view text) {
-  std::unordered_map<std::uint64_t, instance> defined;
-  std::vector<std::pair<std::uint64_t, std::uint64_t>> references;  // (from, to) in file order
-  std::uint64_t current = 0;                                        // the instance being read, when `inside` is set
+  std::unordered_map<std::uint64_t, std::uint32_t> index_of;  // id -> its place in `ids` and `types`
+  std::vector<std::uint64_t> ids;
+  std::vector<std::string> types;                                   // the keyword after '=' (empty: complex)
+  std::vector<std::pair<std::uint32_t, std::uint64_t>> references;  // (from's index, to's id) in file order
+  bool inside = false;                                              // within the last instance defined
   const std::size_t n = text.size();
-  instance* inside = nullptr;
   // The whole text, not the DATA section alone: the reader also takes instances it finds elsewhere.
   for (std::size_t i = 0; i < n; ++i) {
     const char c = text[i];
-    if (c == '\'') {  // a string: '' stands for one quote
-      for (++i; i < n; ++i) {
-        if (text[i] != '\'') continue;
-        if (i + 1 < n && text[i + 1] == '\'') {
-          ++i;
-          continue;
-        }
-        break;
-      }
+    if (c == '\'') {
+      i = string_end(text, i);
+      if (i == std::string_view::npos) break;
     } else if (c == '/' && i + 1 < n && text[i + 1] == '*') {
       const std::size_t end = text.find("*/", i + 2);
       if (end == std::string_view::npos) break;
       i = end + 1;
     } else if (c == ';') {
-      inside = nullptr;
+      inside = false;
     } else if (c == '#') {
       std::uint64_t id = 0;
       std::size_t j = i + 1;
       for (; j < n && std::isdigit(static_cast<unsigned char>(text[j])) && id < (std::uint64_t(1) << 60); ++j)
         id = id * 10 + std::uint64_t(text[j] - '0');
       std::size_t k = j;
-      while (k < n && std::isspace(static_cast<unsigned char>(text[k]))) ++k;
+      while (k < n && blank(text[k])) ++k;
       if (!inside && k < n && text[k] == '=') {
-        if (defined.count(id)) return "entity #" + std::to_string(id) + " is defined twice";
-        current = id;
-        inside = &defined[id];
+        if (ids.size() >= std::numeric_limits<std::uint32_t>::max()) return "more entities than a file may hold";
+        if (!index_of.emplace(id, std::uint32_t(ids.size())).second)
+          return "entity #" + std::to_string(id) + " is defined twice";
+        ids.push_back(id);
+        types.emplace_back();
+        inside = true;
         for (++k; k < n && std::isspace(static_cast<unsigned char>(text[k])); ++k) {
         }
         while (k < n && (std::isalnum(static_cast<unsigned char>(text[k])) || text[k] == '_'))
-          inside->type += text[k++];
+          types.back() += text[k++];
       } else if (inside) {
-        inside->names.push_back(id);
-        references.emplace_back(current, id);
+        references.emplace_back(std::uint32_t(ids.size() - 1), id);
       }
       i = j - 1;
     }
   }
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edges;
+  edges.reserve(references.size());
   for (const auto& [from, to] : references) {
-    if (!defined.count(to)) {
-      return "entity #" + std::to_string(from) + " refers to #" + std::to_string(to) +
+    const auto found = index_of.find(to);
+    if (found == index_of.end()) {
+      return "entity #" + std::to_string(ids[from]) + " refers to #" + std::to_string(to) +
              ", which the file does not define";
     }
+    edges.emplace_back(from, found->second);
   }
-  for (const auto& [id, inst] : defined) {
-    if (inst.type != "ORIENTED_EDGE") continue;
-    for (std::uint64_t to : inst.names) {
-      if (defined.at(to).type == "ORIENTED_EDGE")
-        return "entity #" + std::to_string(id) + ", an oriented edge, is built on the oriented edge #" +
-               std::to_string(to) + " (STEP asks for an edge)";
-    }
+  for (const auto& [from, to] : edges) {
+    if (types[from] == "ORIENTED_EDGE" && types[to] == "ORIENTED_EDGE")
+      return "entity #" + std::to_string(ids[from]) + ", an oriented edge, is built on the oriented edge #" +
+             std::to_string(ids[to]) + " (STEP asks for an edge)";
   }
-  return {};
+  return reference_loop(ids, edges);
 }
 
 }  // namespace airr
