@@ -11,6 +11,7 @@
 #include "airr/core/error.hpp"
 #include "airr/design/metrics.hpp"
 #include "airr/design/search.hpp"
+#include "airr/design/tolerance.hpp"
 #include "airr/formats/design_spec.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
@@ -21,6 +22,9 @@
 using namespace airr;
 
 namespace {
+
+// A tilt where the mirror scene's ghost ratio rises steadily (about 0.03 a degree from 52 to 60 deg).
+constexpr double ghost_slope_tilt_deg = 56;
 
 // The display seen in a mirror prop beside the aerial image (as in the ghost table's test), the
 // scene written to dir/scene.json.
@@ -94,4 +98,41 @@ TEST(GhostMetrics, MinimisingAGhostsRatioOverTheTiltEndsAtTheSweepsMinimum) {
               t.evaluation.objective_values[0], best_tilt, best, r.trials.size());
   EXPECT_NEAR(t.x[0], best_tilt, step);
   EXPECT_LE(t.evaluation.objective_values[0], best * 1.02);
+}
+
+// `airr tolerance` of a ghost: each drawn layout's ghost ratio is what the layout makes, and for a
+// small tilt tolerance on the ratio's slope the spread is the sensitivity times the tolerance.
+TEST(GhostMetrics, AToleranceStudyReportsAGhostsSpread) {
+  test::temp_dir dir;
+  const std::string scene_path = mirror_scene(dir);
+  const design_spec spec =
+      spec_over(dir, scene_path,
+                R"("objectives": [{"metric": "ghost_ratio", "expression": "D P:mirror .* E", "goal": "minimise"}], )"
+                R"("tolerances": [{"key": "tilt_deg", "sd": 0.5}], "tolerance": {"samples": 48, "seed": 7})");
+  const scene nominal = with_overrides(spec.base, {design_override("tilt_deg", ghost_slope_tilt_deg)}, "test");
+  const tolerance_result r = run_tolerance(spec, nominal);
+  ASSERT_EQ(r.metrics.size(), 1u);
+  ASSERT_EQ(r.invalid, 0);
+  const metric_distribution& m = r.metrics[0];
+  ASSERT_EQ(m.values.size(), 48u);
+  for (std::size_t i = 0; i < r.layouts.size(); i += 12) {
+    const tolerance_layout& l = r.layouts[i];
+    const scene drawn = with_overrides(nominal, {design_override("tilt_deg", l.values.at(0))}, "test");
+    EXPECT_NEAR(evaluate_design(spec, drawn).objective_values.at(0), l.metrics.at(0), 1e-12) << i;
+  }
+  double mean = 0, squares = 0;
+  for (double v : m.values) mean += v / double(m.values.size());
+  for (double v : m.values) squares += (v - mean) * (v - mean);
+  const double sd = std::sqrt(squares / double(m.values.size() - 1));
+  const double expected_sd = std::abs(r.sensitivity.at(0).at(0));  // per 0.5 deg, the tolerance's sd
+  std::printf(
+      "ghost ratio at tilt %.1f deg +- 0.5: mean %.5f sd %.5f (recomputed %.5f, sensitivity gives %.5f), "
+      "p5 %.5f p50 %.5f p95 %.5f\n",
+      ghost_slope_tilt_deg, m.mean, m.sd, sd, expected_sd, m.p5, m.p50, m.p95);
+  EXPECT_NEAR(m.mean, mean, 1e-9 * std::abs(mean));
+  EXPECT_NEAR(m.sd / sd, 1.0, 0.03);  // whether the spread divides by n or n - 1
+  EXPECT_LE(m.p5, m.p50);
+  EXPECT_LE(m.p50, m.p95);
+  EXPECT_LT(m.p5, m.p95);
+  EXPECT_NEAR(m.sd / expected_sd, 1.0, 0.3);
 }
