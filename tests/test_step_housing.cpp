@@ -264,6 +264,12 @@ TEST(StepHousing, DamagedFilesAreClearErrors) {
   ring_text.replace(direction, ring_text.find(',', direction) - direction, line_name);
   write_file_atomic(dir.file("ring.step"), ring_text);
   const std::string ring = dir.file("ring.step");
+  // A direction with no ratios: the reader's own check reads the list it left unset.
+  std::string hollow_text = text;
+  const std::size_t ratios = hollow_text.find("= DIRECTION('',(") + std::string("= DIRECTION('',(").size();
+  hollow_text.erase(ratios, hollow_text.find(')', ratios) - ratios);
+  write_file_atomic(dir.file("hollow.step"), hollow_text);
+  const std::string hollow = dir.file("hollow.step");
   EXPECT_NE(test::error_of([&] { load_step_mesh(garbled, "", 0.05); }).find("which the file does not define"),
             std::string::npos);
   EXPECT_NE(test::error_of([&] { load_step_mesh(dangling, "", 0.05); }).find("9999"), std::string::npos);
@@ -272,9 +278,11 @@ TEST(StepHousing, DamagedFilesAreClearErrors) {
   EXPECT_NE(test::error_of([&] { load_step_mesh(hidden, "", 0.05); }).find("oriented edge"), std::string::npos);
   const std::string ring_error = test::error_of([&] { load_step_mesh(ring, "", 0.05); });
   EXPECT_NE(ring_error.find("refers back to " + line_name), std::string::npos) << ring_error;
+  EXPECT_NE(test::error_of([&] { load_step_mesh(hollow, "", 0.05); }).find("a DIRECTION, has an empty list"),
+            std::string::npos);
   EXPECT_NE(test::error_of([&] { load_step_mesh(twice, "", 0.05); }).find("#1 is defined twice"), std::string::npos);
   for (const std::string& path :
-       {empty, half, prose, shapeless, garbled, dangling, untyped, cycle, hidden, ring, twice}) {
+       {empty, half, prose, shapeless, garbled, dangling, untyped, cycle, hidden, ring, hollow, twice}) {
     const std::string e = test::error_of([&] { load_step_mesh(path, "", 0.05); });
     EXPECT_EQ(e.rfind(path + ": ", 0), 0u) << e;
     EXPECT_EQ(e.find('\n'), std::string::npos) << e;
