@@ -138,10 +138,12 @@ triangle_mesh read_step(const std::string& path, const std::string& node, double
   reader.SetNameMode(true);
   std::string text = read_text_file(path);
   if (const std::string fault = step_reference_fault(text); !fault.empty()) throw input_error(path + ": " + fault);
-  // The text scanned above is the text read: the file is not opened twice.
-  std::istringstream stream(std::move(text));
-  if (reader.ChangeReader().ReadStream(path.c_str(), stream) != IFSelect_RetDone)
-    throw input_error(path + ": not a readable STEP file");
+  {
+    // The text scanned above is the text read (the file is not opened twice), let go once parsed.
+    std::istringstream stream(std::move(text));
+    if (reader.ChangeReader().ReadStream(path.c_str(), stream) != IFSelect_RetDone)
+      throw input_error(path + ": not a readable STEP file");
+  }
   check_entities(reader, path);
   if (!reader.Transfer(doc)) throw input_error(path + ": its shapes could not be read");
 
