@@ -79,9 +79,11 @@ v2=$("$prefix/bin/airr-studio" --version)
 [[ "$v1" =~ ^airr\ [0-9]+\.[0-9]+\.[0-9]+ ]] || fail "airr --version printed '$v1'"
 
 # The Python module from the moved prefix alone (PYTHONPATH into it): it renders the scene saved
-# here with the prefix's assets, as the installed `airr` renders it.
+# here with the prefix's assets, as the installed `airr` renders it. (A sanitizer build's module
+# needs its runtime preloaded into Python: AIRR_PYTHON_PRELOAD.)
 "$prefix/bin/airr" render bench.airr.json -o render.exr --spp 2 --seed 5 >/dev/null 2>&1
-PYTHONPATH="$prefix/lib/python3/dist-packages" PYTHONDONTWRITEBYTECODE=1 /usr/bin/python3 - "$prefix" <<'PY' ||
+LD_PRELOAD="${AIRR_PYTHON_PRELOAD:-}" PYTHONPATH="$prefix/lib/python3/dist-packages" PYTHONDONTWRITEBYTECODE=1 \
+  /usr/bin/python3 - "$prefix" <<'PY' ||
 import sys, numpy, airr
 prefix = sys.argv[1]
 assert airr.__file__.startswith(prefix), airr.__file__
