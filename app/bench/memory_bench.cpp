@@ -7,11 +7,10 @@
 #include <array>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
-#include <iterator>
 #include <vector>
 
 #include "airr/core/error.hpp"
+#include "airr/core/files.hpp"
 #include "bench/other_build.hpp"
 
 namespace fs = std::filesystem;
@@ -45,9 +44,7 @@ measured_run run_measured(const std::vector<std::string>& args, const fs::path& 
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   r.peak_mb = double(usage.ru_maxrss) / 1024.0;  // kilobytes on Linux
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    std::ifstream in(log);
-    const std::string said((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    throw airr::input_error(what + ": " + args[0] + " render failed: " + last_line(said));
+    throw airr::input_error(what + ": " + args[0] + " render failed: " + last_line(airr::read_text_file(log.string())));
   }
   return r;
 }
