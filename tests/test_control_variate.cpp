@@ -233,7 +233,7 @@ TEST(ControlVariate, StreamedCameraRaysGiveTheSamplesOfSingleRays) {
   ASSERT_TRUE(ts.model);
   const int w = ts.camera.width, y0 = 40, y1 = 44;
   const std::uint64_t first = 5, count = 3;
-  std::vector<double> sums(std::size_t(w) * ts.camera.height * 3, 0.0), components(component_count * sums.size(), 0.0);
+  std::vector<float> sums(std::size_t(w) * ts.camera.height * 3, 0.0f), components(component_count * sums.size(), 0.0f);
   const std::atomic<bool> never{false};
   std::uint64_t rays = 0;
   ASSERT_TRUE(trace_rows(ts, y0, y1, first, count, sums, never, rays, nullptr, &components));

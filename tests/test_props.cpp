@@ -220,7 +220,7 @@ std::vector<double> traced_components(const scene& s, std::uint64_t spp) {
   ts.use_model_image = false;
   build_tracer_scene(ts, device, s);
   const int w = ts.camera.width, h = ts.camera.height;
-  std::vector<double> sums(std::size_t(w) * h * 3, 0.0), comps(component_count * sums.size(), 0.0);
+  std::vector<float> sums(std::size_t(w) * h * 3, 0.0f), comps(component_count * sums.size(), 0.0f);
   const std::atomic<bool> never{false};
   std::uint64_t rays = 0;
   trace_rows(ts, 0, h, 0, spp, sums, never, rays, nullptr, &comps);

@@ -45,7 +45,7 @@ TEST(RayFile, EnergiesSumToTheLayers) {
   ts.layers = layers;
   build_tracer_scene(ts, device, s);
   const int w = ts.camera.width, h = ts.camera.height;
-  std::vector<double> sums(3 * std::size_t(w) * h), layer_sums(3 * layers->count() * std::size_t(w) * h);
+  std::vector<float> sums(3 * std::size_t(w) * h), layer_sums(3 * layers->count() * std::size_t(w) * h);
   const std::atomic<bool> never{false};
   std::uint64_t rays = 0;
   trace_rows(ts, 0, h, 0, spp, sums, never, rays, nullptr, nullptr, nullptr, &layer_sums);

@@ -198,7 +198,7 @@ void add_bench_command(CLI::App& app) {
     const int w = ts.camera.width, h = ts.camera.height;
 
     // Tracer throughput.
-    std::vector<double> sums(std::size_t(w) * h * 3, 0.0);
+    std::vector<float> sums(std::size_t(w) * h * 3, 0.0f);
     std::atomic<std::uint64_t> rays{0};
     const std::atomic<bool> never{false};
     auto t0 = clock_type::now();

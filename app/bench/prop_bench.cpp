@@ -72,7 +72,7 @@ throughput measure(const airr::scene& s, std::uint64_t spp) {
   throughput out;
   out.build_s = since(t0);
   const int w = ts.camera.width, h = ts.camera.height;
-  std::vector<double> sums(std::size_t(w) * h * 3, 0.0);
+  std::vector<float> sums(std::size_t(w) * h * 3, 0.0f);
   std::atomic<std::uint64_t> rays{0};
   const std::atomic<bool> never{false};
   t0 = clock_type::now();

@@ -164,13 +164,28 @@ void add_render_command(CLI::App& app) {
       bar->finish(std::to_string(snap.spp) + " spp, " +
                   std::to_string(std::uint64_t(snap.rays / std::max(snap.seconds, 1e-9))) + " rays/s");
     const float exposure = opt->exposure > 0 ? float(opt->exposure) : float(airr::default_exposure(s));
-    std::vector<airr::image_rgb> parts = snap.component_images();
+    // The components and path layers are written from the snapshot in place, unless gathered from
+    // the ranks, written to a shard or one of them chosen: copied out then.
+    const bool copied = job.size > 1 || shard || !opt->component.empty();
+    std::vector<airr::image_rgb> parts, path_images;
+    if (copied) {
+      parts = snap.component_images();
+      for (std::size_t k = 0; k < snap.layer_names.size(); ++k) path_images.push_back(snap.layer_image(k));
+    }
     std::vector<airr::image_layer> layers;
-    for (int k = 0; k < int(parts.size()) && opt->components; ++k)
-      layers.push_back({airr::component_names[k], &parts[k]});
-    std::vector<airr::image_rgb> path_images;
-    for (std::size_t k = 0; k < snap.layer_names.size(); ++k) path_images.push_back(snap.layer_image(k));
-    for (std::size_t k = 0; k < path_images.size(); ++k) layers.push_back({snap.layer_names[k], &path_images[k]});
+    for (int k = 0; k < airr::component_count && opt->components; ++k) {
+      if (copied)
+        layers.push_back({airr::component_names[k], &parts[std::size_t(k)]});
+      else
+        layers.push_back(
+            {airr::component_names[k], nullptr, snap.components->data(), airr::component_count, std::size_t(k)});
+    }
+    for (std::size_t k = 0; k < snap.layer_names.size(); ++k) {
+      if (copied)
+        layers.push_back({snap.layer_names[k], &path_images[k]});
+      else
+        layers.push_back({snap.layer_names[k], nullptr, snap.layers->data(), snap.layer_names.size(), k});
+    }
     airr::image_rgb image = snap.image();
     if (job.size > 1) {
       image = gather_rows(image, params.first_row, params.end_row);

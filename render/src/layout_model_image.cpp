@@ -21,7 +21,7 @@ std::shared_ptr<const layout_model_image> compute_layout_model_image(const scene
   if (!grids) return nullptr;  // cancelled
   for (std::size_t i = 0; i < models.size() && i < s.retroreflectors.size(); ++i) {
     const std::string sheet = "retroreflectors[" + std::to_string(i) + "]: ";
-    std::shared_ptr<const model_image> m;
+    std::shared_ptr<model_image> m;
     try {
       m = compute_model_image(s, models[i], display, p, cancel, i, grids);
     } catch (const input_error& e) {
@@ -34,10 +34,13 @@ std::shared_ptr<const layout_model_image> compute_layout_model_image(const scene
       continue;
     }
     if (out->image.rgb.empty()) {
-      out->image = m->image;
+      out->image = std::move(m->image);
+      m->image.width = out->image.width;
+      m->image.height = out->image.height;
     } else {
       for (std::size_t k = 0; k < out->image.rgb.size(); ++k) out->image.rgb[k] += m->image.rgb[k];
     }
+    std::vector<float>().swap(m->image.rgb);  // the sum holds it: 12 bytes a pixel less per sheet
     out->sheets.push_back(std::move(m));
   }
   if (out->sheets.empty()) return nullptr;

@@ -15,17 +15,18 @@ namespace airr {
 
 namespace {
 
-// Peak resident bytes of `airr render` (its session publishing images only at the target) per
+// Peak resident bytes of `airr render` (its session publishing images only at its target) per
 // pixel and beyond the pixels, measured by `airr bench --memory` on the default scene from 2048^2 to
-// 4096^2 (1 spp): 168 bytes a pixel, 420 with the seven components, 553 MB besides. About: sums 96
-// (the samples and the odd ones, and the model image's predictions of each, as doubles), 168 more
-// by component; images: 24 (the estimate and its odd half), 84 more by component; the model image
-// 60 (its pixels' paths, its image and the layout's).
-constexpr double final_bytes_per_pixel = 168, final_bytes_per_pixel_components = 420;
-// A session publishing every wave (the designer) holds a wave's new images beside the last:
-// 48 bytes a pixel more (the estimate, its odd half and the shown mix), 84 more by component.
-constexpr double wave_images_bytes = 48, wave_images_bytes_components = 48 + 84;
-constexpr double fixed_bytes = 560e6;
+// 4096^2 (1 spp): 60 bytes a pixel, 156 with the seven components, 686 MB besides. About: sums 24
+// (the samples and the odd ones, in single precision, turned into the images in place), 84 more by
+// component; the model image 48 (its pixels' paths 36, its image 12); its predictions are made at
+// the end, none kept.
+constexpr double final_bytes_per_pixel = 60, final_bytes_per_pixel_components = 156;
+// A session publishing every wave (the designer) keeps the predictions beside the sums (24 bytes a
+// pixel), makes its images beside them (24, and 84 by component) and holds a wave's new images
+// beside the last (48: the estimate, its odd half and the shown mix; 84 more by component).
+constexpr double wave_images_bytes = 24 + 24 + 48, wave_images_bytes_components = 24 + 24 + 48 + 84 + 84;
+constexpr double fixed_bytes = 700e6;
 // Peak resident bytes of `airr sweep --psf` (one point, one thread) beyond its 150 MB at the start:
 // 48 bytes a sample at 10 million samples, 58 at 30 million (the samples' arrays doubling as
 // they grow); two points on two threads took twice one point's.

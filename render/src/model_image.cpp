@@ -104,10 +104,10 @@ std::shared_ptr<const display_grids> compute_display_grids(const scene& s, const
   return g;
 }
 
-std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shared_ptr<const retro_model> model,
-                                                       const image_rgb* display, const model_image_params& p,
-                                                       const std::atomic<bool>* cancel, std::size_t sheet,
-                                                       std::shared_ptr<const display_grids> grids) {
+std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr<const retro_model> model,
+                                                 const image_rgb* display, const model_image_params& p,
+                                                 const std::atomic<bool>* cancel, std::size_t sheet,
+                                                 std::shared_ptr<const display_grids> grids) {
   check_model_image_params(p);
   if (sheet >= s.retroreflectors.size() || !model) return nullptr;
   const auto t0 = std::chrono::steady_clock::now();
@@ -125,9 +125,8 @@ std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shar
   m->grids = m->display->grids;
   const grid_mapping(&maps)[2] = m->display->maps;
 
-  const std::vector<pixel_path> paths = pixel_paths(parts, emission.get(), p, cancel);
-  if (paths.empty()) return nullptr;
-  m->pixels = map_pixels(paths, maps, m->grids[model_tail], w, h, p.threads);
+  m->pixels = pixel_paths(parts, emission.get(), p, maps, m->grids[model_tail], cancel);
+  if (m->pixels.empty()) return nullptr;
   m->paths_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() -
                      (own_grids ? m->display->spectra_seconds : 0.0);
   double lo = INFINITY, hi = -INFINITY;

@@ -36,17 +36,33 @@ static pixel_path pixel_ideal(const ideal_parts& parts, const emission_profile* 
   return out;
 }
 
-std::vector<pixel_path> pixel_paths(const ideal_parts& parts, const emission_profile* emission,
-                                    const model_image_params& p, const std::atomic<bool>* cancel) {
+// A pixel's path on the grids.
+static model_pixel mapped(const pixel_path& path, const grid_mapping (&maps)[2], const model_grid& tail) {
+  model_pixel px;
+  if (!path.ok) return px;
+  for (int g : {model_fine, model_tail}) px.node[g] = glm::vec2(maps[g].node(path.display));
+  // Landing outside the tail's padded grid, it is farther from the display than any kernel
+  // offset. (Outside the fine grid, only the fine part sees nothing, in both uses alike.)
+  const glm::dvec2 t = px.node[model_tail];
+  px.ok = t.x >= 0 && t.y >= 0 && t.x < tail.padded.width - 1 && t.y < tail.padded.height - 1;
+  px.theta_deg = float(polar_angle_deg(glm::normalize(path.wi)));
+  px.profile = float(path.profile);
+  return px;
+}
+
+std::vector<model_pixel> pixel_paths(const ideal_parts& parts, const emission_profile* emission,
+                                     const model_image_params& p, const grid_mapping (&maps)[2], const model_grid& tail,
+                                     const std::atomic<bool>* cancel) {
   const int w = parts.cam.width, h = parts.cam.height, n = p.path_stride;
-  std::vector<pixel_path> out(std::size_t(w) * h);
+  std::vector<model_pixel> out(std::size_t(w) * h);
   if (n <= 1) {
     detail::parallel_rows(h, p.threads, [&](int y0, int y1) {
       for (int y = y0; y < y1 && !cancel_requested(cancel); ++y) {
-        for (int x = 0; x < w; ++x) out[std::size_t(y) * w + x] = pixel_ideal(parts, emission, x + 0.5, y + 0.5);
+        for (int x = 0; x < w; ++x)
+          out[std::size_t(y) * w + x] = mapped(pixel_ideal(parts, emission, x + 0.5, y + 0.5), maps, tail);
       }
     });
-    return cancel_requested(cancel) ? std::vector<pixel_path>{} : out;
+    return cancel_requested(cancel) ? std::vector<model_pixel>{} : out;
   }
   // Lattice node i sits on pixel min(i n, size - 1).
   const int lw = (w - 1 + n - 1) / n + 1, lh = (h - 1 + n - 1) / n + 1;
@@ -82,12 +98,14 @@ std::vector<pixel_path> pixel_paths(const ideal_parts& parts, const emission_pro
         const int i1 = std::min(i + 1, lw - 1), j1 = std::min(j + 1, lh - 1);
         const pixel_path* c[4] = {&lattice[std::size_t(j) * lw + i], &lattice[std::size_t(j) * lw + i1],
                                   &lattice[std::size_t(j1) * lw + i], &lattice[std::size_t(j1) * lw + i1]};
-        pixel_path& px = out[std::size_t(y) * w + x];
+        model_pixel& out_px = out[std::size_t(y) * w + x];
         if (!(c[0]->ok && c[1]->ok && c[2]->ok && c[3]->ok)) {
-          if (near_paths[std::size_t(j) * lw + i]) px = pixel_ideal(parts, emission, x + 0.5, y + 0.5);
+          if (near_paths[std::size_t(j) * lw + i])
+            out_px = mapped(pixel_ideal(parts, emission, x + 0.5, y + 0.5), maps, tail);
           continue;
         }
         const double cw[4] = {(1 - fx) * (1 - fy), fx * (1 - fy), (1 - fx) * fy, fx * fy};
+        pixel_path px;
         px.ok = true;
         px.display = glm::dvec2(0);
         px.wi = glm::dvec3(0);
@@ -97,29 +115,11 @@ std::vector<pixel_path> pixel_paths(const ideal_parts& parts, const emission_pro
           px.wi += cw[k] * c[k]->wi;
           px.profile += cw[k] * c[k]->profile;
         }
+        out_px = mapped(px, maps, tail);
       }
     }
   });
-  return cancel_requested(cancel) ? std::vector<pixel_path>{} : out;
-}
-
-std::vector<model_pixel> map_pixels(const std::vector<pixel_path>& paths, const grid_mapping (&maps)[2],
-                                    const model_grid& tail, int w, int h, int threads) {
-  std::vector<model_pixel> pixels(paths.size());
-  detail::parallel_rows(h, threads, [&](int y0, int y1) {
-    for (std::size_t i = std::size_t(y0) * w; i < std::size_t(y1) * w; ++i) {
-      if (!paths[i].ok) continue;
-      model_pixel& px = pixels[i];
-      for (int g : {model_fine, model_tail}) px.node[g] = glm::vec2(maps[g].node(paths[i].display));
-      // Landing outside the tail's padded grid, it is farther from the display than any kernel
-      // offset. (Outside the fine grid, only the fine part sees nothing, in both uses alike.)
-      const glm::dvec2 t = px.node[model_tail];
-      px.ok = t.x >= 0 && t.y >= 0 && t.x < tail.padded.width - 1 && t.y < tail.padded.height - 1;
-      px.theta_deg = float(polar_angle_deg(glm::normalize(paths[i].wi)));
-      px.profile = float(paths[i].profile);
-    }
-  });
-  return pixels;
+  return cancel_requested(cancel) ? std::vector<model_pixel>{} : out;
 }
 
 }  // namespace airr::model_image_steps

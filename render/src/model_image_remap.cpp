@@ -53,9 +53,8 @@ image_rgb remap_model_image(const model_image& from, const scene& s, const model
     if (!bin_still_holds(s, parts, b, from.sheet)) return {};
   }
   const std::shared_ptr<const emission_profile> emission = scene_emission_profile(s);
-  const std::vector<pixel_path> paths = pixel_paths(parts, emission.get(), p, cancel);
-  if (paths.empty()) return {};
-  std::vector<model_pixel> pixels = map_pixels(paths, kept->maps, from.grids[model_tail], w, h, p.threads);
+  std::vector<model_pixel> pixels = pixel_paths(parts, emission.get(), p, kept->maps, from.grids[model_tail], cancel);
+  if (pixels.empty()) return {};
   // Beyond the bins by more than half their spacing, a pixel's PSF would be a guess.
   const double first = from.bins.front().theta_deg, last = from.bins.back().theta_deg;
   const double margin = std::max(0.5, from.bins.size() > 1 ? 0.5 * (last - first) / double(from.bins.size() - 1) : 0.0);

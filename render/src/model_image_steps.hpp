@@ -55,12 +55,6 @@ struct pixel_path {
   double profile = 1;      // the display's relative luminance towards the half mirror
 };
 
-// Every pixel's ideal path (empty when cancelled). With a stride, paths are traced on a lattice of
-// pixels and interpolated inside each cell whose four corners all have one; other cells are traced
-// pixel by pixel.
-std::vector<pixel_path> pixel_paths(const ideal_parts& parts, const emission_profile* emission,
-                                    const model_image_params& p, const std::atomic<bool>* cancel);
-
 // The display's radiance on a grid of at most max_texels on its longer side (area-averaged down
 // from the texture; uniform: a grid of that size).
 cv::Mat display_texels(const scene& s, const image_rgb* display, int max_texels);
@@ -109,14 +103,18 @@ struct grid_mapping {
   }
 };
 
+// Every pixel's ideal path, mapped onto the display's grids as it is traced: where it lands, its
+// angle and profile (not yet its bins); a pixel landing beyond the tail's padded grid is not ok.
+// Empty when cancelled. With a stride, paths are traced on a lattice of pixels and interpolated
+// inside each cell whose four corners all have one; other cells are traced pixel by pixel. (The
+// paths themselves are not kept: at 56 bytes a pixel they made a large render's peak.)
+std::vector<model_pixel> pixel_paths(const ideal_parts& parts, const emission_profile* emission,
+                                     const model_image_params& p, const grid_mapping (&maps)[2], const model_grid& tail,
+                                     const std::atomic<bool>* cancel);
+
 // `grid` is left without its padded nodes when `cancel` is set while they are made.
 grid_mapping make_grid(model_grid& grid, const cv::Mat& texels, int refine, double reach_mm, const part_frame& src,
                        const std::atomic<bool>* cancel = nullptr);
-
-// The pixels of a w x h image on the grids: where their paths land, their angles and profiles
-// (not yet their bins). A pixel landing beyond the tail's padded grid is not ok.
-std::vector<model_pixel> map_pixels(const std::vector<pixel_path>& paths, const grid_mapping (&maps)[2],
-                                    const model_grid& tail, int w, int h, int threads);
 
 // The two bins around the pixel's angle (bin angles ascend) and its weight on the upper one.
 void assign_bin(const std::vector<model_bin>& bins, model_pixel& px);

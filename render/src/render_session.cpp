@@ -197,99 +197,6 @@ bool render_session::render_preview(std::vector<float>& rgb, std::uint64_t& rays
   return !cancel_;
 }
 
-void render_session::publish(std::uint64_t gen, std::uint64_t spp, const accumulation& acc, std::uint64_t rays,
-                             double seconds) {
-  bool images = true;
-  if (params_.final_images_only) {
-    std::lock_guard lock(mutex_);
-    images = spp >= target_spp_;
-    if (!images && gen == generation_) {
-      snapshot_.generation = gen;
-      snapshot_.spp = spp;
-      snapshot_.rays = rays;
-      snapshot_.seconds = seconds;
-      snapshot_.edit_seconds = seconds_since_edit();
-      changed_.notify_all();
-    }
-  }
-  if (!images) return;
-  // Each pixel's estimate is the model image's value plus the mean of its samples less their
-  // predictions.
-  const std::vector<float>* model = scene_.model ? &scene_.model->image.rgb : nullptr;
-  const std::vector<double>& sums = acc.sums;
-  const std::vector<double>& predicted = acc.predictions.all;
-  auto rgb = std::make_shared<std::vector<float>>(sums.size());
-  const double inv = spp ? 1.0 / double(spp) : 0.0;
-  for (std::size_t i = 0; i < sums.size(); ++i) {
-    (*rgb)[i] = float((sums[i] - predicted[i]) * inv + (model ? (*model)[i] : 0.0f));
-  }
-  std::shared_ptr<std::vector<float>> odd;
-  if (spp >= 2) {
-    const double inv_odd = 1.0 / double(spp / 2);  // spp / 2 of samples 0 .. spp-1 are odd-numbered
-    odd = std::make_shared<std::vector<float>>(sums.size());
-    for (std::size_t i = 0; i < sums.size(); ++i) {
-      (*odd)[i] = float((acc.odd_sums[i] - acc.predictions.odd[i]) * inv_odd + (model ? (*model)[i] : 0.0f));
-    }
-  }
-  std::shared_ptr<std::vector<float>> components;
-  if (!acc.component_sums.empty()) {
-    // The model image and its predictions belong to the aerial image.
-    components = std::make_shared<std::vector<float>>(acc.component_sums.size());
-    for (std::size_t p = 0; p < sums.size() / 3; ++p) {
-      for (int k = 0; k < component_count; ++k) {
-        for (int c = 0; c < 3; ++c) {
-          const std::size_t i = 3 * (component_count * p + std::size_t(k)) + std::size_t(c);
-          const std::size_t j = 3 * p + std::size_t(c);
-          const bool aerial = k == component_aerial;
-          const double v = (acc.component_sums[i] - (aerial ? predicted[j] : 0.0)) * inv;
-          (*components)[i] = float(v + (model && aerial ? (*model)[j] : 0.0f));
-        }
-      }
-    }
-  }
-  std::shared_ptr<std::vector<float>> layers;
-  std::vector<std::string> layer_names;
-  if (!acc.layer_sums.empty()) {
-    const std::size_t n = scene_.layers->count();
-    const std::uint64_t variate = model_layers(scene_);
-    for (std::size_t k = 0; k < n; ++k) layer_names.push_back(scene_.layers->name(k));
-    layers = std::make_shared<std::vector<float>>(acc.layer_sums.size());
-    for (std::size_t p = 0; p < sums.size() / 3; ++p) {
-      for (std::size_t k = 0; k < n; ++k) {
-        const bool modelled = variate >> k & 1;
-        for (int c = 0; c < 3; ++c) {
-          const std::size_t i = 3 * (n * p + k) + std::size_t(c);
-          const std::size_t j = 3 * p + std::size_t(c);
-          const double v = (acc.layer_sums[i] - (modelled ? predicted[j] : 0.0)) * inv;
-          (*layers)[i] = float(v + (model && modelled ? (*model)[j] : 0.0f));
-        }
-      }
-    }
-  }
-  std::lock_guard lock(mutex_);
-  if (gen != generation_) return;  // an edit arrived meanwhile: this result is stale
-  snapshot_.generation = gen;
-  snapshot_.spp = spp;
-  snapshot_.width = scene_.camera.width;
-  snapshot_.height = scene_.camera.height;
-  snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
-  snapshot_.rgb = std::move(rgb);
-  snapshot_.odd_rgb = std::move(odd);
-  if (params_.final_images_only) {
-    snapshot_.shown = snapshot_.rgb;
-  } else {
-    show_best();
-  }
-  snapshot_.components = std::move(components);
-  snapshot_.layers = std::move(layers);
-  snapshot_.layer_names = std::move(layer_names);
-  snapshot_.preview = false;
-  snapshot_.edit_seconds = seconds_since_edit();
-  snapshot_.rays = rays;
-  snapshot_.seconds = seconds;
-  changed_.notify_all();
-}
-
 void render_session::run() {
   while (true) {
     try {
@@ -313,6 +220,7 @@ void render_session::run_loop() {
   accumulation acc;
   std::uint64_t gen = 0, spp = 0, rays = 0, next_wave = 1;
   double seconds = 0;
+  bool publish_owed = false;  // a publish cut short (a pause): its images are made on resume
   // The control variate's model image of the layout in scene_, computed beside the tracer from its
   // first wave on; the tracer waits for it only before the last wave of its target. The
   // predictions of the samples traced before it arrives are added then.
@@ -339,12 +247,15 @@ void render_session::run_loop() {
     model_arrived.reset();
   };
   auto reset_sums = [&] {
-    acc.sums.assign(std::size_t(scene_.camera.width) * scene_.camera.height * 3, 0.0);
+    acc.sums.assign(std::size_t(scene_.camera.width) * scene_.camera.height * 3, 0.0f);
     acc.odd_sums = acc.sums;
-    acc.component_sums.assign(params_.components ? component_count * acc.sums.size() : 0, 0.0);
-    acc.layer_sums.assign(scene_.layers ? scene_.layers->count() * acc.sums.size() : 0, 0.0);
-    acc.predictions = {acc.sums, acc.sums};
+    acc.component_sums.assign(params_.components ? component_count * acc.sums.size() : 0, 0.0f);
+    acc.layer_sums.assign(scene_.layers ? scene_.layers->count() * acc.sums.size() : 0, 0.0f);
+    // A render that publishes only at its target makes the predictions then (publish), in one
+    // pass: none kept beside the samples.
+    acc.predictions = params_.final_images_only ? prediction_sums{} : prediction_sums{acc.sums, acc.sums};
     acc.row_spp.assign(std::size_t(scene_.camera.height), 0);
+    acc.rows_published.clear();
   };
   // The most samples a row holds: spp, or more in rows a cancelled wave finished.
   const auto rows_end = [&] {
@@ -363,7 +274,11 @@ void render_session::run_loop() {
     std::uint64_t count = 0;
     {
       std::unique_lock lock(mutex_);
-      changed_.wait(lock, [&] { return stopping_ || pending_ || (!paused_ && spp < target_spp_); });
+      // Published in place (final_images_only), the sums are gone: nothing more to trace.
+      const bool traceable = !acc.row_spp.empty();
+      changed_.wait(lock, [&] {
+        return stopping_ || pending_ || (!paused_ && ((traceable && spp < target_spp_) || publish_owed));
+      });
       if (stopping_) {
         lock.unlock();
         drop_model();
@@ -387,6 +302,7 @@ void render_session::run_loop() {
         reset_sums();
         spp = rays = 0;
         seconds = 0;
+        publish_owed = false;
         next_wave = 1;
         lock.lock();
         // A refusal stays said, over the last good layout's images, until an edit is applied.
@@ -416,6 +332,11 @@ void render_session::run_loop() {
         continue;
       }
       cancel_ = false;
+      if (publish_owed && spp >= target_spp_) {
+        lock.unlock();
+        publish_owed = !publish(gen, spp, acc, rays, seconds);
+        continue;
+      }
       if (model_coming.valid() && model_coming.wait_for(std::chrono::seconds(0)) == std::future_status::ready) {
         model_arrived = model_coming.get();
       }
@@ -443,12 +364,12 @@ void render_session::run_loop() {
       });
       if (!complete || cancel_) {
         scene_.model.reset();
-        std::fill(acc.predictions.all.begin(), acc.predictions.all.end(), 0.0);
-        std::fill(acc.predictions.odd.begin(), acc.predictions.odd.end(), 0.0);
+        std::fill(acc.predictions.all.begin(), acc.predictions.all.end(), 0.0f);
+        std::fill(acc.predictions.odd.begin(), acc.predictions.odd.end(), 0.0f);
         continue;
       }
       model_arrived.reset();
-      if (spp > 0 && rows_end() == spp) publish(gen, spp, acc, rays, seconds);
+      if (spp > 0 && rows_end() == spp) publish_owed = !publish(gen, spp, acc, rays, seconds);
       continue;
     }
     const auto t0 = clock::now();
@@ -459,7 +380,7 @@ void render_session::run_loop() {
     if (!whole) continue;
     spp = end;
     next_wave = std::min(2 * next_wave, params_.max_wave_spp);  // capped: doubling forever would overflow
-    publish(gen, spp, acc, rays, seconds);
+    publish_owed = !publish(gen, spp, acc, rays, seconds);
     if (model_wanted) {
       // After the first wave, which has the cores to itself.
       std::lock_guard lock(mutex_);

@@ -367,13 +367,14 @@ static void add_prediction(const tracer_scene& ts, int x, int y, std::uint64_t i
                            prediction_sums& predictions);
 
 bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
-                std::vector<double>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays,
-                std::vector<double>* odd_sums, std::vector<double>* component_sums, prediction_sums* predictions,
-                std::vector<double>* layer_sums) {
+                std::vector<float>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays,
+                std::vector<float>* odd_sums, std::vector<float>* component_sums, prediction_sums* predictions,
+                std::vector<float>* layer_sums) {
   const int w = ts.camera.width;
   if (!ts.layers) layer_sums = nullptr;
   const std::size_t layer_count = layer_sums ? ts.layers->count() : 0;
   const std::uint64_t variate_layers = predictions ? 0 : model_layers(ts);
+  const bool keep_predictions = predictions && ts.model && !predictions->all.empty();
   std::array<glm::vec3, max_path_layers + 1> layer_radiance;
   std::optional<layer_sink> sink;
   if (layer_sums) sink.emplace(*ts.layers, layer_radiance.data());
@@ -398,8 +399,8 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
         rays += std::uint64_t(n);
         for (int k = 0; k < n; ++k) {
           const int x = x0 + k;
-          double* acc = sums.data() + 3 * (std::size_t(y) * w + x);
-          double* odd = odd_sums ? odd_sums->data() + 3 * (std::size_t(y) * w + x) : nullptr;
+          float* acc = sums.data() + 3 * (std::size_t(y) * w + x);
+          float* odd = odd_sums ? odd_sums->data() + 3 * (std::size_t(y) * w + x) : nullptr;
           const sample_numbers& numbers_k = numbers[std::size_t(k)];
           const camera_ray& ray_k = camera_rays[std::size_t(k)];
           layer_sink* layers_out = sink ? &*sink : nullptr;
@@ -408,10 +409,10 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
               predictions
                   ? trace_path(ts, numbers_k, ray_k, &hits[std::size_t(k)], rays, layers_out)
                   : estimate_from(ts, x, y, numbers_k, ray_k, &hits[std::size_t(k)], rays, layers_out, variate_layers);
-          if (predictions && ts.model) add_prediction(ts, x, y, i, numbers_k, *predictions);
+          if (keep_predictions) add_prediction(ts, x, y, i, numbers_k, *predictions);
           const glm::vec3 L = total(c);
           if (component_sums) {
-            double* comp = component_sums->data() + 3 * component_count * (std::size_t(y) * w + x);
+            float* comp = component_sums->data() + 3 * component_count * (std::size_t(y) * w + x);
             for (int j = 0; j < component_count; ++j) {
               comp[3 * j] += c[std::size_t(j)].x;
               comp[3 * j + 1] += c[std::size_t(j)].y;
@@ -419,7 +420,7 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
             }
           }
           if (layer_sums) {
-            double* lay = layer_sums->data() + 3 * layer_count * (std::size_t(y) * w + x);
+            float* lay = layer_sums->data() + 3 * layer_count * (std::size_t(y) * w + x);
             for (std::size_t j = 0; j < layer_count; ++j) {
               lay[3 * j] += layer_radiance[j].x;
               lay[3 * j + 1] += layer_radiance[j].y;
@@ -469,7 +470,7 @@ static void add_prediction(const tracer_scene& ts, int x, int y, std::uint64_t i
 
 bool add_predictions(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
                      prediction_sums& predictions, const std::atomic<bool>& cancel) {
-  if (!ts.model) return true;
+  if (!ts.model || predictions.all.empty()) return true;
   for (int y = y0; y < y1; ++y) {
     if (cancel.load(std::memory_order_relaxed)) return false;
     for (int x = 0; x < ts.camera.width; ++x) {
@@ -480,6 +481,19 @@ bool add_predictions(const tracer_scene& ts, int y0, int y1, std::uint64_t first
     }
   }
   return true;
+}
+
+pixel_predictions predict_pixel(const tracer_scene& ts, int px, int py, std::uint64_t first, std::uint64_t count) {
+  pixel_predictions out;
+  if (!ts.model) return out;
+  const std::array<double, 6> rotation = pixel_sequence_rotation(ts, px, py);
+  for (std::uint64_t i = first; i < first + count; ++i) {
+    const sample_numbers n = draw_sample_numbers(ts, px, py, i, rotation);
+    const glm::dvec3 m = model_prediction(*ts.model, px, py, n.jitter, n.first_retro);
+    out.all += m;
+    if (i & 1) out.odd += m;
+  }
+  return out;
 }
 
 }  // namespace airr

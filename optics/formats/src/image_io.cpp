@@ -181,9 +181,10 @@ void write_image(const std::string& path, const image_rgb& img, const image_meta
   if (!exr && ext != ".png") throw input_error(path + ": output must be .exr or .png");
   if (!exr && !layers.empty()) throw input_error(path + ": only EXR files take layers");
   for (const image_layer& l : layers) {
-    if (!l.image || l.image->width != img.width || l.image->height != img.height || l.name.empty()) {
+    const bool sized =
+        l.image ? l.image->width == img.width && l.image->height == img.height : l.interleaved && l.index < l.count;
+    if (!sized || l.name.empty())
       throw input_error(path + ": layer '" + l.name + "' is missing or not the image's size");
-    }
   }
   const int channels = 3 * (1 + int(layers.size()));
   ImageSpec spec(img.width, img.height, channels, exr ? TypeDesc::FLOAT : TypeDesc::UINT8);
@@ -195,16 +196,25 @@ void write_image(const std::string& path, const image_rgb& img, const image_meta
   spec.attribute("oiio:ColorSpace", exr ? "linear" : "sRGB");
   if (exr) spec.attribute("compression", "zip");
 
-  std::vector<float> out(std::size_t(img.width) * img.height * channels);
-  for (std::size_t px = 0; px < std::size_t(img.width) * img.height; ++px) {
-    float* o = out.data() + px * channels;
-    for (int c = 0; c < 3; ++c) {
-      const float v = img.rgb[3 * px + c];
-      o[c] = exr ? v : float(srgb_encode(std::clamp(v * exposure, 0.0f, 1.0f)));
+  // The channels interleaved a strip of rows at a time: a whole image's copy would take as much
+  // memory again as the image and its layers.
+  const int strip_rows = 64;
+  std::vector<float> strip(std::size_t(img.width) * std::size_t(std::min(strip_rows, img.height)) * channels);
+  auto fill_strip = [&](int y0, int y1) {
+    for (std::size_t px = std::size_t(y0) * img.width; px < std::size_t(y1) * img.width; ++px) {
+      float* o = strip.data() + (px - std::size_t(y0) * img.width) * channels;
+      for (int c = 0; c < 3; ++c) {
+        const float v = img.rgb[3 * px + c];
+        o[c] = exr ? v : float(srgb_encode(std::clamp(v * exposure, 0.0f, 1.0f)));
+      }
+      for (std::size_t l = 0; l < layers.size(); ++l) {
+        const image_layer& from = layers[l];
+        const float* v =
+            from.image ? from.image->rgb.data() + 3 * px : from.interleaved + 3 * (from.count * px + from.index);
+        std::copy_n(v, 3, o + 3 * (l + 1));
+      }
     }
-    for (std::size_t l = 0; l < layers.size(); ++l)
-      std::copy_n(layers[l].image->rgb.data() + 3 * px, 3, o + 3 * (l + 1));
-  }
+  };
 
   // A folder that is missing or not writable is said before anything is encoded.
   const fs::path probe = p.parent_path() / (".tmp." + std::to_string(::getpid()) + "." + p.stem().string() + ext);
@@ -216,8 +226,13 @@ void write_image(const std::string& path, const image_rgb& img, const image_meta
   std::vector<unsigned char> bytes;
   Filesystem::IOVecOutput proxy(bytes);
   auto o = ImageOutput::create(exr ? "exr" : "png", &proxy);
-  const bool ok = o && o->supports("ioproxy") && o->open(p.filename().string(), spec) &&
-                  o->write_image(TypeDesc::FLOAT, out.data()) && o->close();
+  bool ok = o && o->supports("ioproxy") && o->open(p.filename().string(), spec);
+  for (int y0 = 0; ok && y0 < img.height; y0 += strip_rows) {
+    const int y1 = std::min(img.height, y0 + strip_rows);
+    fill_strip(y0, y1);
+    ok = o->write_scanlines(y0, y1, 0, TypeDesc::FLOAT, strip.data());
+  }
+  ok = ok && o->close();
   if (!ok) {
     const std::string why = one_line(o ? o->geterror() : geterror());
     throw input_error(path + ": cannot write image: " + (why.empty() ? "the writer refused the image" : why));

@@ -19,19 +19,17 @@ double pixel_contrast(double aerial, double background) {
 
 namespace {
 
-template <class T>
-std::array<double, 2> luminances(const T* c) {
+std::array<double, 2> luminances(const float* c) {
   std::array<double, 2> out{0, 0};
   for (int k = 0; k < component_count; ++k) {
-    const T* v = c + 3 * k;
+    const float* v = c + 3 * k;
     out[k == component_aerial ? 0 : 1] += rec709_luminance(double(v[0]), double(v[1]), double(v[2]));
   }
   return out;
 }
 
 // The aerial image's luminance and the background's at pixel i.
-template <class T>
-std::array<double, 2> pixel_luminances(const std::vector<T>& components, std::size_t i, double scale) {
+std::array<double, 2> pixel_luminances(const std::vector<float>& components, std::size_t i, double scale) {
   const auto [aerial, background] = luminances(components.data() + 3 * component_count * i);
   return {scale * aerial, scale * background};
 }
@@ -43,8 +41,7 @@ bool wholly_inside(const std::array<glm::dvec2, 4>& outline, int x, int y) {
          inside_quad(outline, x + 1, y + 1);
 }
 
-template <class T>
-contrast_summary summarise(const std::vector<T>& components, int w, int h, const std::array<glm::dvec2, 4>& outline,
+contrast_summary summarise(const std::vector<float>& components, int w, int h, const std::array<glm::dvec2, 4>& outline,
                            const std::vector<double>& thresholds, double scale) {
   contrast_summary out;
   out.share_above.assign(thresholds.size(), 0.0);
@@ -70,13 +67,6 @@ contrast_summary summarise(const std::vector<T>& components, int w, int h, const
 }  // namespace
 
 std::array<double, 2> aerial_and_background(const float* components) { return luminances(components); }
-std::array<double, 2> aerial_and_background(const double* components) { return luminances(components); }
-
-contrast_summary contrast_inside(const std::vector<double>& components, int w, int h,
-                                 const std::array<glm::dvec2, 4>& outline, const std::vector<double>& thresholds,
-                                 double scale) {
-  return summarise(components, w, h, outline, thresholds, scale);
-}
 
 contrast_summary contrast_inside(const std::vector<float>& components, int w, int h,
                                  const std::array<glm::dvec2, 4>& outline, const std::vector<double>& thresholds,

@@ -57,7 +57,7 @@ scene seen_from(const scene& s, const glm::dvec3& eye, const full_zone_params& p
 
 // The components' mean luminance per sample over the aerial image's outline as the eye sees it,
 // and the contrast there.
-eye_render outline_means(const std::vector<double>& components, const pinhole_camera& cam,
+eye_render outline_means(const std::vector<float>& components, const pinhole_camera& cam,
                          const std::array<glm::dvec2, 4>& outline, std::uint64_t spp,
                          const std::vector<double>& thresholds = {}) {
   const int w = cam.width, h = cam.height;
@@ -67,9 +67,9 @@ eye_render outline_means(const std::vector<double>& components, const pinhole_ca
     for (int x = 0; x < w; ++x) {
       if (!inside_quad(outline, x + 0.5, y + 0.5)) continue;
       ++inside;
-      const double* c = components.data() + 3 * component_count * (std::size_t(y) * w + x);
+      const float* c = components.data() + 3 * component_count * (std::size_t(y) * w + x);
       auto luminance = [&](int comp) {
-        const double* v = c + 3 * comp;
+        const float* v = c + 3 * comp;
         return rec709_luminance(v[0], v[1], v[2]);
       };
       out.aerial += luminance(component_aerial);
@@ -94,7 +94,7 @@ eye_render render_from(tracer_scene& ts, const embree_device& device, const scen
                        const std::atomic<bool>* cancel) {
   build_tracer_scene(ts, device, eye_scene, ts.retro);
   const int w = ts.camera.width, h = ts.camera.height;
-  std::vector<double> sums(std::size_t(w) * h * 3, 0.0), components(component_count * sums.size(), 0.0);
+  std::vector<float> sums(std::size_t(w) * h * 3, 0.0f), components(component_count * sums.size(), 0.0f);
   const std::atomic<bool> never{false};
   std::uint64_t rays = 0;
   trace_rows(ts, 0, h, 0, p.render_spp, sums, cancel ? *cancel : never, rays, nullptr, &components);
@@ -133,7 +133,7 @@ eye_view_metrics eye_view_from(const scene& s, const glm::dvec3& eye, const std:
   const embree_device device;
   build_tracer_scene(ts, device, at, make_sheet_models(s));
   const int w = ts.camera.width, h = ts.camera.height;
-  std::vector<double> sums(std::size_t(w) * h * 3), components(component_count * sums.size()),
+  std::vector<float> sums(std::size_t(w) * h * 3), components(component_count * sums.size()),
       layer_sums(expressions.empty() ? 0 : layers->count() * sums.size());
   const std::atomic<bool> never{false};
   std::uint64_t rays = 0;

@@ -14,8 +14,10 @@
 namespace airr {
 
 struct layout_model_image {
-  image_rgb image;                                         // the sum of the sheets' images
-  std::vector<std::shared_ptr<const model_image>> sheets;  // the sheets that have one
+  image_rgb image;  // the sum of the sheets' images
+  // The sheets that have one; their own images are summed into `image` and let go (empty rgb,
+  // their size kept).
+  std::vector<std::shared_ptr<const model_image>> sheets;
   // The sheets without one and why ("retroreflectors[i]: ..."); their light is left to the tracer.
   std::vector<std::string> left_out;
   scene layout;  // the scene it was computed for

@@ -136,10 +136,10 @@ std::shared_ptr<const display_grids> compute_display_grids(const scene& s, const
 // display's texture (null: uniform); the display white's radiance (white_radiance) is applied here. `grids`, when
 // given, are the layout's (compute_display_grids with the same scene, display and `p`); else they are computed. Throws
 // input_error for parameters out of range, or when a bin's chief ray grazes a part's edge.
-std::shared_ptr<const model_image> compute_model_image(const scene& s, std::shared_ptr<const retro_model> model,
-                                                       const image_rgb* display, const model_image_params& p = {},
-                                                       const std::atomic<bool>* cancel = nullptr, std::size_t sheet = 0,
-                                                       std::shared_ptr<const display_grids> grids = nullptr);
+std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr<const retro_model> model,
+                                                 const image_rgb* display, const model_image_params& p = {},
+                                                 const std::atomic<bool>* cancel = nullptr, std::size_t sheet = 0,
+                                                 std::shared_ptr<const display_grids> grids = nullptr);
 
 // Sheet `sheet`'s model image `from`, moved to `s`, a placement of the layout it was computed for
 // (differ_in_placement_alone): the pixels' ideal paths are traced anew (`p`'s path stride and

@@ -57,8 +57,9 @@ struct session_params {
   // What the pixels hold: -1 the image, 0 to 3 a Stokes parameter (tracer_scene::stokes).
   int stokes = -1;
   // Only the snapshot at the target holds images (with rgb shown, unmixed); the earlier ones say
-  // their spp, rays and time alone. A render that waits for its target (airr render) then holds
-  // one set of images beside its sums, not two while a wave's replace the last.
+  // their spp, rays and time alone. A render that waits for its target (airr render) keeps no
+  // predictions beside its sums (they are made at the target) and turns the sums into its images
+  // in place: the session traces no further, even if the target is raised.
   bool final_images_only = false;
 };
 
@@ -147,13 +148,14 @@ class render_session {
 
  private:
   // One generation's running sums (trace_rows): the samples' radiance, odd samples alone, by
-  // component, and the model image's predictions of them apart; and the samples each row holds
-  // (a row is traced whole or not at all, so a cancelled wave leaves some rows ahead, which the
-  // next wave skips: the sums need no copy to undo it).
+  // component, and the model image's predictions of them apart (none kept with final_images_only); and the samples each
+  // row holds (a row is traced whole or not at all, so a cancelled wave leaves some rows ahead, which the next wave
+  // skips: the sums need no copy to undo it).
   struct accumulation {
-    std::vector<double> sums, odd_sums, component_sums, layer_sums;
+    std::vector<float> sums, odd_sums, component_sums, layer_sums;
     prediction_sums predictions;
     std::vector<std::uint64_t> row_spp;
+    std::vector<char> rows_published;  // turned into images in place (final_images_only)
   };
   void run();  // run_loop, and what it throws said in the snapshot
   void run_loop();
@@ -162,7 +164,8 @@ class render_session {
   void traced_rows(const Body& body) const;
   // Brings every traced row to `end` samples; false when cancelled (the rows done stay done).
   bool render_wave(std::uint64_t end, accumulation& acc, std::uint64_t& rays);
-  void publish(std::uint64_t gen, std::uint64_t spp, const accumulation& acc, std::uint64_t rays, double seconds);
+  // False when cancelled (a pause, an edit or a stop) while it made the images.
+  bool publish(std::uint64_t gen, std::uint64_t spp, accumulation& acc, std::uint64_t rays, double seconds);
   bool render_preview(std::vector<float>& rgb, std::uint64_t& rays);
   struct preview_size {
     int width, height;

@@ -133,24 +133,25 @@ glm::vec3 model_value(const tracer_scene& ts, int px, int py);
 // The model image's predictions of a render's samples, summed apart from what the samples traced
 // (RGB per pixel; the odd-numbered samples also alone), so that the predictions of samples traced
 // before the model image arrived can be added when it does, in the same order: the estimate
-// comes out the same to the bit, whenever it arrived.
+// comes out the same to the bit, whenever it arrived. Empty vectors keep nothing: the predictions
+// are then made when the image is (predict_pixel), as a render that publishes only at its target does.
 struct prediction_sums {
-  std::vector<double> all, odd;
+  std::vector<float> all, odd;
 };
 
 // Accumulates estimate_sample for samples [first, first + count) of every pixel in rows [y0, y1) into `sums`
-// (double RGB per pixel, added in sample order so that splitting into waves changes nothing),
-// and the odd-numbered samples also into `odd_sums` when given (two independent half estimates,
-// whose difference measures the noise), and by component into `component_sums` when given
+// (single-precision RGB per pixel, added in sample order so that splitting into waves changes
+// nothing), and the odd-numbered samples also into `odd_sums` when given (two independent half
+// estimates, whose difference measures the noise), and by component into `component_sums` when given
 // (component_count RGB triples per pixel). With `predictions`, the sums are of the traced radiance
 // alone and the model image's predictions go there (the estimate: model_value plus the mean of the
 // sums less the predictions). With ts.layers and `layer_sums`, also by layer (ts.layers->count()
 // RGB triples per pixel; the model's predictions, unless apart, taken from model_layers' layers).
 // Stops early (returns false) when `cancel` becomes true.
 bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
-                std::vector<double>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays,
-                std::vector<double>* odd_sums = nullptr, std::vector<double>* component_sums = nullptr,
-                prediction_sums* predictions = nullptr, std::vector<double>* layer_sums = nullptr);
+                std::vector<float>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays,
+                std::vector<float>* odd_sums = nullptr, std::vector<float>* component_sums = nullptr,
+                prediction_sums* predictions = nullptr, std::vector<float>* layer_sums = nullptr);
 
 // One class of a census: a path label and the light (RGB, summed over the samples) that met it.
 struct census_class {
@@ -168,5 +169,12 @@ void census_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, st
 // becomes true.
 bool add_predictions(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
                      prediction_sums& predictions, const std::atomic<bool>& cancel);
+
+// The model image's predictions of samples [first, first + count) of pixel (px, py), each summed
+// in sample order in double precision: all of them and the odd-numbered alone. Zero without ts.model.
+struct pixel_predictions {
+  glm::dvec3 all{0.0}, odd{0.0};
+};
+pixel_predictions predict_pixel(const tracer_scene& ts, int px, int py, std::uint64_t first, std::uint64_t count);
 
 }  // namespace airr

@@ -59,6 +59,10 @@ using image_metadata = std::map<std::string, std::string>;
 struct image_layer {
   std::string name;
   const image_rgb* image = nullptr;
+  // Or, read in place rather than copied out: the `index`-th of `count` RGB triples a pixel of
+  // `interleaved`, which has the image's size (a render's components or path layers).
+  const float* interleaved = nullptr;
+  std::size_t count = 0, index = 0;
 };
 void write_image(const std::string& path, const image_rgb& img, const image_metadata& meta, float exposure = 1.0f,
                  const std::vector<image_layer>& layers = {});

@@ -20,7 +20,6 @@ double pixel_contrast(double aerial, double background);
 // One pixel's aerial-image and background luminance from its components (component_count RGB
 // triples).
 std::array<double, 2> aerial_and_background(const float* components);
-std::array<double, 2> aerial_and_background(const double* components);
 
 struct contrast_summary {
   double aerial_luminance = 0;      // the aerial image's mean luminance inside its outline
@@ -32,9 +31,6 @@ struct contrast_summary {
 
 // From components (component_count RGB triples per pixel, row-major w x h), each value times
 // `scale` (1 for an image, 1 / spp for sums); the outline in pixels (aerial_outline).
-contrast_summary contrast_inside(const std::vector<double>& components, int w, int h,
-                                 const std::array<glm::dvec2, 4>& outline, const std::vector<double>& thresholds,
-                                 double scale = 1);
 contrast_summary contrast_inside(const std::vector<float>& components, int w, int h,
                                  const std::array<glm::dvec2, 4>& outline, const std::vector<double>& thresholds,
                                  double scale = 1);
