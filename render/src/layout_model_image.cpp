@@ -34,9 +34,7 @@ std::shared_ptr<const layout_model_image> compute_layout_model_image(const scene
       continue;
     }
     if (out->image.rgb.empty()) {
-      out->image = std::move(m->image);
-      m->image.width = out->image.width;
-      m->image.height = out->image.height;
+      out->image = std::move(m->image);  // its width and height stay
     } else {
       for (std::size_t k = 0; k < out->image.rgb.size(); ++k) out->image.rgb[k] += m->image.rgb[k];
     }

@@ -17,20 +17,20 @@ double pixel_contrast(double aerial, double background) {
   return aerial > 0 ? std::numeric_limits<double>::infinity() : 1.0;
 }
 
-namespace {
-
-std::array<double, 2> luminances(const float* c) {
+std::array<double, 2> aerial_and_background(const float* components) {
   std::array<double, 2> out{0, 0};
   for (int k = 0; k < component_count; ++k) {
-    const float* v = c + 3 * k;
+    const float* v = components + 3 * k;
     out[k == component_aerial ? 0 : 1] += rec709_luminance(double(v[0]), double(v[1]), double(v[2]));
   }
   return out;
 }
 
+namespace {
+
 // The aerial image's luminance and the background's at pixel i.
 std::array<double, 2> pixel_luminances(const std::vector<float>& components, std::size_t i, double scale) {
-  const auto [aerial, background] = luminances(components.data() + 3 * component_count * i);
+  const auto [aerial, background] = aerial_and_background(components.data() + 3 * component_count * i);
   return {scale * aerial, scale * background};
 }
 
@@ -41,8 +41,11 @@ bool wholly_inside(const std::array<glm::dvec2, 4>& outline, int x, int y) {
          inside_quad(outline, x + 1, y + 1);
 }
 
-contrast_summary summarise(const std::vector<float>& components, int w, int h, const std::array<glm::dvec2, 4>& outline,
-                           const std::vector<double>& thresholds, double scale) {
+}  // namespace
+
+contrast_summary contrast_inside(const std::vector<float>& components, int w, int h,
+                                 const std::array<glm::dvec2, 4>& outline, const std::vector<double>& thresholds,
+                                 double scale) {
   contrast_summary out;
   out.share_above.assign(thresholds.size(), 0.0);
   for (int y = 0; y < h; ++y) {
@@ -62,16 +65,6 @@ contrast_summary summarise(const std::vector<float>& components, int w, int h, c
   for (double& s : out.share_above) s /= out.pixels;
   out.contrast = pixel_contrast(out.aerial_luminance, out.background_luminance);
   return out;
-}
-
-}  // namespace
-
-std::array<double, 2> aerial_and_background(const float* components) { return luminances(components); }
-
-contrast_summary contrast_inside(const std::vector<float>& components, int w, int h,
-                                 const std::array<glm::dvec2, 4>& outline, const std::vector<double>& thresholds,
-                                 double scale) {
-  return summarise(components, w, h, outline, thresholds, scale);
 }
 
 std::vector<float> contrast_map(const std::vector<float>& components, int w, int h,
