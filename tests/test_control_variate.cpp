@@ -156,6 +156,42 @@ TEST(ModelImage, InterpolatedPathsMatchTracedOnes) {
   EXPECT_LT(worst, 1e-3 * peak);
 }
 
+// Without its pixels' paths kept (36 bytes a pixel), a model image traces a pixel's anew when
+// asked: the same numbers, so the same predictions, and the same image.
+TEST(ModelImage, PixelsTracedAnewAreTheKeptOnes) {
+  const scene s = test::chart_scene("rf-ay", 64, 20);
+  embree_device device;
+  tracer_scene ts;
+  build_tracer_scene(ts, device, s);
+  model_image_params kept, dropped;
+  kept.psf_samples = dropped.psf_samples = 20000;
+  dropped.keep_pixels = false;
+  const auto a = compute_model_image(s, ts.retro.front(), ts.texture.get(), kept);
+  const auto b = compute_model_image(s, ts.retro.front(), ts.texture.get(), dropped);
+  ASSERT_TRUE(a && b);
+  EXPECT_EQ(a->pixels.size(), std::size_t(64 * 64));
+  EXPECT_TRUE(b->pixels.empty());
+  EXPECT_TRUE(a->image.rgb == b->image.rgb);
+  int ok = 0;
+  for (int y = 0; y < 64; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      const model_pixel p = model_pixel_at(*a, x, y), q = model_pixel_at(*b, x, y);
+      ASSERT_EQ(p.ok, q.ok);
+      ok += p.ok;
+      EXPECT_TRUE(p.node[0] == q.node[0] && p.node[1] == q.node[1] && p.profile == q.profile &&
+                  p.theta_deg == q.theta_deg && p.mix == q.mix && p.bin == q.bin)
+          << x << ", " << y;
+    }
+  }
+  EXPECT_GT(ok, 64 * 64 / 4);
+  const retro_samples u{{0.3, 0.6}, {0.2, 0.9}, pcg32(7, 1)};
+  const glm::dvec2 jitter(0.25, 0.75);
+  EXPECT_EQ(model_prediction(*a, 32, 32, jitter, u), model_prediction(*b, 32, 32, jitter, u));
+  // Interpolated paths cannot be traced anew one by one.
+  dropped.path_stride = 4;
+  EXPECT_THROW(compute_model_image(s, ts.retro.front(), ts.texture.get(), dropped), input_error);
+}
+
 TEST(ModelImage, CancelledComputationGivesNothing) {
   const scene s = test::chart_scene("rf-an", 64);
   embree_device device;

@@ -87,6 +87,34 @@ TEST(ModelImageRemap, ASmallMoveIsCloseToTheMovedPlacementsModelImage) {
   }
 }
 
+// Moves beyond the strict limits (a drag faster than view images are made): within the lenient
+// ones the moved image is still far closer to the new placement's own model image than the coarse
+// first look, which is what a first look falls back to otherwise.
+TEST(ModelImageRemap, LenientLimitsMoveFartherStillCloserThanTheCoarseLook) {
+  const scene a = test::chart_scene("rf-ay", 128, 0);
+  const auto from = view_of(a);
+  ASSERT_TRUE(from);
+  const model_image_params p = model_image_params::for_view();
+  for (const double step : {1.0, 1.5, 2.0}) {
+    scene b = a;
+    b.sheet().pose.pitch_deg += step;
+    const auto truth = view_of(b);
+    ASSERT_TRUE(truth) << step;
+    EXPECT_TRUE(remap_layout_model_image(*from, b, p).rgb.empty()) << step;  // beyond the strict limits
+    const image_rgb moved = remap_layout_model_image(*from, b, p, nullptr, remap_limits::lenient());
+    ASSERT_EQ(moved.rgb.size(), truth->image.rgb.size()) << step;
+    const double err = test::relative_rms_of_signal(moved.rgb, truth->image.rgb);
+    const double coarse = test::relative_rms_of_signal(
+        model_image_first_look(b, make_sheet_models(b), display_of(b).get()).rgb, truth->image.rgb);
+    std::printf("tilt +%.1f deg: moved %.2f%%, coarse first look %.2f%%\n", step, 100 * err, 100 * coarse);
+    EXPECT_LT(err, 0.03) << step;
+    EXPECT_LT(err, 0.3 * coarse) << step;
+  }
+  scene far = a;
+  far.sheet().pose.pitch_deg += 5;
+  EXPECT_TRUE(remap_layout_model_image(*from, far, p, nullptr, remap_limits::lenient()).rgb.empty());
+}
+
 TEST(ModelImageRemap, RefusesWhatItCannotMove) {
   const scene a = test::chart_scene("rf-ay", 64, 20);
   const auto from = view_of(a);

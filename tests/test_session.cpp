@@ -1,8 +1,12 @@
 // The progressive session: bit-identical results at any thread count, after cancellation, and
 // snapshots that are always whole waves.
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <mutex>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -175,18 +179,13 @@ TEST(Session, TheModelImageAtViewQualityFollowsTheFirstLook) {
 }
 
 // While a part is dragged, an edit's first look is the last view-quality model image moved to the
-// new placement; the opening layout's view image is computed for the first edit, even though the
-// opening layout is traced at once.
+// new placement; the opening layout's view image is made with the session, so even an edit at
+// once is moved from it.
 TEST(Session, ADragsFirstLookIsTheLastModelImageMoved) {
   const scene a = test::chart_scene("rf-ay", 96, 20);
   scene b = a;
   b.sheet().pose.pitch_deg += 0.5;
   render_session session(a, {.threads = 2, .preview_stride = 1, .first_look = true});
-  session.wait_for(0, 1);
-  session.set_paused(true);
-  // Until the first edit, nothing says when the opening layout's view image is done: it is
-  // computed within a second, and the first look of a move costs a few milliseconds.
-  std::this_thread::sleep_for(std::chrono::seconds(1));
   const std::uint64_t gen = session.edit(b);
   const render_snapshot first =
       session.wait_until([&](const render_snapshot& snap) { return snap.generation == gen && snap.model_image; });
@@ -287,4 +286,58 @@ TEST(Session, ModelImageFirstLookComesFirstThenTheTracer) {
   EXPECT_FALSE(after.error.empty());
   ASSERT_TRUE(after.rgb);
   EXPECT_GE(after.spp, 1u);  // traced samples of the last good layout, not a first look (spp 0)
+}
+
+// After an edit, the traced preview (a sample every few pixels) is far worse than the last model
+// image moved, which comes within milliseconds: it is never shown while a first look is coming,
+// and shown when none comes. The opening shows its view-quality model image from the start.
+TEST(Session, NoTracedPreviewWhileAFirstLookIsComing) {
+  scene a = test::uniform_source_scene(20.0, 128);
+  render_session session(a, {.threads = 2, .preview_stride = 4, .first_look = true});
+  const render_snapshot opening = session.snapshot();
+  EXPECT_EQ(opening.generation, 0u);
+  EXPECT_TRUE(opening.model_image);
+  EXPECT_EQ(estimate_name(opening), "model image");
+  session.wait_for(0, 1);
+
+  std::mutex mutex;
+  std::vector<std::pair<std::uint64_t, std::string>> shown;  // every image shown after the opening
+  std::atomic<bool> stop{false};
+  std::thread recorder([&] {
+    const void* last = nullptr;
+    session.wait_until([&](const render_snapshot& snap) {
+      if (snap.generation > 0 && snap.shown && snap.shown.get() != last) {
+        last = snap.shown.get();
+        const std::lock_guard lock(mutex);
+        shown.emplace_back(snap.generation, estimate_name(snap));
+      }
+      return stop.load();
+    });
+  });
+  scene b = a;
+  std::uint64_t gen = 0;
+  for (int k = 0; k < 12; ++k) {
+    b.sheet().pose.pitch_deg += 0.5;
+    gen = session.edit(b);
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  session.wait_for(gen, 1);
+  stop = true;
+  session.stop();
+  recorder.join();
+  ASSERT_FALSE(shown.empty());
+  for (const auto& [generation, what] : shown) EXPECT_NE(what, "tracer (preview)") << "edit " << generation;
+
+  // An observer looking away from the device: no model image, and the preview is what there is.
+  render_session away_session(a, {.threads = 2, .preview_stride = 4, .first_look = true});
+  away_session.set_paused(true);
+  scene away = a;
+  away.observer.placement = observer_placement::look_at;
+  away.observer.position_mm = {0, 0, 450};
+  away.observer.look_at_mm = {0, 0, 900};
+  const std::uint64_t away_gen = away_session.edit(away);
+  const render_snapshot preview =
+      poll_until(away_session, [&](const render_snapshot& s) { return s.generation == away_gen; });
+  EXPECT_EQ(preview.generation, away_gen);
+  EXPECT_EQ(estimate_name(preview), "tracer (preview)");
 }

@@ -78,6 +78,7 @@ void add_bench_command(CLI::App& app) {
     std::uint64_t spp = 16;
     int edits = 20;
     bool noise = false;
+    bool scaling = false;
     noise_bench_options noise_options;
     bool model_error = false;
     bool model_image = false;
@@ -98,6 +99,12 @@ void add_bench_command(CLI::App& app) {
   cmd->add_flag("--noise", opt->noise,
                 "Instead: time and samples per pixel to 2% and 1% relative RMS noise at 512 x 512 for RF-Ay and RF-AN, "
                 "from pairs of renders with independent seeds");
+  cmd->add_flag("--scaling", opt->scaling,
+                "Instead: the render's speed-up with threads (--scaling-threads, default 1 2): per spp and startup, "
+                "with the parallel part of each (Amdahl), from --noise's measurement at each thread count");
+  cmd->add_option("--scaling-threads", opt->noise_options.scaling_threads,
+                  "With --scaling: thread counts, the first the base (default 1 2)")
+      ->check(CLI::Range(1, 1024));
   cmd->add_flag("--model-error", opt->model_error,
                 "Instead: the model image's (and the designer's first look's) relative RMS difference from the tracer "
                 "per preset and sheet tilt 0-45 deg (default 256 x 256, --spp 128)");
@@ -127,7 +134,7 @@ void add_bench_command(CLI::App& app) {
       "With --noise, --model-image, --model-error or --memory: also measure another build's airr executable, side "
       "by side");
   cmd->add_option("--noise-spp", opt->noise_options.spp,
-                  "With --noise: samples per pixel of the measured render pairs (two or more)")
+                  "With --noise or --scaling: samples per pixel of the measured render pairs (two or more)")
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
   cmd->add_option(
@@ -135,7 +142,8 @@ void add_bench_command(CLI::App& app) {
          "Image width and height (default: the scene's; with --noise 512, --model-image 512, --model-error 256)")
       ->check(CLI::Range(8, 4096))
       ->capture_default_str();
-  cmd->add_option("--presets", opt->noise_options.presets, "With --noise: sheet presets")->capture_default_str();
+  cmd->add_option("--presets", opt->noise_options.presets, "With --noise or --scaling: sheet presets")
+      ->capture_default_str();
   cmd->add_option("--threads", opt->noise_options.threads, "With --noise: worker threads (0: all cores)")
       ->check(CLI::Range(0, 1024));
   cmd->callback([opt, cmd] {
@@ -185,9 +193,12 @@ void add_bench_command(CLI::App& app) {
       run_prop_bench(opt->scene_path, opt->prop_triangles, opt->spp);
       return;
     }
-    if (opt->noise) {
+    if (opt->noise || opt->scaling) {
       opt->noise_options.scene_path = std::filesystem::absolute(opt->scene_path).string();
-      run_noise_bench(opt->noise_options);
+      if (opt->scaling)
+        run_scaling_bench(opt->noise_options);
+      else
+        run_noise_bench(opt->noise_options);
       return;
     }
     airr::scene s = load_scene_noting(opt->scene_path);

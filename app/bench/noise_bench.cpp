@@ -1,6 +1,7 @@
 #include "bench/noise_bench.hpp"
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -99,6 +100,52 @@ void run_noise_bench(const noise_bench_options& o) {
         std::printf(" %.0f%%: %.2fx;", 100 * target, theirs / mine);
       }
       std::printf("\n");
+    }
+    std::fflush(stdout);
+  }
+}
+
+namespace {
+
+// Amdahl's parallel part from a speed-up `s` with `r` times the threads.
+double parallel_part(double s, double r) { return r > 1 ? (1 - 1 / s) / (1 - 1 / r) : NAN; }
+
+}  // namespace
+
+void run_scaling_bench(const noise_bench_options& o) {
+  if (o.scaling_threads.size() < 2) throw airr::input_error("--scaling needs two or more thread counts");
+  const build_under_test self = builds_under_test("").front();
+  std::printf(
+      "scaling benchmark: %s at %dx%d, this build's `airr render` at %zu thread counts; per spp and startup from "
+      "the time law of each (seconds = startup + spp x seconds per spp), pairs of seeds as in --noise\n",
+      o.scene_path.c_str(), o.size, o.size, o.scaling_threads.size());
+  for (const std::string& preset : o.presets) {
+    std::printf("%s\n", preset.c_str());
+    std::vector<build_result> results;
+    for (int n : o.scaling_threads) {
+      noise_bench_options one = o;
+      one.threads = n;
+      results.push_back(measure(self, one, preset));
+      const build_result& r = results.back();
+      std::printf("  %d thread%s: %.4f s per spp + %.2f s startup;", n, n == 1 ? "" : "s", r.law.seconds_per_spp,
+                  r.law.startup_s);
+      for (const auto& p : r.points) {
+        std::printf(" %llu spp %.2f%% in %.2f s;", static_cast<unsigned long long>(p.spp), 100 * p.noise, p.seconds);
+      }
+      std::printf("\n");
+    }
+    const build_result& base = results.front();
+    for (std::size_t i = 1; i < results.size(); ++i) {
+      const double r = double(o.scaling_threads[i]) / o.scaling_threads.front();
+      const double per_spp = base.law.seconds_per_spp / results[i].law.seconds_per_spp;
+      const double startup = base.law.startup_s / results[i].law.startup_s;
+      const double one_percent = airr::time_to_noise(base.law, base.points, 0.01).seconds /
+                                 airr::time_to_noise(results[i].law, results[i].points, 0.01).seconds;
+      std::printf(
+          "  %d -> %d threads: per spp %.2fx (parallel part %.1f%%), startup %.2fx (parallel part %.1f%%), time to "
+          "1%% %.2fx\n",
+          o.scaling_threads.front(), o.scaling_threads[i], per_spp, 100 * parallel_part(per_spp, r), startup,
+          100 * parallel_part(startup, r), one_percent);
     }
     std::fflush(stdout);
   }

@@ -15,7 +15,14 @@ struct noise_bench_options {
   std::vector<std::string> presets{"rf-ay", "rf-an"};
   std::string compare;  // another build's airr; empty: this build only
   int threads = 0;
+  std::vector<int> scaling_threads{1, 2};  // run_scaling_bench's thread counts, the first the base
 };
 
 // Prints one block per preset; throws input_error naming what failed (a render, an image).
 void run_noise_bench(const noise_bench_options& o);
+
+// airr bench --scaling: the same measurement of this build at each of o.scaling_threads, and
+// how the time per spp and the startup (scene, model image) speed up from the first count to
+// each other: the speed-up S and the parallel part p of that time by Amdahl's law,
+// S = 1 / ((1 - p) + p / r) for r times the threads.
+void run_scaling_bench(const noise_bench_options& o);

@@ -7,6 +7,7 @@
 
 #include "airr/core/cancel.hpp"
 #include "airr/core/error.hpp"
+#include "airr/render/tracer.hpp"
 
 namespace airr {
 
@@ -54,12 +55,26 @@ glm::vec3 model_prediction(const layout_model_image& m, int px, int py, const gl
   return sum;
 }
 
+glm::vec3 model_prediction(const layout_model_image& m, const std::vector<model_pixel>& pixels,
+                           const glm::dvec2& jitter, const retro_samples& u) {
+  glm::vec3 sum(0.0f);
+  for (std::size_t i = 0; i < m.sheets.size(); ++i) sum += model_prediction(*m.sheets[i], pixels[i], jitter, u);
+  return sum;
+}
+
+std::vector<model_pixel> model_pixels_at(const layout_model_image& m, int px, int py) {
+  std::vector<model_pixel> out;
+  out.reserve(m.sheets.size());
+  for (const auto& sheet : m.sheets) out.push_back(model_pixel_at(*sheet, px, py));
+  return out;
+}
+
 image_rgb remap_layout_model_image(const layout_model_image& from, const scene& s, const model_image_params& p,
-                                   const std::atomic<bool>* cancel) {
+                                   const std::atomic<bool>* cancel, const remap_limits& limits) {
   if (!from.left_out.empty() || !differ_in_placement_alone(from.layout, s)) return {};
   image_rgb out;
   for (const auto& sheet : from.sheets) {
-    image_rgb one = remap_model_image(*sheet, s, p, cancel);
+    image_rgb one = remap_model_image(*sheet, s, p, cancel, limits);
     if (one.rgb.empty()) return {};
     if (out.rgb.empty()) {
       out = std::move(one);
@@ -89,6 +104,23 @@ image_rgb model_image_first_look(const scene& s, const retro_model_list& models,
   cv::Mat dst(h, w, CV_32FC3, out.rgb.data());  // resized straight into the result
   cv::resize(src, dst, dst.size(), 0, 0, cv::INTER_LINEAR);
   return out;
+}
+
+// The tracer's control variate (tracer.hpp).
+model_image_job control_variate_job(const tracer_scene& ts, bool quick) {
+  model_image_params p = model_image_params::for_image(ts.camera.width, ts.camera.height, quick);
+  p.keep_pixels = ts.model_pixels_kept;
+  return {ts.layout, ts.retro, ts.texture, p, ts.use_model_image && !ts.retro.empty()};
+}
+
+std::shared_ptr<const layout_model_image> model_image_job::run(const std::atomic<bool>* cancel) const {
+  if (!wanted) return nullptr;
+  return compute_layout_model_image(layout, retro, texture.get(), params, cancel);
+}
+
+void update_model_image(tracer_scene& ts, const std::atomic<bool>* cancel, bool quick) {
+  ts.model.reset();
+  ts.model = control_variate_job(ts, quick).run(cancel);
 }
 
 }  // namespace airr

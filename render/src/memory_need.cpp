@@ -17,11 +17,11 @@ namespace {
 
 // Peak resident bytes of `airr render` (its session publishing images only at its target) per
 // pixel and beyond the pixels, measured by `airr bench --memory` on the default scene from 2048^2 to
-// 4096^2 (1 spp): 60 bytes a pixel, 156 with the seven components, 686 MB besides. About: sums 24
+// 4096^2 (1 spp): 51 bytes a pixel, 125 with the seven components, 668 MB besides. About: sums 24
 // (the samples and the odd ones, in single precision, turned into the images in place), 84 more by
-// component; the model image 48 (its pixels' paths 36, its image 12); its predictions are made at
-// the end, none kept.
-constexpr double final_bytes_per_pixel = 60, final_bytes_per_pixel_components = 156;
+// component; the model image 12 (its pixels' paths, 36, are held only while it is made: that
+// stage, 48, is the peak without components; the predictions made at the end trace them anew).
+constexpr double final_bytes_per_pixel = 51, final_bytes_per_pixel_components = 125;
 // A session publishing every wave (the designer) keeps the predictions beside the sums (24 bytes a
 // pixel), makes its images beside them (24, and 84 by component) and holds a wave's new images
 // beside the last (48: the estimate, its odd half and the shown mix; 84 more by component).

@@ -59,13 +59,15 @@ model_image_params model_image_params::for_view() {
   p.tail_texels = 64;
   p.path_stride = 4;
   p.keep_correlations = true;
+  p.own_threads = true;
   return p;
 }
 
 void check_model_image_params(const model_image_params& p) {
   if (p.angle_bins < 1 || p.angle_bins > 64 || p.psf_samples < 1000 || p.max_texels < 16 || p.max_texels > 4096 ||
       p.texel_refine < 1 || p.texel_refine > 4 || !(p.core_radius_mm > 0) || p.tail_texels < 4 ||
-      !(p.kernel_radius_mm >= p.core_radius_mm) || p.path_stride < 1 || p.path_stride > 64 || p.threads < 0) {
+      !(p.kernel_radius_mm >= p.core_radius_mm) || p.path_stride < 1 || p.path_stride > 64 || p.threads < 0 ||
+      (!p.keep_pixels && p.path_stride != 1)) {
     throw input_error("model image: parameters out of range");
   }
 }
@@ -179,14 +181,12 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
   const grid_spectrum(&spectra)[2] = m->display->spectra;
   if (cancel_requested(cancel)) return nullptr;
   for (model_pixel& px : m->pixels) assign_bin(m->bins, px);
-  // Each bin adds its share to the pixels it is the lower bin of, or the upper: no pixel is
-  // written by two bins at once, and a bin's correlated grids are dropped as soon as it is done.
-  image_rgb shares[2];
-  for (image_rgb& share : shares) {
-    share.width = w;
-    share.height = h;
-    share.rgb.assign(std::size_t(w) * h * 3, 0.0f);
-  }
+  // Each bin adds its share to the pixels it is the lower bin of, or the upper: the even bins side
+  // by side, then the odd ones, so that no pixel is written by two bins at once (its two bins are
+  // neighbours); a bin's correlated grids are dropped as soon as it is done.
+  m->image.width = w;
+  m->image.height = h;
+  m->image.rgb.assign(std::size_t(w) * h * 3, 0.0f);
   std::shared_ptr<model_correlations> kept;
   if (p.keep_correlations) {
     kept = std::make_shared<model_correlations>();
@@ -196,34 +196,36 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
   }
   std::vector<std::array<double, 3>> bin_seconds(std::size_t(bins), {0.0, 0.0, 0.0});
   const auto t_loop = clock_type::now();
-  detail::parallel_rows(bins, p.threads, [&](int k0, int k1) {
-    for (int k = k0; k < k1 && !cancel_requested(cancel); ++k) {
-      auto t = clock_type::now();
-      const std::array<cv::Mat, 2> kernels =
-          bin_kernels(*m, m->bins[std::size_t(k)], std::size_t(k), p.psf_samples, s.seed, p.threads, cancel);
-      bin_seconds[std::size_t(k)][0] = since(t);
-      if (cancel_requested(cancel)) break;
-      t = clock_type::now();
-      correlated_grid fine = correlate(spectra[model_fine], kernels[model_fine], cancel);
-      if (cancel_requested(cancel)) break;
-      std::array<correlated_grid, 2> correlated = {std::move(fine),
-                                                   correlate(spectra[model_tail], kernels[model_tail], cancel)};
-      if (cancel_requested(cancel)) break;
-      bin_seconds[std::size_t(k)][1] = since(t);
-      t = clock_type::now();
-      for (std::size_t i = 0; i < m->pixels.size(); ++i) {
-        const model_pixel& px = m->pixels[i];
-        if (!px.ok || (px.bin != k && px.bin + 1 != k)) continue;
-        const bool upper = px.bin + 1 == k;
-        const float weight = float((upper ? px.mix : 1 - px.mix) * px.profile);
-        const glm::vec3 v = gather(correlated, px);
-        float* out = shares[upper ? 1 : 0].rgb.data() + 3 * i;
-        for (int c = 0; c < 3; ++c) out[c] = v[c] * weight;
+  for (const int parity : {0, 1}) {
+    detail::parallel_rows((bins + 1 - parity) / 2, row_workers_of(p), [&](int j0, int j1) {
+      for (int k = 2 * j0 + parity; k < 2 * j1 + parity && !cancel_requested(cancel); k += 2) {
+        auto t = clock_type::now();
+        const std::array<cv::Mat, 2> kernels =
+            bin_kernels(*m, m->bins[std::size_t(k)], std::size_t(k), p.psf_samples, s.seed, row_workers_of(p), cancel);
+        bin_seconds[std::size_t(k)][0] = since(t);
+        if (cancel_requested(cancel)) break;
+        t = clock_type::now();
+        correlated_grid fine = correlate(spectra[model_fine], kernels[model_fine], cancel);
+        if (cancel_requested(cancel)) break;
+        std::array<correlated_grid, 2> correlated = {std::move(fine),
+                                                     correlate(spectra[model_tail], kernels[model_tail], cancel)};
+        if (cancel_requested(cancel)) break;
+        bin_seconds[std::size_t(k)][1] = since(t);
+        t = clock_type::now();
+        for (std::size_t i = 0; i < m->pixels.size(); ++i) {
+          const model_pixel& px = m->pixels[i];
+          if (!px.ok || (px.bin != k && px.bin + 1 != k)) continue;
+          const bool upper = px.bin + 1 == k;
+          const float weight = float((upper ? px.mix : 1 - px.mix) * px.profile);
+          const glm::vec3 v = gather(correlated, px);
+          float* out = m->image.rgb.data() + 3 * i;
+          for (int c = 0; c < 3; ++c) out[c] += v[c] * weight;
+        }
+        bin_seconds[std::size_t(k)][2] = since(t);
+        if (kept) kept->bins[std::size_t(k)] = std::move(correlated);
       }
-      bin_seconds[std::size_t(k)][2] = since(t);
-      if (kept) kept->bins[std::size_t(k)] = std::move(correlated);
-    }
-  });
+    });
+  }
   if (cancel_requested(cancel)) return nullptr;
   m->loop_seconds = since(t_loop);
   for (const auto& b : bin_seconds) {
@@ -232,10 +234,20 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
     m->gather_seconds += b[2];
   }
   m->correlations = std::move(kept);
-  m->image = std::move(shares[0]);
-  for (std::size_t i = 0; i < m->image.rgb.size(); ++i) m->image.rgb[i] += shares[1].rgb[i];
+  if (!p.keep_pixels) {
+    m->recipe = std::make_shared<const model_pixel_recipe>(model_pixel_recipe{parts, emission});
+    std::vector<model_pixel>().swap(m->pixels);
+  }
   m->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return m;
+}
+
+model_pixel model_pixel_at(const model_image& m, int px, int py) {
+  if (!m.pixels.empty()) return m.pixels[std::size_t(py) * m.image.width + px];
+  model_pixel out =
+      pixel_path_at(m.recipe->parts, m.recipe->emission.get(), m.display->maps, m.grids[model_tail], px, py);
+  assign_bin(m.bins, out);
+  return out;
 }
 
 }  // namespace airr

@@ -50,16 +50,20 @@ static model_pixel mapped(const pixel_path& path, const grid_mapping (&maps)[2],
   return px;
 }
 
+model_pixel pixel_path_at(const ideal_parts& parts, const emission_profile* emission, const grid_mapping (&maps)[2],
+                          const model_grid& tail, int x, int y) {
+  return mapped(pixel_ideal(parts, emission, x + 0.5, y + 0.5), maps, tail);
+}
+
 std::vector<model_pixel> pixel_paths(const ideal_parts& parts, const emission_profile* emission,
                                      const model_image_params& p, const grid_mapping (&maps)[2], const model_grid& tail,
                                      const std::atomic<bool>* cancel) {
   const int w = parts.cam.width, h = parts.cam.height, n = p.path_stride;
   std::vector<model_pixel> out(std::size_t(w) * h);
   if (n <= 1) {
-    detail::parallel_rows(h, p.threads, [&](int y0, int y1) {
+    detail::parallel_rows(h, row_workers_of(p), [&](int y0, int y1) {
       for (int y = y0; y < y1 && !cancel_requested(cancel); ++y) {
-        for (int x = 0; x < w; ++x)
-          out[std::size_t(y) * w + x] = mapped(pixel_ideal(parts, emission, x + 0.5, y + 0.5), maps, tail);
+        for (int x = 0; x < w; ++x) out[std::size_t(y) * w + x] = pixel_path_at(parts, emission, maps, tail, x, y);
       }
     });
     return cancel_requested(cancel) ? std::vector<model_pixel>{} : out;
@@ -68,7 +72,7 @@ std::vector<model_pixel> pixel_paths(const ideal_parts& parts, const emission_pr
   const int lw = (w - 1 + n - 1) / n + 1, lh = (h - 1 + n - 1) / n + 1;
   auto at = [n](int i, int size) { return std::min(i * n, size - 1); };
   std::vector<pixel_path> lattice(std::size_t(lw) * lh);
-  detail::parallel_rows(lh, p.threads, [&](int j0, int j1) {
+  detail::parallel_rows(lh, row_workers_of(p), [&](int j0, int j1) {
     for (int j = j0; j < j1; ++j) {
       for (int i = 0; i < lw; ++i) {
         lattice[std::size_t(j) * lw + i] = pixel_ideal(parts, emission, at(i, w) + 0.5, at(j, h) + 0.5);
@@ -88,7 +92,7 @@ std::vector<model_pixel> pixel_paths(const ideal_parts& parts, const emission_pr
       }
     }
   }
-  detail::parallel_rows(h, p.threads, [&](int y0, int y1) {
+  detail::parallel_rows(h, row_workers_of(p), [&](int y0, int y1) {
     for (int y = y0; y < y1 && !cancel_requested(cancel); ++y) {
       const int j = std::min(y / n, std::max(0, lh - 2)), ya = at(j, h), yb = at(j + 1, h);
       const double fy = yb > ya ? double(y - ya) / (yb - ya) : 0.0;

@@ -89,7 +89,7 @@ static glm::vec3 spread_bilinear(const image_rgb& grid, const glm::dvec2& base, 
 }
 
 std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std::size_t bin, std::uint64_t samples,
-                                   std::uint64_t seed, int threads, const std::atomic<bool>* cancel) {
+                                   std::uint64_t seed, detail::row_workers threads, const std::atomic<bool>* cancel) {
   std::array<double, 6> rotation;
   pcg32 rotation_rng = sample_rng(bin, 0, seed ^ 0x6b65726eu);
   for (double& r : rotation) r = rotation_rng.next_double();
@@ -143,7 +143,12 @@ namespace airr {
 using namespace model_image_steps;
 
 glm::vec3 model_prediction(const model_image& m, int px, int py, const glm::dvec2& jitter, const retro_samples& u) {
-  const model_pixel& p = m.pixels[std::size_t(py) * m.image.width + px];
+  if (m.pixels.empty()) return model_prediction(m, model_pixel_at(m, px, py), jitter, u);
+  return model_prediction(m, m.pixels[std::size_t(py) * m.image.width + px], jitter, u);
+}
+
+glm::vec3 model_prediction(const model_image& m, const model_pixel& p, const glm::dvec2& jitter,
+                           const retro_samples& u) {
   if (!p.ok) return glm::vec3(0.0f);
   auto one = [&](int k) {
     double weight = 0;

@@ -15,6 +15,7 @@
 #include "airr/layout/layout.hpp"
 #include "airr/models/emission_profile.hpp"
 #include "airr/render/model_image.hpp"
+#include "airr/render/parallel_rows.hpp"
 #include "real_fft.hpp"
 
 namespace airr::model_image_steps {
@@ -103,6 +104,10 @@ struct grid_mapping {
   }
 };
 
+// Pixel (x, y)'s ideal path on the grids, as pixel_paths finds it at path stride 1 (before its bins).
+model_pixel pixel_path_at(const ideal_parts& parts, const emission_profile* emission, const grid_mapping (&maps)[2],
+                          const model_grid& tail, int x, int y);
+
 // Every pixel's ideal path, mapped onto the display's grids as it is traced: where it lands, its
 // angle and profile (not yet its bins); a pixel landing beyond the tail's padded grid is not ok.
 // Empty when cancelled. With a stride, paths are traced on a lattice of pixels and interpolated
@@ -130,7 +135,10 @@ inline glm::vec3 gather(const std::array<correlated_grid, 2>& bin, const model_p
 // tracer's pixels use); blocks run in parallel and are summed in order, so the result does not
 // depend on the number of threads.
 std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std::size_t bin, std::uint64_t samples,
-                                   std::uint64_t seed, int threads, const std::atomic<bool>* cancel);
+                                   std::uint64_t seed, detail::row_workers threads, const std::atomic<bool>* cancel);
+
+// The workers a model image's loops run on.
+inline detail::row_workers row_workers_of(const model_image_params& p) { return {p.threads, p.own_threads}; }
 
 }  // namespace airr::model_image_steps
 
@@ -146,6 +154,11 @@ struct display_grids {
 struct model_correlations {
   model_image_steps::grid_mapping maps[2];
   std::vector<std::array<model_image_steps::correlated_grid, 2>> bins;
+};
+
+struct model_pixel_recipe {
+  model_image_steps::ideal_parts parts;
+  std::shared_ptr<const emission_profile> emission;
 };
 
 }  // namespace airr

@@ -13,6 +13,7 @@
 #include "airr/core/error.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/sheet_models.hpp"
+#include "airr/render/layout_model_image.hpp"
 #include "airr/render/memory_need.hpp"
 #include "airr/render/parallel_rows.hpp"
 
@@ -21,17 +22,34 @@ namespace airr {
 render_session::render_session(const scene& s, session_params p) : params_(p), target_spp_(p.target_spp) {
   scene_.stokes = p.stokes;
   scene_.layers = p.layers;
+  scene_.model_pixels_kept = !p.final_images_only;  // its predictions are made at the target
   build_tracer_scene(scene_, device_, s);
   update_model_image(scene_, params_.build_cancel, params_.quick_model_image);
   snapshot_.width = scene_.camera.width;
   snapshot_.height = scene_.camera.height;
   snapshot_.mm_per_pixel = scene_.camera.mm_per_pixel;
+  // The opening layout's view-quality model image: shown until traced samples join it, and the
+  // first edit's first look (moved), so made before an edit can land.
+  std::shared_ptr<const layout_model_image> opening_view;
+  if (params_.first_look && params_.view_model_image) {
+    try {
+      opening_view = compute_layout_model_image(s, scene_.retro, scene_.texture.get(), model_image_params::for_view(),
+                                                params_.build_cancel);
+    } catch (const std::exception&) {
+      // The tracer's samples serve; its worker reports what is wrong with the layout.
+    }
+    if (opening_view) {
+      publish_preview(0, opening_view->image.rgb,
+                      {scene_.camera.width, scene_.camera.height, scene_.camera.mm_per_pixel},
+                      preview_kind::model_image);
+    }
+  }
+  latest_view_ = std::move(opening_view);
+  latest_view_texture_ = scene_.texture;
   worker_ = std::thread([this] { run(); });
   if (params_.first_look) {
-    // The opening layout is traced at once; its view-quality model image is wanted all the same,
-    // as the first edit's first look (run_first_look).
-    first_look_ = first_look_request{s, {}, 0};
     first_look_worker_ = std::thread([this] { run_first_look(); });
+    view_worker_ = std::thread([this] { run_view_images(); });
   }
 }
 
@@ -46,8 +64,10 @@ void render_session::stop() {
   }
   changed_.notify_all();
   first_look_cancel_ = true;
+  view_cancel_ = true;
   if (worker_.joinable()) worker_.join();
   if (first_look_worker_.joinable()) first_look_worker_.join();
+  if (view_worker_.joinable()) view_worker_.join();
 }
 
 std::uint64_t render_session::edit(const scene& s, retro_model_list models) {

@@ -77,21 +77,6 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   ts.embree->set_transforms(transforms);
 }
 
-model_image_job control_variate_job(const tracer_scene& ts, bool quick) {
-  return {ts.layout, ts.retro, ts.texture, model_image_params::for_image(ts.camera.width, ts.camera.height, quick),
-          ts.use_model_image && !ts.retro.empty()};
-}
-
-std::shared_ptr<const layout_model_image> model_image_job::run(const std::atomic<bool>* cancel) const {
-  if (!wanted) return nullptr;
-  return compute_layout_model_image(layout, retro, texture.get(), params, cancel);
-}
-
-void update_model_image(tracer_scene& ts, const std::atomic<bool>* cancel, bool quick) {
-  ts.model.reset();
-  ts.model = control_variate_job(ts, quick).run(cancel);
-}
-
 // Bilinear lookup; local (x, y) in mm from the source centre, image top towards +v. The bezel
 // around the emitting area is black.
 static glm::vec3 source_radiance(const tracer_scene& ts, const glm::dvec2& local) {
@@ -487,9 +472,10 @@ pixel_predictions predict_pixel(const tracer_scene& ts, int px, int py, std::uin
   pixel_predictions out;
   if (!ts.model) return out;
   const std::array<double, 6> rotation = pixel_sequence_rotation(ts, px, py);
+  const std::vector<model_pixel> pixels = model_pixels_at(*ts.model, px, py);
   for (std::uint64_t i = first; i < first + count; ++i) {
     const sample_numbers n = draw_sample_numbers(ts, px, py, i, rotation);
-    const glm::dvec3 m = model_prediction(*ts.model, px, py, n.jitter, n.first_retro);
+    const glm::dvec3 m = model_prediction(*ts.model, pixels, n.jitter, n.first_retro);
     out.all += m;
     if (i & 1) out.odd += m;
   }

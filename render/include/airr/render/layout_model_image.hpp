@@ -34,13 +34,18 @@ std::shared_ptr<const layout_model_image> compute_layout_model_image(const scene
 // The sum of the sheets' predictions for one tracer sample (see model_prediction).
 glm::vec3 model_prediction(const layout_model_image& m, int px, int py, const glm::dvec2& jitter,
                            const retro_samples& u);
+// The same for a pixel whose sheets' model_pixel_at are `pixels` (model_pixels_at): the pixel's paths
+// found once for all its samples.
+glm::vec3 model_prediction(const layout_model_image& m, const std::vector<model_pixel>& pixels,
+                           const glm::dvec2& jitter, const retro_samples& u);
+std::vector<model_pixel> model_pixels_at(const layout_model_image& m, int px, int py);
 
 // The layout's model image `from` moved to `s`, a placement of the same layout
 // (differ_in_placement_alone), sheet by sheet as remap_model_image does: the designer's first look
 // while a part is dragged. Empty when the scenes differ in more, a sheet was left out of `from`, a
 // sheet cannot be moved (see remap_model_image), or `cancel` was set.
 image_rgb remap_layout_model_image(const layout_model_image& from, const scene& s, const model_image_params& p,
-                                   const std::atomic<bool>* cancel = nullptr);
+                                   const std::atomic<bool>* cancel = nullptr, const remap_limits& limits = {});
 
 // The designer's first look after an edit: the layout's model image at first_look() settings,
 // computed on a camera with up to 4 times fewer pixels a side, but at least 128 (its display grid

@@ -40,9 +40,16 @@ struct model_image_params {
   // have one (1: every pixel); the path from a pixel to the display is smooth (projective).
   int path_stride = 1;
   int threads = 0;  // 0: all cores; 1: the calling thread alone
+  // Run on threads of its own at the caller's priority, not the shared pool's (row_workers): the
+  // designer's model images beside a render whose pool threads are lowered.
+  bool own_threads = false;
   // Keep every bin's correlated grids, so that the image can be moved to other placements of its
   // layout (remap_model_image); they take the display's texels times 12 bytes per bin and channel.
   bool keep_correlations = false;
+  // Keep each pixel's ideal path (model_pixel, 36 bytes a pixel) beside the image. Without them
+  // (path_stride 1 only), model_pixel_at traces a pixel's path anew, to the same numbers: a render
+  // that predicts its samples once per pixel at its end (predict_pixel) saves that memory.
+  bool keep_pixels = true;
 
   // The tracer's control variate for an image of this size. `quick`, or below 256 x 256 pixels:
   // the fine grid is twice the texels and reaches 4 mm (a third of the time; RF-AN's variance per
@@ -102,9 +109,13 @@ struct model_correlations;
 // sheet's model image.
 struct display_grids;
 
+// What model_pixel_at needs to trace a pixel's ideal path anew (kept without keep_pixels).
+struct model_pixel_recipe;
+
 struct model_image {
-  image_rgb image;  // the model image itself
-  std::vector<model_pixel> pixels;
+  image_rgb image;                                   // the model image itself
+  std::vector<model_pixel> pixels;                   // empty without keep_pixels ...
+  std::shared_ptr<const model_pixel_recipe> recipe;  // ... which keeps this instead
   std::vector<model_bin> bins;
   const model_grid* grids = nullptr;                       // the display's two grids, held by `display`
   std::shared_ptr<const display_grids> display;            // shared with the layout's other sheets
@@ -120,6 +131,9 @@ struct model_image {
   double bins_seconds = 0, spectra_seconds = 0, loop_seconds = 0;
   double kernels_seconds = 0, correlate_seconds = 0, gather_seconds = 0;
 };
+
+// Pixel (px, py)'s ideal path on the grids and its bins: kept, or traced anew (keep_pixels).
+model_pixel model_pixel_at(const model_image& m, int px, int py);
 
 // Throws input_error when a parameter is out of range.
 void check_model_image_params(const model_image_params& p);
@@ -148,13 +162,25 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
 // it. Empty when `from` kept no correlations, when cancelled, or when the move took a pixel's angle
 // beyond the bins, or changed a bin's angle by more than 1 deg, its path from the sheet to the
 // display by more than 2% or its pixel's footprint on the display by more than 10%.
+// `limits` are those of a move; farther moves are refused.
+struct remap_limits {
+  double bin_shift_deg = 1.0, distance_change = 0.02, footprint_change = 0.1;
+  // A pixel's angle may lie beyond the bins by this share of their spacing (and as many degrees).
+  double beyond_bins = 0.5;
+  // Three times as far: what a first look may still move when no closer view image is done (a
+  // drag faster than view images are made), rather than fall back to the coarse first look.
+  static remap_limits lenient() { return {3.0, 0.06, 0.3, 1.5}; }
+};
 image_rgb remap_model_image(const model_image& from, const scene& s, const model_image_params& p,
-                            const std::atomic<bool>* cancel = nullptr);
+                            const std::atomic<bool>* cancel = nullptr, const remap_limits& limits = {});
 
 // The model's prediction for one tracer sample of pixel (px, py), from its pixel jitter in
 // [0, 1)^2 and its first retroreflection's samples: the same numbers sent through both of the
 // pixel's bins, mixed with the pixel's weights (closer to the true path, at the pixel's own angle,
 // than either bin alone).
 glm::vec3 model_prediction(const model_image& m, int px, int py, const glm::dvec2& jitter, const retro_samples& u);
+// The same for a pixel whose model_pixel_at is `p`.
+glm::vec3 model_prediction(const model_image& m, const model_pixel& p, const glm::dvec2& jitter,
+                           const retro_samples& u);
 
 }  // namespace airr

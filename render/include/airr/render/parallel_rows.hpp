@@ -16,9 +16,10 @@
 
 namespace airr::detail {
 
+// body(y0, y1) over rows [0, rows) on `threads` threads started for the loop (0: one per core),
+// at the caller's priority.
 template <class Body>
-void parallel_rows(int rows, int threads, const Body& body) {
-#ifdef AIRR_PLAIN_THREADS
+void plain_parallel_rows(int rows, int threads, const Body& body) {
   const int n = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
   std::atomic<int> next{0};
   std::exception_ptr failure;  // the first body's exception, thrown here as TBB would
@@ -35,6 +36,12 @@ void parallel_rows(int rows, int threads, const Body& body) {
   }
   for (auto& w : workers) w.join();
   if (failure) std::rethrow_exception(failure);
+}
+
+template <class Body>
+void parallel_rows(int rows, int threads, const Body& body) {
+#ifdef AIRR_PLAIN_THREADS
+  plain_parallel_rows(rows, threads, body);
 #else
   // Isolated: while it waits, the calling thread runs only this loop's rows, never a long task of
   // other work sharing the pool (the tracer's waves beside the model image's bins).
@@ -51,6 +58,22 @@ void parallel_rows(int rows, int threads, const Body& body) {
     run();
   }
 #endif
+}
+
+// Which workers a loop runs on: the pool's (parallel_rows), or threads of its own
+// (plain_parallel_rows): a loop that must not wait on the pool's threads when a background render
+// has lowered their priority (a starved worker holding rows it stole would hold the loop up).
+struct row_workers {
+  int threads = 0;  // 0: all cores
+  bool own = false;
+};
+
+template <class Body>
+void parallel_rows(int rows, row_workers w, const Body& body) {
+  if (w.own && w.threads != 1)
+    plain_parallel_rows(rows, w.threads, body);
+  else
+    parallel_rows(rows, w.threads, body);
 }
 
 }  // namespace airr::detail

@@ -34,7 +34,8 @@ struct session_params {
   // little, else the coarse model_image_first_look ...
   bool first_look = false;
   // ... and then, unless traced samples came first, the model image at view quality
-  // (model_image_params::for_view).
+  // (model_image_params::for_view). The opening layout's is made by the constructor and shown
+  // first: it is there before the first edit can land.
   bool view_model_image = true;
   // The tracer's control variate is the quick model image (model_image_params::for_image), so
   // that tracing starts sooner after an edit.
@@ -172,9 +173,16 @@ class render_session {
     double mm_per_pixel;
   };
   enum class preview_kind { traced, first_look, model_image };
-  // From the worker or the first-look thread; neither reads the other's scene.
+  // From the worker or the first-look thread; neither reads the other's scene. A traced preview
+  // waits while the generation's first look is coming (held_preview_): it is shown only if none
+  // comes, as the last model image is closer than one sample a block.
   void publish_preview(std::uint64_t gen, std::vector<float> rgb, const preview_size& size, preview_kind kind);
+  // The first-look thread: each edit's first look, moved from latest_view_ when it can be.
   void run_first_look();
+  // The view thread: the latest first-looked edit's view-quality model image. Edits do not cancel
+  // it (only a stop does): while a part is dragged faster than it is made, each one finished is
+  // still the next first looks' base.
+  void run_view_images();
   // With mutex_ held and snapshot_ holding traced samples: shows the best mix of them and the
   // generation's model image.
   void show_best();
@@ -198,9 +206,21 @@ class render_session {
     retro_model_list models;
     std::uint64_t generation;
   };
-  std::optional<first_look_request> first_look_;  // the latest edit's, not yet taken
-  std::uint64_t models_shown_ = 0;                // the latest generation the first-look thread is done with
+  std::optional<first_look_request> first_look_;   // the latest edit's, not yet taken
+  std::optional<first_look_request> view_wanted_;  // the latest first-looked edit's, not yet taken
+  std::uint64_t first_looks_done_ = 0;             // the latest generation the first-look thread is done with
+  std::uint64_t models_shown_ = 0;                 // ... and whose model images are done with
+  // The latest view-quality model image and its display (the opening layout's is made first).
+  std::shared_ptr<const layout_model_image> latest_view_;
+  std::shared_ptr<const image_rgb> latest_view_texture_;
+  struct held_preview {
+    std::uint64_t generation;
+    std::vector<float> rgb;
+    preview_size size;
+  };
+  std::optional<held_preview> held_preview_;  // a traced preview waiting for its first look
   std::atomic<bool> first_look_cancel_{false};
+  std::atomic<bool> view_cancel_{false};
   bool paused_ = false;
   bool stopping_ = false;
   std::uint64_t target_spp_;
@@ -215,6 +235,7 @@ class render_session {
   std::shared_ptr<std::atomic<bool>> model_cancel_ = std::make_shared<std::atomic<bool>>(false);
   std::thread worker_;
   std::thread first_look_worker_;
+  std::thread view_worker_;
 };
 
 // Runs `session` (made with target_spp >= spp) until every pixel has `spp` samples, and returns that

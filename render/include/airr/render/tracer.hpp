@@ -48,6 +48,9 @@ struct tracer_scene {
   // estimator); see update_model_image.
   bool use_model_image = true;
   std::shared_ptr<const layout_model_image> model;
+  // The model image keeps its pixels' ideal paths (model_image_params::keep_pixels); off for a
+  // render that predicts its samples once at its end (predict_pixel), which traces them anew.
+  bool model_pixels_kept = true;
   // Paths carry their polarization when the scene polarizes (scene_polarizes), or always when
   // forced (a test of the polarized tracer on scenes that do not).
   bool polarized = false;
