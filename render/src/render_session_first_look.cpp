@@ -32,10 +32,9 @@ void render_session::run_first_look() {
       const preview_size size{s.observer.width, s.observer.height, make_camera(s).mm_per_pixel};
       image_rgb first;
       if (last_view && last_texture == texture) {
+        // The limits only gate: within the strict ones the lenient remap is the same image.
         const model_image_params view = model_image_params::for_view();
-        first = remap_layout_model_image(*last_view, s, view, &first_look_cancel_);
-        if (first.rgb.empty())
-          first = remap_layout_model_image(*last_view, s, view, &first_look_cancel_, remap_limits::lenient());
+        first = remap_layout_model_image(*last_view, s, view, &first_look_cancel_, remap_limits::lenient());
       }
       if (first.rgb.empty()) first = model_image_first_look(s, request.models, texture.get(), &first_look_cancel_);
       has_model_image = !first.rgb.empty();
