@@ -83,8 +83,10 @@ void run_model_error_bench(const model_error_options& o) {
       const airr::retro_model_list& models = c.models;
       const airr::image_rgb* display = c.display();
       const auto t0 = std::chrono::steady_clock::now();
-      const auto full = airr::compute_layout_model_image(
-          s, models, display, airr::model_image_params::for_image(s.observer.width, s.observer.height));
+      // As the designer is shown it: the display seen directly and in the half mirror added.
+      airr::model_image_params full_params = airr::model_image_params::for_image(s.observer.width, s.observer.height);
+      full_params.display_samples = 4;
+      const auto full = airr::compute_layout_model_image(s, models, display, full_params);
       const double model_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       const auto t1 = std::chrono::steady_clock::now();
       const auto view = airr::compute_layout_model_image(s, models, display, airr::model_image_params::for_view());

@@ -7,9 +7,31 @@
 
 #include "airr/core/cancel.hpp"
 #include "airr/core/error.hpp"
+#include "airr/render/display_parts_image.hpp"
 #include "airr/render/tracer.hpp"
 
 namespace airr {
+
+// The display seen directly and in the half mirror, when p asks for them: empty when it does not,
+// none is in view, or `cancel` was set (then `cancelled`).
+static image_rgb display_parts(const scene& s, const image_rgb& texels, const model_image_params& p,
+                               const std::atomic<bool>* cancel, bool& cancelled) {
+  if (p.display_samples < 1 || texels.rgb.empty()) return {};
+  image_rgb parts = display_parts_image(s, texels, p, cancel);
+  cancelled = parts.rgb.empty();
+  return parts;
+}
+
+static void add_to(image_rgb& image, const image_rgb& parts) {
+  if (parts.rgb.size() != image.rgb.size()) return;
+  for (std::size_t k = 0; k < image.rgb.size(); ++k) image.rgb[k] += parts.rgb[k];
+}
+
+// Whether the display seen directly and in the half mirror stay as they were: only sheets moved
+// (a sheet moved into or out of the line of sight is left to the next view image).
+static bool display_parts_stay(const scene& a, const scene& b) {
+  return a.source == b.source && a.half_mirror == b.half_mirror && a.observer == b.observer;
+}
 
 std::shared_ptr<const layout_model_image> compute_layout_model_image(const scene& s, const retro_model_list& models,
                                                                      const image_rgb* display,
@@ -43,6 +65,17 @@ std::shared_ptr<const layout_model_image> compute_layout_model_image(const scene
     out->sheets.push_back(std::move(m));
   }
   if (out->sheets.empty()) return nullptr;
+  if (p.display_samples > 0) {
+    image_rgb texels = display_parts_texels(s, display, p.display_samples);
+    bool cancelled = false;
+    image_rgb parts = display_parts(s, texels, p, cancel, cancelled);
+    if (cancelled) return nullptr;
+    add_to(out->image, parts);
+    if (p.keep_correlations) {
+      out->display_texels = std::move(texels);
+      out->display_parts = std::move(parts);
+    }
+  }
   out->layout = s;
   out->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
@@ -81,6 +114,14 @@ image_rgb remap_layout_model_image(const layout_model_image& from, const scene& 
     } else {
       for (std::size_t k = 0; k < out.rgb.size(); ++k) out.rgb[k] += one.rgb[k];
     }
+  }
+  if (p.display_samples > 0 && display_parts_stay(from.layout, s)) {
+    add_to(out, from.display_parts);
+  } else {
+    bool cancelled = false;
+    const image_rgb parts = display_parts(s, from.display_texels, p, cancel, cancelled);
+    if (cancelled) return {};
+    add_to(out, parts);
   }
   return out;
 }

@@ -49,6 +49,7 @@ model_image_params model_image_params::first_look() {
   p.tail_texels = 32;
   p.path_stride = 8;
   p.threads = 1;
+  p.display_samples = 4;
   return p;
 }
 
@@ -60,6 +61,7 @@ model_image_params model_image_params::for_view() {
   p.path_stride = 4;
   p.keep_correlations = true;
   p.own_threads = true;
+  p.display_samples = 4;
   return p;
 }
 
@@ -67,7 +69,7 @@ void check_model_image_params(const model_image_params& p) {
   if (p.angle_bins < 1 || p.angle_bins > 64 || p.psf_samples < 1000 || p.max_texels < 16 || p.max_texels > 4096 ||
       p.texel_refine < 1 || p.texel_refine > 4 || !(p.core_radius_mm > 0) || p.tail_texels < 4 ||
       !(p.kernel_radius_mm >= p.core_radius_mm) || p.path_stride < 1 || p.path_stride > 64 || p.threads < 0 ||
-      (!p.keep_pixels && p.path_stride != 1)) {
+      (!p.keep_pixels && p.path_stride != 1) || p.display_samples < 0 || p.display_samples > 16) {
     throw input_error("model image: parameters out of range");
   }
 }

@@ -12,6 +12,7 @@
 #include "airr/formats/prop_mesh.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/path_polarization.hpp"
+#include "display_radiance.hpp"
 #include "tracer_path.hpp"
 #include "tracer_surroundings.hpp"
 
@@ -77,27 +78,8 @@ void build_tracer_scene(tracer_scene& ts, const embree_device& device, const sce
   ts.embree->set_transforms(transforms);
 }
 
-// Bilinear lookup; local (x, y) in mm from the source centre, image top towards +v. The bezel
-// around the emitting area is black.
 static glm::vec3 source_radiance(const tracer_scene& ts, const glm::dvec2& local) {
-  const part_frame& f = ts.source_area;
-  if (!inside_part(f, local)) return glm::vec3(0.0f);
-  const float intensity = float(white_radiance(ts.layout.source));
-  if (!ts.texture) return glm::vec3(intensity);
-  const image_rgb& img = *ts.texture;
-  const double s = (local.x / f.width + 0.5) * img.width - 0.5;
-  const double t = (0.5 - local.y / f.height) * img.height - 0.5;
-  const int x0 = int(std::floor(s)), y0 = int(std::floor(t));
-  const float fx = float(s - x0), fy = float(t - y0);
-  auto texel = [&](int x, int y) {
-    x = std::clamp(x, 0, img.width - 1);
-    y = std::clamp(y, 0, img.height - 1);
-    const float* p = img.at(x, y);
-    return glm::vec3(p[0], p[1], p[2]);
-  };
-  const glm::vec3 top = glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx);
-  const glm::vec3 bottom = glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx);
-  return glm::mix(top, bottom, fy) * intensity;
+  return display_radiance(ts.source_area, ts.texture.get(), float(white_radiance(ts.layout.source)), local);
 }
 
 using tracer_path::component_of;

@@ -20,6 +20,10 @@ struct layout_model_image {
   std::vector<std::shared_ptr<const model_image>> sheets;
   // The sheets without one and why ("retroreflectors[i]: ..."); their light is left to the tracer.
   std::vector<std::string> left_out;
+  // With model_image_params::display_samples, `image` holds the display seen directly and in the
+  // half mirror too; with keep_correlations, they and the display's texels they were made from
+  // (display_parts_texels) are kept for remap_layout_model_image.
+  image_rgb display_texels, display_parts;
   scene layout;  // the scene it was computed for
   double seconds = 0;
 };
@@ -43,7 +47,9 @@ std::vector<model_pixel> model_pixels_at(const layout_model_image& m, int px, in
 // The layout's model image `from` moved to `s`, a placement of the same layout
 // (differ_in_placement_alone), sheet by sheet as remap_model_image does: the designer's first look
 // while a part is dragged. Empty when the scenes differ in more, a sheet was left out of `from`, a
-// sheet cannot be moved (see remap_model_image), or `cancel` was set.
+// sheet cannot be moved (see remap_model_image), or `cancel` was set. With p.display_samples, the
+// display seen directly and in the half mirror are `from`'s when only sheets moved (one moved into
+// the line of sight shows in the next view image), else made anew for `s` from `from`'s texels.
 image_rgb remap_layout_model_image(const layout_model_image& from, const scene& s, const model_image_params& p,
                                    const std::atomic<bool>* cancel = nullptr, const remap_limits& limits = {});
 

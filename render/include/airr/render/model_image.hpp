@@ -50,6 +50,10 @@ struct model_image_params {
   // (path_stride 1 only), model_pixel_at traces a pixel's path anew, to the same numbers: a render
   // that predicts its samples once per pixel at its end (predict_pixel) saves that memory.
   bool keep_pixels = true;
+  // Add the display seen directly and in the half mirror (display_parts_image.hpp), from this many
+  // points per pixel side: images the designer is shown. 0: the aerial image alone, as a control
+  // variate needs (its predictions are of the aerial image).
+  int display_samples = 0;
 
   // The tracer's control variate for an image of this size. `quick`, or below 256 x 256 pixels:
   // the fine grid is twice the texels and reaches 4 mm (a third of the time; RF-AN's variance per

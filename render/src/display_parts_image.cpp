@@ -1,0 +1,244 @@
+// The display seen directly and in the half mirror: each pixel's points followed through the
+// planar parts as the tracer's paths go (tracer.cpp), without its randomness.
+#include "airr/render/display_parts_image.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "airr/core/cancel.hpp"
+#include "airr/core/geometry.hpp"
+#include "airr/layout/layout.hpp"
+#include "display_radiance.hpp"
+#include "model_image_steps.hpp"
+
+namespace airr {
+namespace {
+
+struct planar_parts {
+  part_frame panel, area, hm;  // the display's panel (bezel included) and emitting area
+  std::vector<part_frame> sheets;
+  double reflectance = 0, transmittance = 0;
+  pinhole_camera cam;
+  std::shared_ptr<const emission_profile> emission;
+
+  explicit planar_parts(const scene& s)
+      : panel(source_panel_frame(s)), area(source_frame(s)), hm(half_mirror_frame(s)), cam(make_camera(s)) {
+    half_mirror_params light = s.half_mirror;
+    derive_half_mirror_light(light);
+    reflectance = light.reflectance;
+    transmittance = light.transmittance;
+    for (std::size_t i = 0; i < s.retroreflectors.size(); ++i) sheets.push_back(retroreflector_frame(s, i));
+    emission = scene_emission_profile(s);
+  }
+};
+
+// Where a ray reaches the display's front: seen directly (reflections 0) or in the half mirror (1).
+struct landing {
+  glm::dvec2 local{0};  // on the emitting area's plane, mm
+  glm::dvec3 dir{0};
+  double weight = 0;
+  int reflections = 0;
+};
+
+enum part_met { met_none, met_panel, met_half_mirror, met_sheet };
+
+part_met nearest_part(const planar_parts& d, const glm::dvec3& o, const glm::dvec3& dir, bool leaving_hm,
+                      glm::dvec3& hit) {
+  double best = std::numeric_limits<double>::infinity();
+  part_met met = met_none;
+  auto consider = [&](const part_frame& f, part_met kind) {
+    const auto p = hit_part(f, o, dir);
+    if (!p) return;
+    const double t = glm::dot(*p - o, dir);
+    if (t < best) {
+      best = t;
+      met = kind;
+      hit = *p;
+    }
+  };
+  consider(d.panel, met_panel);
+  if (!leaving_hm) consider(d.hm, met_half_mirror);
+  for (const part_frame& f : d.sheets) consider(f, met_sheet);
+  return met;
+}
+
+// The ray's landings (at most two): the half mirror passes it (its transmittance) and reflects it
+// once (its reflectance; a second reflection is the rest's); a sheet or the display's back stops it.
+int follow(const planar_parts& d, const glm::dvec3& origin, const glm::dvec3& direction, landing (&out)[2]) {
+  struct branch {
+    glm::dvec3 o, dir;
+    double weight;
+    int reflections;
+    bool leaving_hm;
+  };
+  branch pending[2];
+  int n_pending = 0, n_out = 0;
+  pending[n_pending++] = {origin, direction, 1.0, 0, false};
+  while (n_pending > 0) {
+    branch b = pending[--n_pending];
+    for (int step = 0; step < 3; ++step) {
+      glm::dvec3 hit;
+      const part_met met = nearest_part(d, b.o, b.dir, b.leaving_hm, hit);
+      if (met == met_panel) {
+        if (glm::dot(b.dir, d.panel.n) < 0) out[n_out++] = {part_local(d.area, hit), b.dir, b.weight, b.reflections};
+        break;
+      }
+      if (met != met_half_mirror) break;
+      if (b.reflections == 0 && d.reflectance > 0)
+        pending[n_pending++] = {hit, reflect(b.dir, d.hm.n), b.weight * d.reflectance, 1, true};
+      b = {hit, b.dir, b.weight * d.transmittance, b.reflections, true};
+      if (!(b.weight > 0)) break;
+    }
+  }
+  return n_out;
+}
+
+// The landings of the pinhole ray through pixel point (x, y).
+struct corner {
+  landing l[2];
+  int n = 0;
+};
+corner corner_at(const planar_parts& d, double x, double y) {
+  corner c;
+  c.n = follow(d, d.cam.position, camera_direction(d.cam, x, y), c.l);
+  return c;
+}
+
+// How far apart (mm) two points' landings of the same kind lie; 0 with none in common.
+double apart(const corner& a, const corner& b) {
+  double most = 0;
+  for (int i = 0; i < a.n; ++i) {
+    for (int j = 0; j < b.n; ++j) {
+      if (a.l[i].reflections == b.l[j].reflections) most = std::max(most, glm::length(a.l[i].local - b.l[j].local));
+    }
+  }
+  return most;
+}
+
+// A lower bound on the shortest side (mm) of a pixel's footprint on the display, directly or in the
+// half mirror: the pixel's angle times the display's nearest distance from the observer or from its
+// mirror image (a slanted view only draws the footprint out).
+double shortest_footprint(const planar_parts& d) {
+  const double pixel_angle = 2 * d.cam.tan_half_fov / d.cam.height;
+  const glm::dvec3 mirrored = d.cam.position - 2 * glm::dot(d.cam.position - d.hm.center, d.hm.n) * d.hm.n;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const glm::dvec3& eye : {d.cam.position, mirrored}) {
+    const glm::dvec2 l = part_local(d.area, eye);
+    const glm::dvec2 on(std::clamp(l.x, -0.5 * d.area.width, 0.5 * d.area.width),
+                        std::clamp(l.y, -0.5 * d.area.height, 0.5 * d.area.height));
+    nearest = std::min(nearest, glm::length(part_point(d.area, on.x, on.y) - eye));
+  }
+  return nearest * pixel_angle;
+}
+
+// Whether two points see the display alike: the same landings, each on the emitting area or off it.
+bool alike(const planar_parts& d, const corner& a, const corner& b) {
+  if (a.n != b.n) return false;
+  for (int i = 0; i < a.n; ++i) {
+    if (a.l[i].reflections != b.l[i].reflections || a.l[i].weight != b.l[i].weight ||
+        inside_part(d.area, a.l[i].local) != inside_part(d.area, b.l[i].local)) {
+      return false;
+    }
+  }
+  return true;
+}
+
+// The points a pixel is sampled at along x and y: at least `k` each, and about one per texel its
+// footprint spans (a footprint drawn out by a grazing view needs more along its length), at most
+// 256 in all; 16 each where an edge (of the display, its bezel, the half mirror, a sheet in the
+// way) crosses the pixel, whose share of it is the pixel's value there.
+glm::ivec2 points_per_pixel(const planar_parts& d, const corner (&c)[4], double texel_mm, int k) {
+  const double along_x = std::max(apart(c[0], c[1]), apart(c[2], c[3])) / texel_mm;
+  const double along_y = std::max(apart(c[0], c[2]), apart(c[1], c[3])) / texel_mm;
+  const bool edge = !alike(d, c[0], c[1]) || !alike(d, c[0], c[2]) || !alike(d, c[0], c[3]);
+  const int least = edge ? std::max(k, 16) : k;
+  glm::ivec2 n(std::clamp(int(std::ceil(along_x)), least, 64), std::clamp(int(std::ceil(along_y)), least, 64));
+  while (n.x * n.y > 256) (n.x > n.y ? n.x : n.y) /= 2;
+  return glm::max(n, glm::ivec2(1));
+}
+
+// A point on the lens for each of the pixel's n points: a rank-1 lattice (stratified in both
+// directions) visited in a scrambled order, so that the pixel's rows do not share a lens sector.
+// One point alone looks through the lens's centre.
+glm::dvec2 lens_point(int s, int n) {
+  if (n == 1) return glm::dvec2(0.0);
+  int g = int(0.618 * n) | 1;
+  while (std::gcd(g, n) != 1) ++g;
+  const int t = int((std::int64_t(s) * g) % n);
+  const double u = (t + 0.5) / n, v = (t + 0.5) * 0.6180339887498949;
+  return {u, v - std::floor(v)};
+}
+
+}  // namespace
+
+image_rgb display_parts_texels(const scene& s, const image_rgb* display, int samples_per_side) {
+  if (scene_polarizes(s) || samples_per_side < 1) return {};
+  const planar_parts d(s);
+  const double footprint = shortest_footprint(d);
+  if (!(footprint > 0)) return {};
+  const double longer_mm = std::max(d.area.width, d.area.height);
+  const int longest = display ? std::max(display->width, display->height) : 2;
+  const double wanted = std::ceil(longer_mm / (footprint / samples_per_side));
+  const int texels = int(std::clamp(wanted, 2.0, double(std::min(longest, 4096))));
+  const cv::Mat m = model_image_steps::display_texels(s, display, texels);
+  image_rgb out;
+  out.width = m.cols;
+  out.height = m.rows;
+  out.rgb.assign(m.ptr<float>(0), m.ptr<float>(0) + std::size_t(m.cols) * m.rows * 3);
+  return out;
+}
+
+image_rgb display_parts_image(const scene& s, const image_rgb& texels, const model_image_params& p,
+                              const std::atomic<bool>* cancel) {
+  check_model_image_params(p);
+  if (texels.rgb.empty() || p.display_samples < 1) return {};
+  const planar_parts d(s);
+  const int w = d.cam.width, h = d.cam.height, k = p.display_samples;
+  image_rgb out;
+  out.width = w;
+  out.height = h;
+  out.rgb.assign(std::size_t(w) * h * 3, 0.0f);
+  const double texel_mm = std::min(d.area.width / texels.width, d.area.height / texels.height);
+  detail::parallel_rows(h, model_image_steps::row_workers_of(p), [&](int y0, int y1) {
+    std::vector<corner> top(std::size_t(w) + 1), bottom(std::size_t(w) + 1);
+    for (int y = y0; y < y1 && !cancel_requested(cancel); ++y) {
+      for (int x = 0; x <= w; ++x) {
+        if (y == y0) top[std::size_t(x)] = corner_at(d, x, y);
+        bottom[std::size_t(x)] = corner_at(d, x, y + 1);
+      }
+      for (int x = 0; x < w; ++x) {
+        const corner c[4] = {top[std::size_t(x)], top[std::size_t(x) + 1], bottom[std::size_t(x)],
+                             bottom[std::size_t(x) + 1]};
+        // A pixel whose corners see no display is taken to see none (a display smaller than a pixel,
+        // or a corner of it between pixel corners, is missed).
+        if (c[0].n == 0 && c[1].n == 0 && c[2].n == 0 && c[3].n == 0) continue;
+        const glm::ivec2 n = points_per_pixel(d, c, texel_mm, k);
+        glm::dvec3 sum(0.0);
+        for (int j = 0; j < n.y; ++j) {
+          for (int i = 0; i < n.x; ++i) {
+            const camera_ray r =
+                make_camera_ray(d.cam, x + (i + 0.5) / n.x, y + (j + 0.5) / n.y, lens_point(j * n.x + i, n.x * n.y));
+            landing l[2];
+            const int m = follow(d, r.origin, r.dir, l);
+            for (int a = 0; a < m; ++a) {
+              const double profile = emission_at(d.emission.get(), d.area, l[a].dir);
+              sum += glm::dvec3(display_radiance(d.area, &texels, 1.0f, l[a].local)) * (l[a].weight * profile);
+            }
+          }
+        }
+        float* o = out.rgb.data() + 3 * (std::size_t(y) * w + x);
+        for (int c3 = 0; c3 < 3; ++c3) o[c3] = float(sum[c3] / double(n.x * n.y));
+      }
+      std::swap(top, bottom);
+    }
+  });
+  if (cancel_requested(cancel)) return {};
+  return out;
+}
+
+}  // namespace airr
