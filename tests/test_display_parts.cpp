@@ -45,8 +45,8 @@ void expect_parts_match_tracer(const scene& s, std::uint64_t spp, bool rms, cons
   const std::shared_ptr<const image_rgb> texture = path.empty() ? nullptr : cached_image_pixels(path);
   model_image_params p;
   p.display_samples = 4;
-  const image_rgb texels = display_parts_texels(s, texture.get(), p.display_samples);
-  ASSERT_FALSE(texels.rgb.empty()) << what;
+  const std::vector<image_rgb> texels = display_parts_texels(s, texture.get(), p.display_samples);
+  ASSERT_FALSE(texels.empty()) << what;
   const image_rgb model = display_parts_image(s, texels, p);
   ASSERT_EQ(model.width, s.observer.width) << what;
 
@@ -94,7 +94,7 @@ TEST(DisplayParts, FollowTheHalfMirrorsTransmittance) {
                        {{"observer.width", "48"}, {"observer.height", "48"}, {"observer.fov_deg", "50"}});
   model_image_params p;
   p.display_samples = 2;
-  const image_rgb texels = display_parts_texels(s, nullptr, p.display_samples);
+  const std::vector<image_rgb> texels = display_parts_texels(s, nullptr, p.display_samples);
   auto mean_at = [&](double transmittance) {
     s.half_mirror.transmittance = transmittance;
     return mean_of(display_parts_image(s, texels, p).rgb);

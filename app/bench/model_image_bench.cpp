@@ -89,7 +89,8 @@ double display_parts_ms(const bench_case& c, const airr::model_image_params& vie
   double mean = 0;
   for (int r = 0; r < runs; ++r) {
     const auto t0 = std::chrono::steady_clock::now();
-    const airr::image_rgb texels = airr::display_parts_texels(c.s, c.display(), view_params.display_samples);
+    const std::vector<airr::image_rgb> texels =
+        airr::display_parts_texels(c.s, c.display(), view_params.display_samples);
     const airr::image_rgb parts = airr::display_parts_image(c.s, texels, view_params);
     total.push_back(1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     mean = 0;

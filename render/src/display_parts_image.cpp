@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
 
 #include "airr/core/cancel.hpp"
 #include "airr/core/geometry.hpp"
@@ -102,20 +103,35 @@ int follow(const planar_parts& d, const glm::dvec3& origin, const glm::dvec3& di
 struct corner {
   landing l[2];
   int n = 0;
+  // Where the ray meets the display's plane, directly and reflected in the half mirror's plane
+  // (mm, both unbounded; `on` says which exist): the footprint's size even where a pixel's corners
+  // miss the display.
+  glm::dvec2 plane[2];
+  bool on[2] = {false, false};
 };
 corner corner_at(const planar_parts& d, double x, double y) {
   corner c;
-  c.n = follow(d, d.cam.position, camera_direction(d.cam, x, y), c.l);
+  const glm::dvec3 dir = camera_direction(d.cam, x, y);
+  c.n = follow(d, d.cam.position, dir, c.l);
+  if (const auto p = hit_part(d.area, d.cam.position, dir, false)) {
+    c.plane[0] = part_local(d.area, *p);
+    c.on[0] = true;
+  }
+  if (const auto m = hit_part(d.hm, d.cam.position, dir, false)) {
+    if (const auto p = hit_part(d.area, *m, reflect(dir, d.hm.n), false)) {
+      c.plane[1] = part_local(d.area, *p);
+      c.on[1] = true;
+    }
+  }
   return c;
 }
 
-// How far apart (mm) two points' landings of the same kind lie; 0 with none in common.
+// How far apart (mm) two points meet the display's plane, the larger of the direct and the
+// mirrored way; 0 when neither way both do.
 double apart(const corner& a, const corner& b) {
   double most = 0;
-  for (int i = 0; i < a.n; ++i) {
-    for (int j = 0; j < b.n; ++j) {
-      if (a.l[i].reflections == b.l[j].reflections) most = std::max(most, glm::length(a.l[i].local - b.l[j].local));
-    }
+  for (int i = 0; i < 2; ++i) {
+    if (a.on[i] && b.on[i]) most = std::max(most, glm::length(a.plane[i] - b.plane[i]));
   }
   return most;
 }
@@ -149,17 +165,28 @@ bool alike(const planar_parts& d, const corner& a, const corner& b) {
 }
 
 // The points a pixel is sampled at along x and y: at least `k` each, and about one per texel its
-// footprint spans (a footprint drawn out by a grazing view needs more along its length), at most
-// 256 in all; 16 each where an edge (of the display, its bezel, the half mirror, a sheet in the
-// way) crosses the pixel, whose share of it is the pixel's value there.
+// footprint spans (a fine pattern the pixel holds a few periods of leaves a moire that only points
+// as dense as its texels catch; a footprint drawn out by a grazing view needs more along its
+// length), at most 64 k^2 in all; 16 each where an edge (of the display, its bezel, the half
+// mirror, a sheet in the way) crosses the pixel, whose share of it is the pixel's value there.
 glm::ivec2 points_per_pixel(const planar_parts& d, const corner (&c)[4], double texel_mm, int k) {
   const double along_x = std::max(apart(c[0], c[1]), apart(c[2], c[3])) / texel_mm;
   const double along_y = std::max(apart(c[0], c[2]), apart(c[1], c[3])) / texel_mm;
   const bool edge = !alike(d, c[0], c[1]) || !alike(d, c[0], c[2]) || !alike(d, c[0], c[3]);
   const int least = edge ? std::max(k, 16) : k;
   glm::ivec2 n(std::clamp(int(std::ceil(along_x)), least, 64), std::clamp(int(std::ceil(along_y)), least, 64));
-  while (n.x * n.y > 256) (n.x > n.y ? n.x : n.y) /= 2;
+  while (n.x * n.y > 64 * k * k) (n.x > n.y ? n.x : n.y) /= 2;
   return glm::max(n, glm::ivec2(1));
+}
+
+// The texels' level whose spacing is nearest the pixel's points' (level 0 the finest, each next
+// one half as fine): points farther apart than the texels would alias a fine pattern.
+std::size_t level_for(const corner (&c)[4], const glm::ivec2& n, double texel_mm, std::size_t levels) {
+  const double along_x = std::max(apart(c[0], c[1]), apart(c[2], c[3])) / n.x;
+  const double along_y = std::max(apart(c[0], c[2]), apart(c[1], c[3])) / n.y;
+  const double spacing = std::max(along_x, along_y) / texel_mm;
+  if (!(spacing > 1)) return 0;
+  return std::min(levels - 1, std::size_t(std::lround(std::log2(spacing))));
 }
 
 // A point on the lens for each of the pixel's n points: a rank-1 lattice (stratified in both
@@ -176,34 +203,42 @@ glm::dvec2 lens_point(int s, int n) {
 
 }  // namespace
 
-image_rgb display_parts_texels(const scene& s, const image_rgb* display, int samples_per_side) {
+std::vector<image_rgb> display_parts_texels(const scene& s, const image_rgb* display, int samples_per_side) {
   if (scene_polarizes(s) || samples_per_side < 1) return {};
   const planar_parts d(s);
   const double footprint = shortest_footprint(d);
   if (!(footprint > 0)) return {};
   const double longer_mm = std::max(d.area.width, d.area.height);
   const int longest = display ? std::max(display->width, display->height) : 2;
-  const double wanted = std::ceil(longer_mm / (footprint / samples_per_side));
+  const double wanted = std::ceil(longer_mm / (footprint / (8 * samples_per_side)));
   const int texels = int(std::clamp(wanted, 2.0, double(std::min(longest, 4096))));
-  const cv::Mat m = model_image_steps::display_texels(s, display, texels);
-  image_rgb out;
-  out.width = m.cols;
-  out.height = m.rows;
-  out.rgb.assign(m.ptr<float>(0), m.ptr<float>(0) + std::size_t(m.cols) * m.rows * 3);
-  return out;
+  cv::Mat m = model_image_steps::display_texels(s, display, texels);
+  std::vector<image_rgb> levels;
+  for (;;) {
+    image_rgb level;
+    level.width = m.cols;
+    level.height = m.rows;
+    level.rgb.assign(m.ptr<float>(0), m.ptr<float>(0) + std::size_t(m.cols) * m.rows * 3);
+    levels.push_back(std::move(level));
+    if (std::max(m.cols, m.rows) <= 2) break;
+    cv::Mat half;
+    cv::resize(m, half, cv::Size(std::max(1, m.cols / 2), std::max(1, m.rows / 2)), 0, 0, cv::INTER_AREA);
+    m = half;
+  }
+  return levels;
 }
 
-image_rgb display_parts_image(const scene& s, const image_rgb& texels, const model_image_params& p,
+image_rgb display_parts_image(const scene& s, const std::vector<image_rgb>& texels, const model_image_params& p,
                               const std::atomic<bool>* cancel) {
   check_model_image_params(p);
-  if (texels.rgb.empty() || p.display_samples < 1) return {};
+  if (texels.empty() || p.display_samples < 1) return {};
   const planar_parts d(s);
   const int w = d.cam.width, h = d.cam.height, k = p.display_samples;
   image_rgb out;
   out.width = w;
   out.height = h;
   out.rgb.assign(std::size_t(w) * h * 3, 0.0f);
-  const double texel_mm = std::min(d.area.width / texels.width, d.area.height / texels.height);
+  const double texel_mm = std::min(d.area.width / texels[0].width, d.area.height / texels[0].height);
   detail::parallel_rows(h, model_image_steps::row_workers_of(p), [&](int y0, int y1) {
     std::vector<corner> top(std::size_t(w) + 1), bottom(std::size_t(w) + 1);
     for (int y = y0; y < y1 && !cancel_requested(cancel); ++y) {
@@ -218,6 +253,7 @@ image_rgb display_parts_image(const scene& s, const image_rgb& texels, const mod
         // or a corner of it between pixel corners, is missed).
         if (c[0].n == 0 && c[1].n == 0 && c[2].n == 0 && c[3].n == 0) continue;
         const glm::ivec2 n = points_per_pixel(d, c, texel_mm, k);
+        const image_rgb& level = texels[level_for(c, n, texel_mm, texels.size())];
         glm::dvec3 sum(0.0);
         for (int j = 0; j < n.y; ++j) {
           for (int i = 0; i < n.x; ++i) {
@@ -227,7 +263,7 @@ image_rgb display_parts_image(const scene& s, const image_rgb& texels, const mod
             const int m = follow(d, r.origin, r.dir, l);
             for (int a = 0; a < m; ++a) {
               const double profile = emission_at(d.emission.get(), d.area, l[a].dir);
-              sum += glm::dvec3(display_radiance(d.area, &texels, 1.0f, l[a].local)) * (l[a].weight * profile);
+              sum += glm::dvec3(display_radiance(d.area, &level, 1.0f, l[a].local)) * (l[a].weight * profile);
             }
           }
         }

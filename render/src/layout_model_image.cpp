@@ -14,9 +14,9 @@ namespace airr {
 
 // The display seen directly and in the half mirror, when p asks for them: empty when it does not,
 // none is in view, or `cancel` was set (then `cancelled`).
-static image_rgb display_parts(const scene& s, const image_rgb& texels, const model_image_params& p,
+static image_rgb display_parts(const scene& s, const std::vector<image_rgb>& texels, const model_image_params& p,
                                const std::atomic<bool>* cancel, bool& cancelled) {
-  if (p.display_samples < 1 || texels.rgb.empty()) return {};
+  if (p.display_samples < 1 || texels.empty()) return {};
   image_rgb parts = display_parts_image(s, texels, p, cancel);
   cancelled = parts.rgb.empty();
   return parts;
@@ -66,7 +66,7 @@ std::shared_ptr<const layout_model_image> compute_layout_model_image(const scene
   }
   if (out->sheets.empty()) return nullptr;
   if (p.display_samples > 0) {
-    image_rgb texels = display_parts_texels(s, display, p.display_samples);
+    std::vector<image_rgb> texels = display_parts_texels(s, display, p.display_samples);
     bool cancelled = false;
     image_rgb parts = display_parts(s, texels, p, cancel, cancelled);
     if (cancelled) return nullptr;

@@ -23,7 +23,8 @@ struct layout_model_image {
   // With model_image_params::display_samples, `image` holds the display seen directly and in the
   // half mirror too; with keep_correlations, they and the display's texels they were made from
   // (display_parts_texels) are kept for remap_layout_model_image.
-  image_rgb display_texels, display_parts;
+  std::vector<image_rgb> display_texels;
+  image_rgb display_parts;
   scene layout;  // the scene it was computed for
   double seconds = 0;
 };
