@@ -83,7 +83,7 @@ int follow(const planar_parts& d, const glm::dvec3& origin, const glm::dvec3& di
   while (n_pending > 0) {
     branch b = pending[--n_pending];
     for (int step = 0; step < 3; ++step) {
-      glm::dvec3 hit;
+      glm::dvec3 hit(0.0);
       const part_met met = nearest_part(d, b.o, b.dir, b.leaving_hm, hit);
       if (met == met_panel) {
         if (glm::dot(b.dir, d.panel.n) < 0) out[n_out++] = {part_local(d.area, hit), b.dir, b.weight, b.reflections};

@@ -171,9 +171,11 @@ struct remap_limits {
   double bin_shift_deg = 1.0, distance_change = 0.02, footprint_change = 0.1;
   // A pixel's angle may lie beyond the bins by this share of their spacing (and as many degrees).
   double beyond_bins = 0.5;
-  // Three times as far: what a first look may still move when no closer view image is done (a
-  // drag faster than view images are made), rather than fall back to the coarse first look.
-  static remap_limits lenient() { return {3.0, 0.06, 0.3, 1.5}; }
+  // Six times as far: what a first look may still move when no closer view image is done (a drag
+  // faster than view images are made, as on a loaded machine), rather than fall back to the coarse
+  // first look (at 256 x 256, tilt 10: moved 6 deg, 1.4% from the moved layout's own view image;
+  // the coarse look 10%).
+  static remap_limits lenient() { return {6.0, 0.12, 0.6, 3.0}; }
 };
 image_rgb remap_model_image(const model_image& from, const scene& s, const model_image_params& p,
                             const std::atomic<bool>* cancel = nullptr, const remap_limits& limits = {});
