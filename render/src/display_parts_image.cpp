@@ -164,42 +164,50 @@ bool alike(const planar_parts& d, const corner& a, const corner& b) {
   return true;
 }
 
+// How far apart (mm) a pixel's corners meet the display's plane along x and along y, the larger of
+// its two edges each way.
+glm::dvec2 footprint_of(const corner (&c)[4]) {
+  return {std::max(apart(c[0], c[1]), apart(c[2], c[3])), std::max(apart(c[0], c[2]), apart(c[1], c[3]))};
+}
+
 // The points a pixel is sampled at along x and y: at least `k` each, and about one per texel its
 // footprint spans (a fine pattern the pixel holds a few periods of leaves a moire that only points
 // as dense as its texels catch; a footprint drawn out by a grazing view needs more along its
 // length), at most 64 k^2 in all; 16 each where an edge (of the display, its bezel, the half
 // mirror, a sheet in the way) crosses the pixel, whose share of it is the pixel's value there.
-glm::ivec2 points_per_pixel(const planar_parts& d, const corner (&c)[4], double texel_mm, int k) {
-  const double along_x = std::max(apart(c[0], c[1]), apart(c[2], c[3])) / texel_mm;
-  const double along_y = std::max(apart(c[0], c[2]), apart(c[1], c[3])) / texel_mm;
+glm::ivec2 points_per_pixel(const planar_parts& d, const corner (&c)[4], const glm::dvec2& footprint, double texel_mm,
+                            int k) {
+  const glm::dvec2 along = footprint / texel_mm;
   const bool edge = !alike(d, c[0], c[1]) || !alike(d, c[0], c[2]) || !alike(d, c[0], c[3]);
   const int least = edge ? std::max(k, 16) : k;
-  glm::ivec2 n(std::clamp(int(std::ceil(along_x)), least, 64), std::clamp(int(std::ceil(along_y)), least, 64));
+  glm::ivec2 n(std::clamp(int(std::ceil(along.x)), least, 64), std::clamp(int(std::ceil(along.y)), least, 64));
   while (n.x * n.y > 64 * k * k) (n.x > n.y ? n.x : n.y) /= 2;
   return glm::max(n, glm::ivec2(1));
 }
 
 // The texels' level whose spacing is nearest the pixel's points' (level 0 the finest, each next
 // one half as fine): points farther apart than the texels would alias a fine pattern.
-std::size_t level_for(const corner (&c)[4], const glm::ivec2& n, double texel_mm, std::size_t levels) {
-  const double along_x = std::max(apart(c[0], c[1]), apart(c[2], c[3])) / n.x;
-  const double along_y = std::max(apart(c[0], c[2]), apart(c[1], c[3])) / n.y;
-  const double spacing = std::max(along_x, along_y) / texel_mm;
+std::size_t level_for(const glm::dvec2& footprint, const glm::ivec2& n, double texel_mm, std::size_t levels) {
+  const double spacing = std::max(footprint.x / n.x, footprint.y / n.y) / texel_mm;
   if (!(spacing > 1)) return 0;
   return std::min(levels - 1, std::size_t(std::lround(std::log2(spacing))));
 }
 
-// A point on the lens for each of the pixel's n points: a rank-1 lattice (stratified in both
-// directions) visited in a scrambled order, so that the pixel's rows do not share a lens sector.
-// One point alone looks through the lens's centre.
-glm::dvec2 lens_point(int s, int n) {
-  if (n == 1) return glm::dvec2(0.0);
-  int g = int(0.618 * n) | 1;
-  while (std::gcd(g, n) != 1) ++g;
-  const int t = int((std::int64_t(s) * g) % n);
-  const double u = (t + 0.5) / n, v = (t + 0.5) * 0.6180339887498949;
-  return {u, v - std::floor(v)};
-}
+// Points on the lens for a pixel's n points: a rank-1 lattice (stratified in both directions)
+// visited in a scrambled order, so that the pixel's rows do not share a lens sector. One point
+// alone looks through the lens's centre.
+struct lens_lattice {
+  explicit lens_lattice(int points) : n(points), g(int(0.618 * points) | 1) {
+    while (n > 1 && std::gcd(g, n) != 1) ++g;
+  }
+  glm::dvec2 point(int s) const {
+    if (n == 1) return glm::dvec2(0.0);
+    const int t = int((std::int64_t(s) * g) % n);
+    const double u = (t + 0.5) / n, v = (t + 0.5) * 0.6180339887498949;
+    return {u, v - std::floor(v)};
+  }
+  int n, g;
+};
 
 }  // namespace
 
@@ -252,13 +260,15 @@ image_rgb display_parts_image(const scene& s, const std::vector<image_rgb>& texe
         // A pixel whose corners see no display is taken to see none (a display smaller than a pixel,
         // or a corner of it between pixel corners, is missed).
         if (c[0].n == 0 && c[1].n == 0 && c[2].n == 0 && c[3].n == 0) continue;
-        const glm::ivec2 n = points_per_pixel(d, c, texel_mm, k);
-        const image_rgb& level = texels[level_for(c, n, texel_mm, texels.size())];
+        const glm::dvec2 footprint = footprint_of(c);
+        const glm::ivec2 n = points_per_pixel(d, c, footprint, texel_mm, k);
+        const image_rgb& level = texels[level_for(footprint, n, texel_mm, texels.size())];
+        const lens_lattice lens(n.x * n.y);
         glm::dvec3 sum(0.0);
         for (int j = 0; j < n.y; ++j) {
           for (int i = 0; i < n.x; ++i) {
             const camera_ray r =
-                make_camera_ray(d.cam, x + (i + 0.5) / n.x, y + (j + 0.5) / n.y, lens_point(j * n.x + i, n.x * n.y));
+                make_camera_ray(d.cam, x + (i + 0.5) / n.x, y + (j + 0.5) / n.y, lens.point(j * n.x + i));
             landing l[2];
             const int m = follow(d, r.origin, r.dir, l);
             for (int a = 0; a < m; ++a) {
