@@ -147,3 +147,38 @@ TEST(Components, TheStrayLightRatioOfOneEyeIsTheFullPasss) {
     }
   }
 }
+
+// A render held to its end (airr render's) keeps sums of the components its scene's light can make
+// alone: the others are zero images all the same, and the ones kept are the designer's session's
+// numbers (the same samples), the aerial image's up to its control variate's handling.
+TEST(Components, ARenderHeldToItsEndKeepsTheComponentsItsLightCanMake) {
+  for (const double room : {0.0, 40.0}) {
+    scene s = looking_down("rf-an");
+    s.environment.room.luminance_cd_m2 = room;
+    const std::uint64_t spp = 8;
+    const render_snapshot shown = render_components(s, spp);
+    render_session held(s, {.threads = 2, .target_spp = spp, .components = true, .final_images_only = true});
+    const render_snapshot end = held.wait_for(0, spp);
+    ASSERT_TRUE(end.components);
+    EXPECT_EQ(end.component_layout.count, room > 0 ? 5 : 4);
+    EXPECT_EQ(end.components->size(), std::size_t(end.component_layout.count) * 3 * 64 * 64);
+    EXPECT_EQ(end.component_layout.slot[component_sun], -1);
+    EXPECT_EQ(end.component_layout.slot[component_luminaires], -1);
+    for (int k = 0; k < component_count; ++k) {
+      const image_rgb a = shown.component_image(k), b = end.component_image(k);
+      ASSERT_EQ(a.rgb.size(), b.rgb.size()) << component_names[k];
+      double worst = 0, peak = 0;
+      for (std::size_t i = 0; i < a.rgb.size(); ++i) {
+        worst = std::max(worst, double(std::abs(a.rgb[i] - b.rgb[i])));
+        peak = std::max(peak, double(a.rgb[i]));
+      }
+      if (k == component_room) {
+        EXPECT_EQ(peak > 0, room > 0);
+      }
+      if (k == component_direct || k == component_aerial) {
+        EXPECT_GT(peak, 0) << component_names[k];
+      }
+      EXPECT_LE(worst, (k == component_aerial ? 1e-3 : 1e-6) * std::max(peak, 1e-30)) << component_names[k];
+    }
+  }
+}

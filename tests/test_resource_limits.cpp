@@ -187,7 +187,7 @@ TEST(ResourceLimits, LibraryMessagesDoNotLeakAroundTheErrorLine) {
   }
 }
 
-// The largest render accepted, 8192 x 4096 with components (about 5.9 GB), under a 4 GB
+// The largest render accepted, 8192 x 8192 with components (about 7 GB), under a 4 GB
 // address-space limit: refused before it starts with one line naming the need and the limit
 // (it used to abort with std::bad_alloc); a small render under the same limit runs.
 TEST(ResourceLimits, ARenderBeyondTheProcesssMemoryIsRefusedBeforeItStarts) {
@@ -195,8 +195,8 @@ TEST(ResourceLimits, ARenderBeyondTheProcesssMemoryIsRefusedBeforeItStarts) {
   test::temp_dir dir;
   const std::string airr = std::string(AIRR_CLI) + " render " + default_scene_path() + " --spp 1 --components";
   const auto big = test::run_command("ulimit -v 4000000; " + airr +
-                                     " --set observer.width=8192 --set observer.height=4096 -o " + dir.file("big.exr"));
-  test::expect_one_line_error(big, {"render: 8192 x 4096 with components needs about", "ulimit -v"});
+                                     " --set observer.width=8192 --set observer.height=8192 -o " + dir.file("big.exr"));
+  test::expect_one_line_error(big, {"render: 8192 x 8192 with components needs about", "ulimit -v"});
   EXPECT_EQ(big.exit_code, 1) << big.out;
   EXPECT_FALSE(std::filesystem::exists(dir.file("big.exr")));
   const auto small = test::run_command("ulimit -v 4000000; " + airr +

@@ -174,11 +174,14 @@ void add_render_command(CLI::App& app) {
     }
     std::vector<airr::image_layer> layers;
     for (int k = 0; k < airr::component_count && opt->components; ++k) {
+      const int at = snap.component_layout.slot[std::size_t(k)];
       if (copied)
         layers.push_back({airr::component_names[k], &parts[std::size_t(k)]});
+      else if (at < 0)
+        layers.push_back({.name = airr::component_names[k], .zeros = true});
       else
-        layers.push_back(
-            {airr::component_names[k], nullptr, snap.components->data(), airr::component_count, std::size_t(k)});
+        layers.push_back({airr::component_names[k], nullptr, snap.components->data(),
+                          std::size_t(snap.component_layout.count), std::size_t(at)});
     }
     for (std::size_t k = 0; k < snap.layer_names.size(); ++k) {
       if (copied)

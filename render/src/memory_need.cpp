@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "airr/core/error.hpp"
+#include "airr/render/ambient_lights.hpp"
+#include "airr/render/tracer.hpp"
 
 namespace airr {
 
@@ -17,15 +19,16 @@ namespace {
 
 // Peak resident bytes of `airr render` (its session publishing images only at its target) per
 // pixel and beyond the pixels, measured by `airr bench --memory` on the default scene from 2048^2 to
-// 4096^2 (1 spp): 51 bytes a pixel, 125 with the seven components, 668 MB besides. About: sums 24
-// (the samples and the odd ones, in single precision, turned into the images in place), 84 more by
-// component; the model image 12 (its pixels' paths, 36, are held only while it is made: that
-// stage, 48, is the peak without components; the predictions made at the end trace them anew).
-constexpr double final_bytes_per_pixel = 51, final_bytes_per_pixel_components = 125;
+// 4096^2 (1 spp): 30 bytes a pixel, 93 with components (the four its dark room can have), 688 MB
+// besides. Counted: while tracing, the sums 12 and their odd half 12 (single precision, turned
+// into the images in place) and the model image 12, which while it is made holds its pixels'
+// angles alone (4; their paths are traced anew where needed); 12 a component held, and the
+// encoded file's share (about 2 a component).
+constexpr double final_bytes_per_pixel = 36, final_bytes_per_component = 14;
 // A session publishing every wave (the designer) keeps the predictions beside the sums (24 bytes a
-// pixel), makes its images beside them (24, and 84 by component) and holds a wave's new images
-// beside the last (48: the estimate, its odd half and the shown mix; 84 more by component).
-constexpr double wave_images_bytes = 24 + 24 + 48, wave_images_bytes_components = 24 + 24 + 48 + 84 + 84;
+// pixel), makes its images beside them (24, and 12 a component) and holds a wave's new images
+// beside the last (48: the estimate, its odd half and the shown mix; 12 more a component).
+constexpr double wave_images_bytes = 24 + 24 + 48, wave_images_bytes_per_component = 24;
 constexpr double fixed_bytes = 700e6;
 // Peak resident bytes of `airr sweep --psf` (one point, one thread) beyond its 150 MB at the start:
 // 48 bytes a sample at 10 million samples, 58 at 30 million (the samples' arrays doubling as
@@ -79,12 +82,15 @@ std::uint64_t render_memory_need(const scene& s, const session_params& p) {
   const std::uint64_t pixels = std::uint64_t(s.observer.width) * std::uint64_t(s.observer.height);
   // A path-expression layer: its double sums, the snapshot's floats and the image written of them.
   const std::uint64_t layers = p.layers ? pixels * 60 * p.layers->count() : 0;
-  return std::uint64_t(fixed_bytes) + traced_pixels_memory_need(pixels, p.components, p.final_images_only) + layers;
+  const int held = !p.components         ? 0
+                   : p.final_images_only ? possible_component_slots(make_ambient_lights(s.environment)).count
+                                         : component_count;
+  return std::uint64_t(fixed_bytes) + traced_pixels_memory_need(pixels, held, p.final_images_only) + layers;
 }
 
-std::uint64_t traced_pixels_memory_need(std::uint64_t pixels, bool components, bool final_images_only) {
-  double bytes = components ? final_bytes_per_pixel_components : final_bytes_per_pixel;
-  if (!final_images_only) bytes += components ? wave_images_bytes_components : wave_images_bytes;
+std::uint64_t traced_pixels_memory_need(std::uint64_t pixels, int components, bool final_images_only) {
+  double bytes = final_bytes_per_pixel + final_bytes_per_component * components;
+  if (!final_images_only) bytes += wave_images_bytes + wave_images_bytes_per_component * components;
   return std::uint64_t(double(pixels) * bytes);
 }
 

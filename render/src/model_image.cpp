@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include <opencv2/imgproc.hpp>
 
@@ -129,13 +130,25 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
   m->grids = m->display->grids;
   const grid_mapping(&maps)[2] = m->display->maps;
 
-  m->pixels = pixel_paths(parts, emission.get(), p, maps, m->grids[model_tail], cancel);
-  if (m->pixels.empty()) return nullptr;
+  // Without keep_pixels only the angles are held while the image is made (4 bytes a pixel, not 36:
+  // a large render's peak); a bin's gather traces its pixels' paths anew, to the same numbers.
+  std::vector<float> angles;
+  if (p.keep_pixels) {
+    m->pixels = pixel_paths(parts, emission.get(), p, maps, m->grids[model_tail], cancel);
+  } else {
+    angles = pixel_angles(parts, emission.get(), p, maps, m->grids[model_tail], cancel);
+  }
+  const std::size_t count = std::size_t(w) * h;
+  if (m->pixels.size() != count && angles.size() != count) return nullptr;  // cancelled
+  auto angle = [&](std::size_t i) {
+    if (!p.keep_pixels) return angles[i];
+    return m->pixels[i].ok ? m->pixels[i].theta_deg : std::numeric_limits<float>::quiet_NaN();
+  };
   m->paths_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() -
                      (own_grids ? m->display->spectra_seconds : 0.0);
   double lo = INFINITY, hi = -INFINITY;
-  for (const model_pixel& px : m->pixels) {
-    if (px.ok) lo = std::min(lo, double(px.theta_deg)), hi = std::max(hi, double(px.theta_deg));
+  for (std::size_t i = 0; i < count; ++i) {
+    if (const float a = angle(i); !std::isnan(a)) lo = std::min(lo, double(a)), hi = std::max(hi, double(a));
   }
   if (!(lo <= hi)) return nullptr;
 
@@ -143,27 +156,21 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
   // each pixel is a candidate for the bin nearest it alone, and the first of equals wins).
   const int bins = hi - lo < 0.1 ? 1 : p.angle_bins;
   auto want = [&](int k) { return bins == 1 ? 0.5 * (lo + hi) : lo + (hi - lo) * k / (bins - 1); };
-  std::vector<std::size_t> nearest(std::size_t(bins), m->pixels.size());
-  for (std::size_t i = 0; i < m->pixels.size(); ++i) {
-    const model_pixel& px = m->pixels[i];
-    if (!px.ok) continue;
-    const int k =
-        bins == 1 ? 0 : std::clamp(int(std::lround((px.theta_deg - lo) / (hi - lo) * (bins - 1))), 0, bins - 1);
+  std::vector<std::size_t> nearest(std::size_t(bins), count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const float a = angle(i);
+    if (std::isnan(a)) continue;
+    const int k = bins == 1 ? 0 : std::clamp(int(std::lround((a - lo) / (hi - lo) * (bins - 1))), 0, bins - 1);
     std::size_t& best = nearest[std::size_t(k)];
-    if (best == m->pixels.size() || std::abs(px.theta_deg - want(k)) < std::abs(m->pixels[best].theta_deg - want(k))) {
-      best = i;
-    }
+    if (best == count || std::abs(a - want(k)) < std::abs(angle(best) - want(k))) best = i;
   }
   for (int k = 0; k < bins; ++k) {
     // A bin no pixel is nearest to (none within half a spacing of it): the nearest pixel overall.
     std::size_t best = nearest[std::size_t(k)];
-    if (best == m->pixels.size()) {
-      for (std::size_t i = 0; i < m->pixels.size(); ++i) {
-        const model_pixel& px = m->pixels[i];
-        if (px.ok && (best == m->pixels.size() ||
-                      std::abs(px.theta_deg - want(k)) < std::abs(m->pixels[best].theta_deg - want(k)))) {
-          best = i;
-        }
+    if (best == count) {
+      for (std::size_t i = 0; i < count; ++i) {
+        const float a = angle(i);
+        if (!std::isnan(a) && (best == count || std::abs(a - want(k)) < std::abs(angle(best) - want(k)))) best = i;
       }
     }
     const double bx = double(best % std::size_t(w)) + 0.5, by = double(best / std::size_t(w)) + 0.5;
@@ -214,8 +221,18 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
         if (cancel_requested(cancel)) break;
         bin_seconds[std::size_t(k)][1] = since(t);
         t = clock_type::now();
-        for (std::size_t i = 0; i < m->pixels.size(); ++i) {
-          const model_pixel& px = m->pixels[i];
+        for (std::size_t i = 0; i < count; ++i) {
+          model_pixel traced;
+          if (!p.keep_pixels) {
+            traced.theta_deg = angles[i];
+            traced.ok = !std::isnan(traced.theta_deg);
+            assign_bin(m->bins, traced);
+            if (!traced.ok || (traced.bin != k && traced.bin + 1 != k)) continue;
+            traced = pixel_path_at(parts, emission.get(), maps, m->grids[model_tail], int(i % std::size_t(w)),
+                                   int(i / std::size_t(w)));
+            assign_bin(m->bins, traced);
+          }
+          const model_pixel& px = p.keep_pixels ? m->pixels[i] : traced;
           if (!px.ok || (px.bin != k && px.bin + 1 != k)) continue;
           const bool upper = px.bin + 1 == k;
           const float weight = float((upper ? px.mix : 1 - px.mix) * px.profile);
@@ -236,10 +253,7 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
     m->gather_seconds += b[2];
   }
   m->correlations = std::move(kept);
-  if (!p.keep_pixels) {
-    m->recipe = std::make_shared<const model_pixel_recipe>(model_pixel_recipe{parts, emission});
-    std::vector<model_pixel>().swap(m->pixels);
-  }
+  if (!p.keep_pixels) m->recipe = std::make_shared<const model_pixel_recipe>(model_pixel_recipe{parts, emission});
   m->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return m;
 }

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "airr/core/cancel.hpp"
 #include "airr/core/geometry.hpp"
@@ -55,6 +56,23 @@ model_pixel pixel_path_at(const ideal_parts& parts, const emission_profile* emis
   return mapped(pixel_ideal(parts, emission, x + 0.5, y + 0.5), maps, tail);
 }
 
+std::vector<float> pixel_angles(const ideal_parts& parts, const emission_profile* emission, const model_image_params& p,
+                                const grid_mapping (&maps)[2], const model_grid& tail,
+                                const std::atomic<bool>* cancel) {
+  const int w = parts.cam.width, h = parts.cam.height;
+  std::vector<float> out(std::size_t(w) * h);
+  detail::parallel_rows(h, row_workers_of(p), [&](int y0, int y1) {
+    for (int y = y0; y < y1 && !cancel_requested(cancel); ++y) {
+      for (int x = 0; x < w; ++x) {
+        const model_pixel px = pixel_path_at(parts, emission, maps, tail, x, y);
+        out[std::size_t(y) * w + x] = px.ok ? px.theta_deg : std::numeric_limits<float>::quiet_NaN();
+      }
+    }
+  });
+  if (cancel_requested(cancel)) return {};
+  return out;
+}
+
 std::vector<model_pixel> pixel_paths(const ideal_parts& parts, const emission_profile* emission,
                                      const model_image_params& p, const grid_mapping (&maps)[2], const model_grid& tail,
                                      const std::atomic<bool>* cancel) {
@@ -66,7 +84,8 @@ std::vector<model_pixel> pixel_paths(const ideal_parts& parts, const emission_pr
         for (int x = 0; x < w; ++x) out[std::size_t(y) * w + x] = pixel_path_at(parts, emission, maps, tail, x, y);
       }
     });
-    return cancel_requested(cancel) ? std::vector<model_pixel>{} : out;
+    if (cancel_requested(cancel)) return {};
+    return out;  // moved (a conditional expression would copy it)
   }
   // Lattice node i sits on pixel min(i n, size - 1).
   const int lw = (w - 1 + n - 1) / n + 1, lh = (h - 1 + n - 1) / n + 1;
@@ -123,7 +142,8 @@ std::vector<model_pixel> pixel_paths(const ideal_parts& parts, const emission_pr
       }
     }
   });
-  return cancel_requested(cancel) ? std::vector<model_pixel>{} : out;
+  if (cancel_requested(cancel)) return {};
+  return out;  // moved (a conditional expression would copy it)
 }
 
 }  // namespace airr::model_image_steps

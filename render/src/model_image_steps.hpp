@@ -117,6 +117,11 @@ std::vector<model_pixel> pixel_paths(const ideal_parts& parts, const emission_pr
                                      const model_image_params& p, const grid_mapping (&maps)[2], const model_grid& tail,
                                      const std::atomic<bool>* cancel);
 
+// Every pixel's angle of incidence on the sheet alone (path stride 1; NaN where pixel_paths' pixel is
+// not ok): 4 bytes a pixel where the paths take 36, for a model image that does not keep them.
+std::vector<float> pixel_angles(const ideal_parts& parts, const emission_profile* emission, const model_image_params& p,
+                                const grid_mapping (&maps)[2], const model_grid& tail, const std::atomic<bool>* cancel);
+
 // `grid` is left without its padded nodes when `cancel` is set while they are made.
 grid_mapping make_grid(model_grid& grid, const cv::Mat& texels, int refine, double reach_mm, const part_frame& src,
                        const std::atomic<bool>* cancel = nullptr);

@@ -178,7 +178,7 @@ bool render_session::render_wave(std::uint64_t end, accumulation& acc, std::uint
       if (done >= end) continue;
       if (!trace_rows(scene_, y, y + 1, done, end - done, acc.sums, cancel_, local, &acc.odd_sums,
                       params_.components ? &acc.component_sums : nullptr, &acc.predictions,
-                      params_.layers ? &acc.layer_sums : nullptr)) {
+                      params_.layers ? &acc.layer_sums : nullptr, acc.slots)) {
         complete = false;
         break;
       }
@@ -269,7 +269,10 @@ void render_session::run_loop() {
   auto reset_sums = [&] {
     acc.sums.assign(std::size_t(scene_.camera.width) * scene_.camera.height * 3, 0.0f);
     acc.odd_sums = acc.sums;
-    acc.component_sums.assign(params_.components ? component_count * acc.sums.size() : 0, 0.0f);
+    // A render's images held to its end keep no sums of components its light cannot make; the
+    // designer's views read all of them.
+    acc.slots = params_.final_images_only ? possible_component_slots(scene_.ambient) : component_slots{};
+    acc.component_sums.assign(params_.components ? std::size_t(acc.slots.count) * acc.sums.size() : 0, 0.0f);
     acc.layer_sums.assign(scene_.layers ? scene_.layers->count() * acc.sums.size() : 0, 0.0f);
     // A render that publishes only at its target makes the predictions then (publish), in one
     // pass: none kept beside the samples.

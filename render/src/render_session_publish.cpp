@@ -47,6 +47,7 @@ bool render_session::publish(std::uint64_t gen, std::uint64_t spp, accumulation&
   const std::size_t layer_count = acc.layer_sums.empty() ? 0 : scene_.layers->count();
   const std::uint64_t variate = layer_count ? model_layers(scene_) : 0;
   const bool with_components = !acc.component_sums.empty();
+  component_slots layout = acc.slots;  // kept past `acc`, emptied below when the sums become the images
   const double inv = spp ? 1.0 / double(spp) : 0.0;
   const double inv_odd = spp >= 2 ? 1.0 / double(spp / 2) : 0.0;  // spp / 2 of samples 0 .. spp-1 are odd-numbered
   if (in_place) acc.rows_published.resize(std::size_t(scene_.camera.height), 0);
@@ -80,8 +81,10 @@ bool render_session::publish(std::uint64_t gen, std::uint64_t spp, accumulation&
         // carry the control variate.
         for (int k = 0; with_components && k < component_count; ++k) {
           const bool aerial = k == component_aerial;
+          const int at = acc.slots.slot[std::size_t(k)];
+          if (at < 0) continue;
           for (int c = 0; c < 3; ++c) {
-            const std::size_t i = 3 * (component_count * p + std::size_t(k)) + std::size_t(c);
+            const std::size_t i = 3 * (std::size_t(acc.slots.count) * p + std::size_t(at)) + std::size_t(c);
             const double v = (acc.component_sums[i] - (aerial ? predicted.all[c] : 0.0)) * inv;
             components_out[i] = float(v + (model && aerial ? (*model)[j + std::size_t(c)] : 0.0f));
           }
@@ -124,6 +127,7 @@ bool render_session::publish(std::uint64_t gen, std::uint64_t spp, accumulation&
     show_best();
   }
   snapshot_.components = std::move(components);
+  snapshot_.component_layout = layout;
   snapshot_.layers = std::move(layers);
   snapshot_.layer_names = std::move(layer_names);
   snapshot_.preview = false;

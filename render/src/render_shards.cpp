@@ -73,10 +73,9 @@ render_shard_header check_shard_header(const std::string& path, image_metadata m
   if (h.place.count > *height)
     throw input_error(path + ": " + shard_key + ": " + std::to_string(h.place.count) + " shards of an image " +
                       std::to_string(*height) + " rows high");
-  if (width < 1 || width > max_resolution_side || std::int64_t(width) * *height > max_resolution_pixels)
+  if (width < 1 || width > max_resolution_side)
     throw input_error(path + ": the render, " + std::to_string(width) + " x " + std::to_string(*height) +
-                      ", is beyond the render's limits (" + std::to_string(max_resolution_side) + " a side, " +
-                      std::to_string(max_resolution_pixels) + " pixels)");
+                      ", is beyond the render's limits (" + std::to_string(max_resolution_side) + " a side)");
   h.height = *height;
   const auto [first, end] = shard_rows(h.place, h.height);
   if (row_text != std::to_string(first) + " " + std::to_string(end))

@@ -22,7 +22,15 @@ image_rgb render_snapshot::image() const {
 
 image_rgb render_snapshot::component_image(int component) const {
   if (!components || component < 0 || component >= component_count) return {};
-  return interleaved_image(components->data(), width, height, component_count, std::size_t(component));
+  const int at = component_layout.slot[std::size_t(component)];
+  if (at < 0) {
+    image_rgb zero;
+    zero.width = width;
+    zero.height = height;
+    zero.rgb.assign(std::size_t(width) * height * 3, 0.0f);
+    return zero;
+  }
+  return interleaved_image(components->data(), width, height, std::size_t(component_layout.count), std::size_t(at));
 }
 
 image_rgb render_snapshot::layer_image(std::size_t k) const {

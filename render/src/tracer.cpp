@@ -333,10 +333,24 @@ std::uint64_t model_layers(const tracer_scene& ts) {
 static void add_prediction(const tracer_scene& ts, int x, int y, std::uint64_t i, const sample_numbers& n,
                            prediction_sums& predictions);
 
+component_slots possible_component_slots(const ambient_lights& a) {
+  component_slots s;
+  s.count = 0;
+  for (int k = 0; k < component_count; ++k) {
+    // The tracer adds to these only with such light (trace_path_as, sample_lights).
+    const bool possible = k == component_room         ? a.room > 0
+                          : k == component_sun        ? a.sun > 0
+                          : k == component_luminaires ? !a.luminaires.empty()
+                                                      : true;
+    s.slot[std::size_t(k)] = possible ? s.count++ : -1;
+  }
+  return s;
+}
+
 bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
                 std::vector<float>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays,
                 std::vector<float>* odd_sums, std::vector<float>* component_sums, prediction_sums* predictions,
-                std::vector<float>* layer_sums) {
+                std::vector<float>* layer_sums, const component_slots& slots) {
   const int w = ts.camera.width;
   if (!ts.layers) layer_sums = nullptr;
   const std::size_t layer_count = layer_sums ? ts.layers->count() : 0;
@@ -379,11 +393,13 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
           if (keep_predictions) add_prediction(ts, x, y, i, numbers_k, *predictions);
           const glm::vec3 L = total(c);
           if (component_sums) {
-            float* comp = component_sums->data() + 3 * component_count * (std::size_t(y) * w + x);
+            float* comp = component_sums->data() + 3 * std::size_t(slots.count) * (std::size_t(y) * w + x);
             for (int j = 0; j < component_count; ++j) {
-              comp[3 * j] += c[std::size_t(j)].x;
-              comp[3 * j + 1] += c[std::size_t(j)].y;
-              comp[3 * j + 2] += c[std::size_t(j)].z;
+              const int at = slots.slot[std::size_t(j)];
+              if (at < 0) continue;
+              comp[3 * at] += c[std::size_t(j)].x;
+              comp[3 * at + 1] += c[std::size_t(j)].y;
+              comp[3 * at + 2] += c[std::size_t(j)].z;
             }
           }
           if (layer_sums) {

@@ -181,8 +181,8 @@ void write_image(const std::string& path, const image_rgb& img, const image_meta
   if (!exr && ext != ".png") throw input_error(path + ": output must be .exr or .png");
   if (!exr && !layers.empty()) throw input_error(path + ": only EXR files take layers");
   for (const image_layer& l : layers) {
-    const bool sized =
-        l.image ? l.image->width == img.width && l.image->height == img.height : l.interleaved && l.index < l.count;
+    const bool sized = l.zeros || (l.image ? l.image->width == img.width && l.image->height == img.height
+                                           : l.interleaved && l.index < l.count);
     if (!sized || l.name.empty())
       throw input_error(path + ": layer '" + l.name + "' is missing or not the image's size");
   }
@@ -209,6 +209,10 @@ void write_image(const std::string& path, const image_rgb& img, const image_meta
       }
       for (std::size_t l = 0; l < layers.size(); ++l) {
         const image_layer& from = layers[l];
+        if (from.zeros) {
+          std::fill_n(o + 3 * (l + 1), 3, 0.0f);
+          continue;
+        }
         const float* v =
             from.image ? from.image->rgb.data() + 3 * px : from.interleaved + 3 * (from.count * px + from.index);
         std::copy_n(v, 3, o + 3 * (l + 1));

@@ -188,10 +188,6 @@ void validate_scene(const scene& s, const std::string& origin) {
   c.range("observer.fov_deg", o.fov_deg, 0.01, 170);
   c.range("observer.width", o.width, 1, max_resolution_side);
   c.range("observer.height", o.height, 1, max_resolution_side);
-  if (static_cast<long long>(o.width) * o.height > max_resolution_pixels) {
-    c.fail("observer.width", "resolution " + std::to_string(o.width) + "x" + std::to_string(o.height) +
-                                 " exceeds the cap of " + std::to_string(max_resolution_pixels) + " pixels");
-  }
   if (o.analyzer_deg) c.range("observer.analyzer_deg", *o.analyzer_deg, -360, 360);
   c.range("render.max_depth", s.render.max_depth, 1, 64);
 }

@@ -212,7 +212,7 @@ full_zone_map full_viewing_zone(const scene& s, const eye_grid& g, const full_zo
     const std::uint64_t eyes = std::uint64_t(g.nx) * std::uint64_t(g.ny), side = std::uint64_t(p.render_size);
     const std::uint64_t need =
         measuring_process_bytes + eyes * 16 * (9 + p.contrast_thresholds.size()) +
-        workers * (traced_pixels_memory_need(side * side, true) + psf_memory_need(p.psf_samples));
+        workers * (traced_pixels_memory_need(side * side, component_count) + psf_memory_need(p.psf_samples));
     check_memory_need("viewing zone: " + std::to_string(eyes) + " eyes of " + std::to_string(p.psf_samples) +
                           " PSF samples and a " + std::to_string(side) + " x " + std::to_string(side) + " render each",
                       need);

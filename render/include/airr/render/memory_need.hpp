@@ -22,9 +22,9 @@ memory_allowance process_memory_allowance();
 // The peak a render of `s` with `p` holds (accumulators, their even/odd halves and components,
 // the model image, the shown mix), from measured per-pixel costs (docs/architecture.md).
 std::uint64_t render_memory_need(const scene& s, const session_params& p);
-// The part of that the pixels hold: `pixels` traced with or without components, by a session
-// publishing images every wave or only at its target (session_params::final_images_only).
-std::uint64_t traced_pixels_memory_need(std::uint64_t pixels, bool components, bool final_images_only = false);
+// The part of that the pixels hold: `pixels` traced with this many components held (0: none), by a
+// session publishing images every wave or only at its target (session_params::final_images_only).
+std::uint64_t traced_pixels_memory_need(std::uint64_t pixels, int components, bool final_images_only = false);
 
 // Throws input_error "render: W x H ... needs about N GB of memory; this process may take M GB
 // more (source)" when the need exceeds the allowance.

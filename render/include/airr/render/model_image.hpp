@@ -47,8 +47,10 @@ struct model_image_params {
   // layout (remap_model_image); they take the display's texels times 12 bytes per bin and channel.
   bool keep_correlations = false;
   // Keep each pixel's ideal path (model_pixel, 36 bytes a pixel) beside the image. Without them
-  // (path_stride 1 only), model_pixel_at traces a pixel's path anew, to the same numbers: a render
-  // that predicts its samples once per pixel at its end (predict_pixel) saves that memory.
+  // (path_stride 1 only), the image is made holding the pixels' angles alone (4 bytes a pixel) and
+  // tracing a pixel's path anew for each of its two bins, and model_pixel_at traces it anew, to the
+  // same numbers: a render that predicts its samples once per pixel at its end (predict_pixel)
+  // saves that memory (a 4096 x 4096 render's peak without components: 30 bytes a pixel, not 53).
   bool keep_pixels = true;
   // Add the display seen directly and in the half mirror (display_parts_image.hpp), from this many
   // points per pixel side: images the designer is shown. 0: the aerial image alone, as a control

@@ -86,9 +86,11 @@ struct render_snapshot {
   bool first_look = false;   // ... its first look (false: at view quality)
   double model_weight = 0;   // the model image's share of `shown`: 1 alone, 0 not at all
   double edit_seconds = 0;   // from the edit to this snapshot's publication
-  // With session_params::components, component_count RGB triples per pixel adding up to rgb
-  // (null otherwise, and in previews).
+  // With session_params::components, RGB triples per pixel adding up to rgb, as component_layout
+  // lays them out (null otherwise, and in previews): all component_count of them, but in a session
+  // with final_images_only only those the scene can have (possible_component_slots).
   std::shared_ptr<const std::vector<float>> components;
+  component_slots component_layout;
   // With session_params::layers, their names (the unmatched paths' last) and as many RGB triples per
   // pixel (null otherwise, and in previews).
   std::vector<std::string> layer_names;
@@ -154,6 +156,7 @@ class render_session {
   // skips: the sums need no copy to undo it).
   struct accumulation {
     std::vector<float> sums, odd_sums, component_sums, layer_sums;
+    component_slots slots;  // of component_sums
     prediction_sums predictions;
     std::vector<std::uint64_t> row_spp;
     std::vector<char> rows_published;  // turned into images in place (final_images_only)

@@ -108,6 +108,16 @@ inline constexpr const char* component_names[component_count] = {"aerial", "dire
                                                                  "room",   "sun",    "luminaires"};
 using component_radiance = std::array<glm::vec3, component_count>;
 
+// Where a pixel's component sums hold each component: `count` RGB triples a pixel, component k at
+// slot[k], or nowhere (-1) for one the scene cannot have (zero everywhere).
+struct component_slots {
+  std::array<int, component_count> slot{0, 1, 2, 3, 4, 5, 6};
+  int count = component_count;
+};
+// Only the components the scene's light can make: the room's, the sun's and the luminaires' only
+// with such light (a render's sums then take 48 bytes a pixel, not 84, in a dark room).
+component_slots possible_component_slots(const ambient_lights& a);
+
 // The pixel's random rotation of the low-discrepancy sequence its samples share.
 std::array<double, 6> pixel_sequence_rotation(const tracer_scene& ts, int px, int py);
 
@@ -146,15 +156,16 @@ struct prediction_sums {
 // (single-precision RGB per pixel, added in sample order so that splitting into waves changes
 // nothing), and the odd-numbered samples also into `odd_sums` when given (two independent half
 // estimates, whose difference measures the noise), and by component into `component_sums` when given
-// (component_count RGB triples per pixel). With `predictions`, the sums are of the traced radiance
-// alone and the model image's predictions go there (the estimate: model_value plus the mean of the
-// sums less the predictions). With ts.layers and `layer_sums`, also by layer (ts.layers->count()
-// RGB triples per pixel; the model's predictions, unless apart, taken from model_layers' layers).
-// Stops early (returns false) when `cancel` becomes true.
+// (laid out as `slots` says, all component_count of them by default). With `predictions`, the sums are of the traced
+// radiance alone and the model image's predictions go there (the estimate: model_value plus the mean of the sums less
+// the predictions). With ts.layers and `layer_sums`, also by layer (ts.layers->count() RGB triples per pixel; the
+// model's predictions, unless apart, taken from model_layers' layers). Stops early (returns false) when `cancel`
+// becomes true.
 bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
                 std::vector<float>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays,
                 std::vector<float>* odd_sums = nullptr, std::vector<float>* component_sums = nullptr,
-                prediction_sums* predictions = nullptr, std::vector<float>* layer_sums = nullptr);
+                prediction_sums* predictions = nullptr, std::vector<float>* layer_sums = nullptr,
+                const component_slots& slots = {});
 
 // One class of a census: a path label and the light (RGB, summed over the samples) that met it.
 struct census_class {

@@ -63,6 +63,7 @@ struct image_layer {
   // `interleaved`, which has the image's size (a render's components or path layers).
   const float* interleaved = nullptr;
   std::size_t count = 0, index = 0;
+  bool zeros = false;  // or zero everywhere (a render's component its scene cannot have)
 };
 void write_image(const std::string& path, const image_rgb& img, const image_metadata& meta, float exposure = 1.0f,
                  const std::vector<image_layer>& layers = {});

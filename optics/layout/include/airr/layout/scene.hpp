@@ -17,9 +17,9 @@ namespace airr {
 
 inline constexpr int scene_format_version = 2;
 
-// Largest accepted render size, per side and in total.
+// Largest accepted render size per side (8192 x 8192 with components takes about 7 GB: whether a
+// machine has that is render_memory_need's to say).
 inline constexpr int max_resolution_side = 8192;
-inline constexpr long long max_resolution_pixels = 8192LL * 8192LL / 2;
 // Most retroreflective sheets in one layout.
 inline constexpr int max_retroreflectors = 8;
 // Most props in one layout.
