@@ -203,6 +203,14 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
     kept->maps[model_tail] = maps[model_tail];
     kept->bins.resize(std::size_t(bins));
   }
+  // Whether a pixel at this angle is bin k's lower or upper bin's (assign_bin gives k or k - 1):
+  // two comparisons, where assign_bin walks the bins, for every pixel in every bin's pass.
+  auto in_gather = [&](float theta, int k) {
+    if (std::isnan(theta)) return false;
+    const bool from_below = k - 1 <= 0 || m->bins[std::size_t(k - 1)].theta_deg < theta;
+    const bool from_above = k + 1 >= bins || !(m->bins[std::size_t(k + 1)].theta_deg < theta);
+    return from_below && from_above;
+  };
   std::vector<std::array<double, 3>> bin_seconds(std::size_t(bins), {0.0, 0.0, 0.0});
   const auto t_loop = clock_type::now();
   for (const int parity : {0, 1}) {
@@ -224,10 +232,7 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
         for (std::size_t i = 0; i < count; ++i) {
           model_pixel traced;
           if (!p.keep_pixels) {
-            traced.theta_deg = angles[i];
-            traced.ok = !std::isnan(traced.theta_deg);
-            assign_bin(m->bins, traced);
-            if (!traced.ok || (traced.bin != k && traced.bin + 1 != k)) continue;
+            if (!in_gather(angles[i], k)) continue;
             traced = pixel_path_at(parts, emission.get(), maps, m->grids[model_tail], int(i % std::size_t(w)),
                                    int(i / std::size_t(w)));
             assign_bin(m->bins, traced);

@@ -9,27 +9,31 @@
 
 namespace airr {
 
-image_rgb render_snapshot::image() const {
+namespace {
+
+image_rgb black_image(int width, int height) {
   image_rgb img;
   img.width = width;
   img.height = height;
-  if (rgb)
-    img.rgb = *rgb;
-  else
-    img.rgb.assign(std::size_t(width) * height * 3, 0.0f);
+  img.rgb.assign(std::size_t(width) * height * 3, 0.0f);
+  return img;
+}
+
+}  // namespace
+
+image_rgb render_snapshot::image() const {
+  if (!rgb) return black_image(width, height);
+  image_rgb img;
+  img.width = width;
+  img.height = height;
+  img.rgb = *rgb;
   return img;
 }
 
 image_rgb render_snapshot::component_image(int component) const {
   if (!components || component < 0 || component >= component_count) return {};
   const int at = component_layout.slot[std::size_t(component)];
-  if (at < 0) {
-    image_rgb zero;
-    zero.width = width;
-    zero.height = height;
-    zero.rgb.assign(std::size_t(width) * height * 3, 0.0f);
-    return zero;
-  }
+  if (at < 0) return black_image(width, height);
   return interleaved_image(components->data(), width, height, std::size_t(component_layout.count), std::size_t(at));
 }
 
