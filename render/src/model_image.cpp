@@ -35,6 +35,8 @@ model_image_params model_image_params::for_image(int width, int height, bool qui
   if (quick || std::int64_t(width) * height < 256 * 256) {
     p.texel_refine = 2;
     p.core_radius_mm = 4;
+  } else {
+    p.angle_bins = 16;
   }
   return p;
 }
@@ -70,7 +72,7 @@ void check_model_image_params(const model_image_params& p) {
   if (p.angle_bins < 1 || p.angle_bins > 64 || p.psf_samples < 1000 || p.max_texels < 16 || p.max_texels > 4096 ||
       p.texel_refine < 1 || p.texel_refine > 4 || !(p.core_radius_mm > 0) || p.tail_texels < 4 ||
       !(p.kernel_radius_mm >= p.core_radius_mm) || p.path_stride < 1 || p.path_stride > 64 || p.threads < 0 ||
-      (!p.keep_pixels && p.path_stride != 1) || p.display_samples < 0 || p.display_samples > 16) {
+      (!p.keep_pixels && p.path_stride != 1) || p.edge_samples < 1 || p.display_samples < 0 || p.display_samples > 16) {
     throw input_error("model image: parameters out of range");
   }
 }
@@ -212,13 +214,19 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
     return from_below && from_above;
   };
   std::vector<std::array<double, 3>> bin_seconds(std::size_t(bins), {0.0, 0.0, 0.0});
+  const std::uint64_t edge_count = std::min(p.edge_samples, p.psf_samples);
   const auto t_loop = clock_type::now();
   for (const int parity : {0, 1}) {
     detail::parallel_rows((bins + 1 - parity) / 2, row_workers_of(p), [&](int j0, int j1) {
       for (int k = 2 * j0 + parity; k < 2 * j1 + parity && !cancel_requested(cancel); k += 2) {
         auto t = clock_type::now();
+        const model_grid& fine_grid = m->grids[model_fine];
+        std::vector<fine_sample> landed;
         const std::array<cv::Mat, 2> kernels =
-            bin_kernels(*m, m->bins[std::size_t(k)], std::size_t(k), p.psf_samples, s.seed, row_workers_of(p), cancel);
+            bin_kernels(*m, m->bins[std::size_t(k)], std::size_t(k), p.psf_samples, s.seed, row_workers_of(p), cancel,
+                        fine_grid.edges_on_nodes ? &landed : nullptr, edge_count);
+        const edge_samples edges = sort_edge_samples(landed, fine_grid.radius, edge_count);
+        landed = {};
         bin_seconds[std::size_t(k)][0] = since(t);
         if (cancel_requested(cancel)) break;
         t = clock_type::now();
@@ -241,7 +249,8 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
           if (!px.ok || (px.bin != k && px.bin + 1 != k)) continue;
           const bool upper = px.bin + 1 == k;
           const float weight = float((upper ? px.mix : 1 - px.mix) * px.profile);
-          const glm::vec3 v = gather(correlated, px);
+          glm::vec3 v = gather(correlated, px);
+          if (fine_grid.edges_on_nodes) v += edge_correction(fine_grid, edges, px.node[model_fine]);
           float* out = m->image.rgb.data() + 3 * i;
           for (int c = 0; c < 3; ++c) out[c] += v[c] * weight;
         }

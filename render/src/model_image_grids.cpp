@@ -148,6 +148,7 @@ grid_mapping make_grid(model_grid& grid, const cv::Mat& texels, int refine, doub
   grid.node_w = src.width / texels.cols / refine;
   grid.node_h = src.height / texels.rows / refine;
   grid.radius = std::clamp(int(std::ceil(reach_mm / std::min(grid.node_w, grid.node_h))) + 1, 2, 2048);
+  grid.edges_on_nodes = refine % 2 == 0;  // the nodes start half a texel out: at the display's edge
   if (!nodes.rgb.empty()) grid.padded = pad(nodes, grid.radius);
   map.cols = texels.cols;
   map.rows = texels.rows;

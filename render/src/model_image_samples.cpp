@@ -12,7 +12,7 @@
 
 namespace airr::model_image_steps {
 
-static glm::vec3 bilinear(const image_rgb& m, const glm::dvec2& t) {
+glm::vec3 bilinear(const image_rgb& m, const glm::dvec2& t) {
   const int x0 = int(std::floor(t.x)), y0 = int(std::floor(t.y));
   if (x0 < 0 || y0 < 0 || x0 + 1 >= m.width || y0 + 1 >= m.height) return glm::vec3(0.0f);
   const float fx = float(t.x - x0), fy = float(t.y - y0);
@@ -61,9 +61,7 @@ void for_each_corner(const glm::dvec2& t, F&& f) {
   f(x0 + 1, y0 + 1, fx * fy);
 }
 
-// The grid's bilinear surface at `base` plus the offset `t`, spread over the four nodes around it
-// as for_each_corner does: four bilinear reads, which together are one 3 x 3 stencil of nodes.
-static glm::vec3 spread_bilinear(const image_rgb& grid, const glm::dvec2& base, const glm::dvec2& t) {
+glm::vec3 spread_bilinear(const image_rgb& grid, const glm::dvec2& base, const glm::dvec2& t) {
   const glm::dvec2 b = glm::floor(base), n = glm::floor(t);
   const int x0 = int(b.x + n.x), y0 = int(b.y + n.y);
   if (x0 < 0 || y0 < 0 || x0 + 2 >= grid.width || y0 + 2 >= grid.height) {
@@ -89,10 +87,9 @@ static glm::vec3 spread_bilinear(const image_rgb& grid, const glm::dvec2& base, 
 }
 
 std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std::size_t bin, std::uint64_t samples,
-                                   std::uint64_t seed, detail::row_workers threads, const std::atomic<bool>* cancel) {
-  std::array<double, 6> rotation;
-  pcg32 rotation_rng = sample_rng(bin, 0, seed ^ 0x6b65726eu);
-  for (double& r : rotation) r = rotation_rng.next_double();
+                                   std::uint64_t seed, detail::row_workers threads, const std::atomic<bool>* cancel,
+                                   std::vector<fine_sample>* fine, std::uint64_t fine_count) {
+  const kernel_sequence sequence(bin, seed);
   auto zero = [&] {
     std::array<cv::Mat, 2> k;
     for (int g : {model_fine, model_tail}) {
@@ -104,18 +101,18 @@ std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std
   constexpr std::uint64_t block = 65536;  // few partial kernels: each is as large as the kernel
   const std::size_t blocks = std::size_t((samples + block - 1) / block);
   std::vector<std::array<cv::Mat, 2>> parts(blocks);
+  std::vector<std::vector<fine_sample>> landed(fine ? blocks : 0);
   auto block_kernels = [&](std::size_t k) {
     std::array<cv::Mat, 2> part = zero();
     const std::uint64_t end = std::min<std::uint64_t>(samples, (k + 1) * block);
     for (std::uint64_t i = k * block; i < end; ++i) {
-      const std::array<double, 6> q = r6_point(i, rotation);
+      glm::dvec2 jitter;
       retro_samples u;
-      u.lobe = {q[2], q[3]};
-      u.shift = {q[4], q[5]};
-      u.more = sample_rng(i, bin, seed ^ 0x6d6f7265u);
+      sequence.at(i, jitter, u);
       double w = 0;
-      const auto o = sample_offset(m, b, {q[0], q[1]}, u, w);
+      const auto o = sample_offset(m, b, jitter, u, w);
       if (!o) continue;
+      if (fine && i < fine_count && o->grid == model_fine) landed[k].push_back({o->nodes, w});
       cv::Mat& kernel = part[std::size_t(o->grid)];
       const int r = m.grids[o->grid].radius;
       for_each_corner(o->nodes, [&](int x, int y, double c) { kernel.at<double>(y + r, x + r) += w * c; });
@@ -133,6 +130,7 @@ std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std
     for (std::size_t g = 0; g < 2; ++g) sum[g] += part[g];
   }
   for (std::size_t g = 0; g < 2; ++g) sum[g].convertTo(out[g], CV_32F, 1.0 / double(samples));
+  for (auto& part : landed) fine->insert(fine->end(), part.begin(), part.end());
   return out;
 }
 
@@ -141,6 +139,19 @@ std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std
 namespace airr {
 
 using namespace model_image_steps;
+
+kernel_sequence::kernel_sequence(std::size_t bin, std::uint64_t seed) : bin_(bin), seed_(seed) {
+  pcg32 rotation_rng = sample_rng(bin, 0, seed ^ 0x6b65726eu);
+  for (double& r : rotation_) r = rotation_rng.next_double();
+}
+
+void kernel_sequence::at(std::uint64_t i, glm::dvec2& jitter, retro_samples& u) const {
+  const std::array<double, 6> q = r6_point(i, rotation_);
+  jitter = {q[0], q[1]};
+  u.lobe = {q[2], q[3]};
+  u.shift = {q[4], q[5]};
+  u.more = sample_rng(i, bin_, seed_ ^ 0x6d6f7265u);
+}
 
 glm::vec3 model_prediction(const model_image& m, int px, int py, const glm::dvec2& jitter, const retro_samples& u) {
   if (m.pixels.empty()) return model_prediction(m, model_pixel_at(m, px, py), jitter, u);
@@ -154,7 +165,7 @@ glm::vec3 model_prediction(const model_image& m, const model_pixel& p, const glm
     double weight = 0;
     const auto o = sample_offset(m, m.bins[std::size_t(k)], jitter, u, weight);
     if (!o) return glm::vec3(0.0f);
-    return spread_bilinear(m.grids[o->grid].padded, p.node[o->grid], o->nodes) * float(weight * p.profile);
+    return grid_value(m.grids[o->grid], p.node[o->grid], o->nodes) * float(weight * p.profile);
   };
   glm::vec3 v = one(p.bin) * float(1 - p.mix);
   if (p.mix > 0) v += one(p.bin + 1) * float(p.mix);

@@ -136,11 +136,47 @@ inline glm::vec3 gather(const std::array<correlated_grid, 2>& bin, const model_p
   return v;
 }
 
-// The bin's kernels from its samples (a rotated R6 sequence for jitter, lobe and shift, as the
-// tracer's pixels use); blocks run in parallel and are summed in order, so the result does not
-// depend on the number of threads.
+// A bin sample that landed on the fine grid: its offset in nodes from the pixel's ideal point, and
+// its weight.
+struct fine_sample {
+  glm::dvec2 t;
+  double w;
+};
+
+// The bin's kernels from its samples (kernel_sequence); blocks run in parallel and are summed in
+// order, so the result does not depend on the number of threads. `fine`, when given, receives
+// those of the first `fine_count` samples that landed on the fine grid, in order (for the display's
+// edges).
 std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std::size_t bin, std::uint64_t samples,
-                                   std::uint64_t seed, detail::row_workers threads, const std::atomic<bool>* cancel);
+                                   std::uint64_t seed, detail::row_workers threads, const std::atomic<bool>* cancel,
+                                   std::vector<fine_sample>* fine = nullptr, std::uint64_t fine_count = 0);
+
+// The grid's bilinear surface at node point `t` (black beyond the grid).
+glm::vec3 bilinear(const image_rgb& m, const glm::dvec2& t);
+
+// The grid's bilinear surface at `base` plus the offset `t`, spread over the four nodes around it
+// as the kernels are: four bilinear reads, which together are one 3 x 3 stencil of nodes.
+glm::vec3 spread_bilinear(const image_rgb& grid, const glm::dvec2& base, const glm::dvec2& t);
+
+// What a prediction reads on a grid for the offset `t` from `base`: spread_bilinear, except where
+// the offset's cell of nodes reaches beyond the display's edge on a grid whose edges lie on nodes:
+// there the display itself (black beyond the edge), read at the landing point (model_image_edges.cpp).
+glm::vec3 grid_value(const model_grid& grid, const glm::dvec2& base, const glm::dvec2& t);
+
+// A bin's fine-grid samples sorted by their cells' columns and, apart, by their rows, for
+// edge_correction.
+struct edge_samples {
+  std::vector<fine_sample> by_column, by_row;
+  std::vector<std::uint32_t> column_start, row_start;  // cell c's samples from [c + radius] to [c + radius + 1]
+  int radius = 0;
+  std::uint64_t drawn = 0;  // the samples these are of (their divisor)
+};
+edge_samples sort_edge_samples(const std::vector<fine_sample>& fine, int radius, std::uint64_t drawn);
+
+// What grid_value adds over spread_bilinear at the display's edges, averaged over a bin's samples
+// for a pixel whose ideal point is `base`: the correlated fine grid at `base` plus this is the mean
+// of the pixel's predictions from that bin's samples.
+glm::vec3 edge_correction(const model_grid& fine, const edge_samples& samples, const glm::dvec2& base);
 
 // The workers a model image's loops run on.
 inline detail::row_workers row_workers_of(const model_image_params& p) { return {p.threads, p.own_threads}; }

@@ -13,6 +13,7 @@
 // Averaged over the samples, the prediction is the model image (up to the PSF's own sampling, drawn
 // from the scene's seed), so the tracer estimates only the difference between each true path and
 // its prediction, which is small wherever the model holds.
+#include <array>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -31,11 +32,15 @@ namespace airr {
 struct model_image_params {
   int angle_bins = 8;                  // PSFs across the image's range of incidence angles
   std::uint64_t psf_samples = 200000;  // per bin
-  int max_texels = 512;                // the display's texels, on its longer side
-  int texel_refine = 4;                // fine grid nodes per texel and direction
-  double core_radius_mm = 8;           // offsets up to this go to the fine grid ...
-  int tail_texels = 256;               // ... the rest to a coarse grid this size (longer side)
-  double kernel_radius_mm = 64;        // ... up to this; farther ones are left out (of both uses)
+  // Where the fine grid's nodes put the display's edges (an even texel_refine), a prediction steps
+  // at the edge as the display does; the image's share of that step is summed over the first this
+  // many of a bin's samples, at most psf_samples (its cost grows with them, its error is theirs).
+  std::uint64_t edge_samples = 16384;
+  int max_texels = 512;          // the display's texels, on its longer side
+  int texel_refine = 4;          // fine grid nodes per texel and direction
+  double core_radius_mm = 8;     // offsets up to this go to the fine grid ...
+  int tail_texels = 256;         // ... the rest to a coarse grid this size (longer side)
+  double kernel_radius_mm = 64;  // ... up to this; farther ones are left out (of both uses)
   // Ideal paths traced on every n-th pixel and interpolated between where all four neighbours
   // have one (1: every pixel); the path from a pixel to the display is smooth (projective).
   int path_stride = 1;
@@ -61,7 +66,9 @@ struct model_image_params {
   // the fine grid is twice the texels and reaches 4 mm (a third of the time; RF-AN's variance per
   // sample 1.6 times as high), since the finer grid's fixed cost (about 3 s more on two cores)
   // would outweigh the variance it saves over a small image's samples, or delay an interactive
-  // session's first traced image after every edit.
+  // session's first traced image after every edit. Otherwise 16 angle bins: a pixel's prediction
+  // mixes its two bins' landings, and with 8 the default scene's variance per sample at 512 x 512
+  // was 1.8 times as high, where the second 8 bins cost about 1 s more.
   static model_image_params for_image(int width, int height, bool quick = false);
 
   // The designer's first look after an edit: a few milliseconds on one thread, coarser (texels of
@@ -81,6 +88,9 @@ struct model_grid {
   image_rgb padded;
   double node_w = 0, node_h = 0;  // mm between nodes
   int radius = 0;                 // the kernel's reach, in nodes
+  // The display's edges lie on node lines (an even refine), so that a prediction can step to black
+  // at the edge as the tracer's display does, not ramp over a node (model_image_edges.cpp).
+  bool edges_on_nodes = false;
 };
 
 // The two grids: near the ideal point the fine one, which follows the display's texels exactly;
@@ -181,6 +191,19 @@ struct remap_limits {
 };
 image_rgb remap_model_image(const model_image& from, const scene& s, const model_image_params& p,
                             const std::atomic<bool>* cancel = nullptr, const remap_limits& limits = {});
+
+// The pixel jitters and first-retroreflection samples a bin's kernels are made of (a rotated R6
+// sequence, as the tracer's pixels use): a bin's kernels are its samples 0 .. psf_samples - 1.
+class kernel_sequence {
+ public:
+  kernel_sequence(std::size_t bin, std::uint64_t seed);
+  void at(std::uint64_t i, glm::dvec2& jitter, retro_samples& u) const;
+
+ private:
+  std::array<double, 6> rotation_{};
+  std::size_t bin_;
+  std::uint64_t seed_;
+};
 
 // The model's prediction for one tracer sample of pixel (px, py), from its pixel jitter in
 // [0, 1)^2 and its first retroreflection's samples: the same numbers sent through both of the
