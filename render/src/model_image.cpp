@@ -35,8 +35,12 @@ model_image_params model_image_params::for_image(int width, int height, bool qui
   if (quick || std::int64_t(width) * height < 256 * 256) {
     p.texel_refine = 2;
     p.core_radius_mm = 4;
+    p.edge_samples = 2048;
   } else {
     p.angle_bins = 16;
+    // The edges' share costs as many samples a pixel near an edge: a large image takes fewer.
+    const double pixels = double(width) * double(height);
+    p.edge_samples = std::uint64_t(std::clamp(16384.0 * (512.0 * 512.0) / pixels, 2048.0, 16384.0));
   }
   return p;
 }

@@ -76,6 +76,7 @@ glm::vec3 edge_correction(const model_grid& fine, const edge_samples& s, const g
   const node_box d(fine);
   glm::dvec3 sum(0.0);
   auto add = [&](const fine_sample& f) {
+    if (!edge_cell(d, base + glm::floor(f.t))) return;  // grid_value is spread_bilinear there
     sum += glm::dvec3(grid_value(fine, base, f.t) - spread_bilinear(fine.padded, base, f.t)) * f.w;
   };
   // Samples of cells reaching beyond a left or right edge by column, then the others beyond the

@@ -63,12 +63,13 @@ struct model_image_params {
   int display_samples = 0;
 
   // The tracer's control variate for an image of this size. `quick`, or below 256 x 256 pixels:
-  // the fine grid is twice the texels and reaches 4 mm (a third of the time; RF-AN's variance per
-  // sample 1.6 times as high), since the finer grid's fixed cost (about 3 s more on two cores)
-  // would outweigh the variance it saves over a small image's samples, or delay an interactive
-  // session's first traced image after every edit. Otherwise 16 angle bins: a pixel's prediction
-  // mixes its two bins' landings, and with 8 the default scene's variance per sample at 512 x 512
-  // was 1.8 times as high, where the second 8 bins cost about 1 s more.
+  // the fine grid is twice the texels and reaches 4 mm, its edges' share from 2048 samples (a
+  // third of the time; RF-AN's variance per sample 1.6 times as high), since the finer grid's
+  // fixed cost (about 3 s more on two cores) would outweigh the variance it saves over a small
+  // image's samples, or delay an interactive session's first traced image after every edit.
+  // Otherwise 16 angle bins: a pixel's prediction mixes its two bins' landings, and with 8 the
+  // default scene's variance per sample at 512 x 512 was 1.8 times as high, for about 1 s less;
+  // the edges' share from 16384 samples at 512 x 512, fewer in proportion above (2048 at least).
   static model_image_params for_image(int width, int height, bool quick = false);
 
   // The designer's first look after an edit: a few milliseconds on one thread, coarser (texels of
