@@ -229,7 +229,8 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
         const std::array<cv::Mat, 2> kernels =
             bin_kernels(*m, m->bins[std::size_t(k)], std::size_t(k), p.psf_samples, s.seed, row_workers_of(p), cancel,
                         fine_grid.edges_on_nodes ? &landed : nullptr, edge_count);
-        const edge_samples edges = sort_edge_samples(landed, fine_grid.radius, edge_count);
+        const edge_samples edges =
+            fine_grid.edges_on_nodes ? sort_edge_samples(landed, fine_grid.radius, edge_count) : edge_samples{};
         landed = {};
         bin_seconds[std::size_t(k)][0] = since(t);
         if (cancel_requested(cancel)) break;

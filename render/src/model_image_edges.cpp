@@ -3,6 +3,7 @@
 // bright edge's samples then differed from their predictions by up to the edge's radiance, two
 // thirds of the default scene's noise).
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "model_image_steps.hpp"
@@ -31,15 +32,27 @@ int cell_of(double t, int radius) { return std::clamp(int(std::floor(t)), -radiu
 
 // The cells (offsets from a pixel's ideal point `b`) whose first corner lies within two nodes before
 // the edge at `lo` or one node either side of the edge at `hi` along one axis (edge_cell's bounds:
-// the sums are exact in double), in ascending order.
-std::vector<int> edge_cells(double b, double lo, double hi, int radius) {
-  std::vector<int> out;
+// the sums are exact in double), in ascending order: at most two of each.
+struct cell_list {
+  std::array<int, 4> at{};
+  int count = 0;
+  const int* begin() const { return at.data(); }
+  const int* end() const { return at.data() + count; }
+};
+cell_list edge_cells(double b, double lo, double hi, int radius) {
+  cell_list out;
   for (const auto& [from, to] : {std::pair{lo - 2, lo}, std::pair{hi - 1, hi + 1}}) {
     for (int n = int(std::floor(from - b)) + 1; n < to - b; ++n) {
-      if (n >= -radius && n < radius && (out.empty() || n > out.back())) out.push_back(n);
+      if (n >= -radius && n < radius && (out.count == 0 || n > out.at[std::size_t(out.count - 1)]) && out.count < 4)
+        out.at[std::size_t(out.count++)] = n;
     }
   }
   return out;
+}
+
+// The display itself at node point `p`: black beyond its edges.
+glm::vec3 display_at(const model_grid& grid, const node_box& d, const glm::dvec2& p) {
+  return d.holds(p) ? bilinear(grid.padded, p) : glm::vec3(0.0f);
 }
 
 }  // namespace
@@ -47,10 +60,7 @@ std::vector<int> edge_cells(double b, double lo, double hi, int radius) {
 glm::vec3 grid_value(const model_grid& grid, const glm::dvec2& base, const glm::dvec2& t) {
   if (grid.edges_on_nodes) {
     const node_box d(grid);
-    if (edge_cell(d, base + glm::floor(t))) {
-      const glm::dvec2 p = base + t;
-      return d.holds(p) ? bilinear(grid.padded, p) : glm::vec3(0.0f);
-    }
+    if (edge_cell(d, base + glm::floor(t))) return display_at(grid, d, base + t);
   }
   return spread_bilinear(grid.padded, base, t);
 }
@@ -77,11 +87,11 @@ glm::vec3 edge_correction(const model_grid& fine, const edge_samples& s, const g
   glm::dvec3 sum(0.0);
   auto add = [&](const fine_sample& f) {
     if (!edge_cell(d, base + glm::floor(f.t))) return;  // grid_value is spread_bilinear there
-    sum += glm::dvec3(grid_value(fine, base, f.t) - spread_bilinear(fine.padded, base, f.t)) * f.w;
+    sum += glm::dvec3(display_at(fine, d, base + f.t) - spread_bilinear(fine.padded, base, f.t)) * f.w;
   };
   // Samples of cells reaching beyond a left or right edge by column, then the others beyond the
   // top or bottom by row; elsewhere grid_value is spread_bilinear and adds nothing.
-  const std::vector<int> columns = edge_cells(base.x, d.x0, d.x1, s.radius);
+  const cell_list columns = edge_cells(base.x, d.x0, d.x1, s.radius);
   for (int c : columns) {
     const std::size_t i = std::size_t(c + s.radius);
     for (std::uint32_t k = s.column_start[i]; k < s.column_start[i + 1]; ++k) add(s.by_column[k]);
