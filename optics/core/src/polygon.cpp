@@ -21,18 +21,22 @@ double polygon_perimeter(const polygon2& p) {
 }
 
 polygon2 clip_convex_polygon(const polygon2& subject, const polygon2& clip) {
-  polygon2 out = subject;
+  // Each clip edge adds at most one vertex: two buffers of that size, swapped, allocate once each.
+  polygon2 out, next;
+  out.reserve(subject.size() + clip.size());
+  next.reserve(subject.size() + clip.size());
+  out = subject;
   for (std::size_t i = 0; i < clip.size() && !out.empty(); ++i) {
     const glm::dvec2 a = clip[i], b = clip[(i + 1) % clip.size()];
     auto side = [&](const glm::dvec2& p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); };
-    polygon2 next;
+    next.clear();
     for (std::size_t j = 0; j < out.size(); ++j) {
       const glm::dvec2 p = out[j], q = out[(j + 1) % out.size()];
       const double sp = side(p), sq = side(q);
       if (sp >= 0) next.push_back(p);
       if ((sp >= 0) != (sq >= 0)) next.push_back(p + (q - p) * (sp / (sp - sq)));
     }
-    out = std::move(next);
+    std::swap(out, next);
   }
   if (out.size() < 3) out.clear();
   return out;

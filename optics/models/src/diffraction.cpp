@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <vector>
 
 #include "airr/core/geometry.hpp"
 
@@ -82,13 +83,21 @@ double edge_bound(const aperture& a, const glm::dvec2& f) {
   return sum * sum / (4 * pi * pi * f2 * f2);
 }
 
+// A point uniformly distributed in the unit disc, drawn from the square around it.
+inline glm::dvec2 point_in_disc(pcg32& rng) {
+  while (true) {
+    const glm::dvec2 p(2 * rng.next_double() - 1, 2 * rng.next_double() - 1);
+    if (glm::dot(p, p) < 1) return p;
+  }
+}
+
 // A uniformly distributed direction in the plane, from a point drawn in the unit disc (no sine or
 // cosine: the sampler draws about ten of them per accepted frequency).
 inline glm::dvec2 uniform_direction(pcg32& rng) {
   while (true) {
-    const glm::dvec2 p(2 * rng.next_double() - 1, 2 * rng.next_double() - 1);
+    const glm::dvec2 p = point_in_disc(rng);
     const double p2 = glm::dot(p, p);
-    if (p2 <= 1 && p2 > 1e-12) return p / std::sqrt(p2);
+    if (p2 > 1e-12) return p / std::sqrt(p2);
   }
 }
 
@@ -120,21 +129,83 @@ glm::dvec2 sample_airy(const aperture& a, pcg32& rng, double f_max) {
   }
 }
 
-// A polygon's |F|^2 by rejection from area^2 within f0 and (perimeter / (2 pi |f|))^2 beyond (the
-// edge sum's magnitude is at most |f| perimeter), the edge bound refusing most trials first.
+// A polygon's far field beyond the central lobe lies in streaks across its edges. Write f = a n + b t
+// for edge j (t along it, n across it, length L): its term in the edge bound is |a| L min(1, beta /
+// |b|), beta = 1 / (pi L). Cauchy-Schwarz over the edges bounds |F|^2 by edges x sum_j L^2 m_j(b)
+// a^2 / (4 pi^2 |f|^4), m(b) = min(1, (beta / b)^2), and beyond f0 a^2 / |f|^4 <= 2 / (a^2 + s^2),
+// s = max(|b|, f0). Each edge's share is then a Cauchy profile in a (scale s) times a piecewise power
+// law in b, drawn in closed form; their masses are finite, where a radial bound's grow as
+// log(f_max / f0) (about three times fewer trials for a triangle).
+struct streak {
+  glm::dvec2 along{0}, across{0};
+  double beta = 0, scale = 0;  // scale: edges x L^2 / (2 pi^2), the share's factor
+};
+
+// The share of b >= 0 between its breaks: m(b) / s(b) integrated over [0, min(beta, f0)], up to
+// max(beta, f0) and beyond (per unit of 2 pi scale / pi, both signs of b together).
+std::array<double, 3> streak_pieces(double beta, double f0) {
+  if (beta <= f0) return {beta / f0, beta / f0 - beta * beta / (f0 * f0), beta * beta / (2 * f0 * f0)};
+  return {1.0, std::log(beta / f0), 0.5};
+}
+
+// b >= 0 in piece k of the share, from a uniform r in [0, 1) by inverting that piece's integral.
+double streak_b(double beta, double f0, int k, double r) {
+  const double lo = std::min(beta, f0), hi = std::max(beta, f0);
+  if (k == 0) return lo * r;
+  if (k == 2) return hi / std::sqrt(1 - r);
+  return beta <= f0 ? 1 / (1 / beta - r * (1 / beta - 1 / f0)) : f0 * std::exp(r * std::log(beta / f0));
+}
+
+// The bound the streaks add up to at f (|f| >= f0).
+double streak_bound(const std::vector<streak>& streaks, double f0, const glm::dvec2& f) {
+  double sum = 0;
+  for (const streak& s : streaks) {
+    const double a = glm::dot(f, s.across), b = std::abs(glm::dot(f, s.along)), w = std::max(b, f0);
+    const double m = b > s.beta ? s.beta * s.beta / (b * b) : 1.0;
+    sum += s.scale * m / (a * a + w * w);
+  }
+  return sum;
+}
+
+// A polygon's |F|^2 by rejection from area^2 within f0 = perimeter / (2 pi area) and the streaks'
+// bound beyond, the edge bound refusing most trials before F is evaluated.
 glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max) {
-  const double area = a.area(), perimeter = a.perimeter();
-  const double f0 = std::min(perimeter / (2 * pi * area), f_max);
-  const double inner = area * area * pi * f0 * f0;
-  const double log_reach = f0 < f_max ? std::log(f_max / f0) : 0.0;
-  const double outer = perimeter * perimeter / (2 * pi) * log_reach;
+  const double area = a.area(), f0 = std::min(a.perimeter() / (2 * pi * area), f_max);
+  std::vector<streak> streaks;
+  const std::size_t n = a.polygon.size();
+  for (std::size_t j = 0; j < n; ++j) {
+    const glm::dvec2 d = a.polygon[(j + 1) % n] - a.polygon[j];
+    const double length = glm::length(d);
+    if (length > 0) streaks.push_back({d / length, glm::dvec2(-d.y, d.x) / length, 1 / (pi * length), length * length});
+  }
+  for (streak& s : streaks) s.scale *= double(streaks.size()) / (2 * pi * pi);
+  // The pieces to draw from: the disc, then each streak's three (none when f_max cuts at f0).
+  std::vector<double> weights{area * area * pi * f0 * f0};
+  if (f0 < f_max) {
+    for (const streak& s : streaks) {
+      for (double piece : streak_pieces(s.beta, f0)) weights.push_back(2 * pi * s.scale * piece);
+    }
+  }
+  double total = 0;
+  for (double w : weights) total += w;
   while (true) {
-    const bool in = rng.next_double() * (inner + outer) < inner;
-    const double u = rng.next_double();
-    const double r = in ? f0 * std::sqrt(u) : f0 * std::exp(u * log_reach);
-    const glm::dvec2 f = r * uniform_direction(rng);
-    const double edge_mean = perimeter / (2 * pi * r);
-    const double bound = r <= f0 ? area * area : edge_mean * edge_mean;
+    double pick = rng.next_double() * total;
+    std::size_t k = 0;
+    while (k + 1 < weights.size() && pick >= weights[k]) pick -= weights[k++];
+    const double r = std::min(pick / weights[k], 1 - 1e-16);
+    glm::dvec2 f;
+    double bound;
+    if (k == 0) {
+      f = f0 * point_in_disc(rng);
+      bound = area * area;
+    } else {
+      const streak& s = streaks[(k - 1) / 3];
+      const double b = streak_b(s.beta, f0, int((k - 1) % 3), r) * (rng.next_double() < 0.5 ? -1 : 1);
+      f = b * s.along + std::max(std::abs(b), f0) * std::tan(pi * (rng.next_double() - 0.5)) * s.across;
+      const double f2 = glm::dot(f, f);
+      if (f2 < f0 * f0 || f2 >= f_max * f_max) continue;
+      bound = streak_bound(streaks, f0, f);
+    }
     const double v = rng.next_double() * bound;
     if (v >= edge_bound(a, f)) continue;
     if (v < intensity(a, area, f)) return f;

@@ -29,11 +29,16 @@ constexpr int max_steps = 100000;  // triangles crossed by one straight stretch
 // The three groove families' in-plane unit normals, 120 deg apart (they sum to zero): family k's
 // ridges are the lines e_k . x = j pitch for every integer j, all three meeting at the array's
 // vertices.
-std::array<glm::dvec2, 3> groove_normals(const prism_sheet_geometry& g) {
-  std::array<glm::dvec2, 3> e;
-  for (int k = 0; k < 3; ++k) {
-    const double a = radians(g.azimuth_deg + 90 + 120.0 * k);
-    e[std::size_t(k)] = {std::cos(a), std::sin(a)};
+// A walk asks for them several times and the azimuth seldom changes: kept per thread.
+const std::array<glm::dvec2, 3>& groove_normals(const prism_sheet_geometry& g) {
+  thread_local double azimuth = std::numeric_limits<double>::quiet_NaN();
+  thread_local std::array<glm::dvec2, 3> e;
+  if (g.azimuth_deg != azimuth) {
+    for (int k = 0; k < 3; ++k) {
+      const double a = radians(g.azimuth_deg + 90 + 120.0 * k);
+      e[std::size_t(k)] = {std::cos(a), std::sin(a)};
+    }
+    azimuth = g.azimuth_deg;
   }
   return e;
 }
@@ -137,26 +142,36 @@ polygon2 aperture_triangle(const prism_sheet_geometry& g, int pointing) {
   return triangle;
 }
 
+namespace {
+
+// An angle's stand-in, increasing with it over [0, 4) counter-clockwise from +x (no arc tangent).
+double pseudo_angle(const glm::dvec2& v) {
+  const double p = v.x / (std::abs(v.x) + std::abs(v.y));
+  return v.y >= 0 ? 1 - p : 3 + p;
+}
+
+}  // namespace
+
 polygon2 face_order_aperture(const polygon2& effective, const corner_view& view, const glm::dvec2& entry) {
-  // The six half-lines from the apex along the edges and against them, sorted by angle; the
-  // entry's direction lies between two neighbours, whose wedge (under 180 deg) holds its part.
-  std::array<double, 6> angles{};
-  for (std::size_t k = 0; k < 3; ++k) {
-    const glm::dvec2 r = view.edge_ends[k] - view.apex;
-    angles[2 * k] = std::atan2(r.y, r.x);
-    angles[2 * k + 1] = std::atan2(-r.y, -r.x);
+  // The six half-lines from the apex along the edges and against them; the entry's direction lies
+  // between two neighbours, the first met turning clockwise from it (or on it) and the first met
+  // turning counter-clockwise, whose wedge (under 180 deg) holds its part. Angles are measured
+  // from the entry's direction, in its frame.
+  const glm::dvec2 w = entry != view.apex ? entry - view.apex : glm::dvec2(1, 0);
+  auto turned = [&](const glm::dvec2& r) { return glm::dvec2(w.x * r.x + w.y * r.y, w.x * r.y - w.y * r.x); };
+  glm::dvec2 lo{0}, hi{0};
+  double lo_angle = 5, hi_angle = 5;
+  for (std::size_t k = 0; k < 6; ++k) {
+    const glm::dvec2 r = (k % 2 ? -1.0 : 1.0) * (view.edge_ends[k / 2] - view.apex);
+    const glm::dvec2 t = turned(r);
+    const double clockwise = pseudo_angle({t.x, -t.y}), counter = pseudo_angle(t);
+    if (clockwise < lo_angle) lo_angle = clockwise, lo = r;
+    if (counter > 0 && counter < hi_angle) hi_angle = counter, hi = r;
   }
-  std::sort(angles.begin(), angles.end());
-  const glm::dvec2 w = entry - view.apex;
-  const double at = std::atan2(w.y, w.x);
-  double lo = angles[5] - 2 * pi, hi = angles[0];
-  for (std::size_t i = 0; i + 1 < 6; ++i)
-    if (at >= angles[i] && at < angles[i + 1]) lo = angles[i], hi = angles[i + 1];
-  if (at >= angles[5]) lo = angles[5], hi = angles[0] + 2 * pi;
   double reach = 0;
   for (const glm::dvec2& p : effective) reach = std::max(reach, 4 * glm::length(p - view.apex));
-  const polygon2 wedge = {view.apex, view.apex + reach * glm::dvec2(std::cos(lo), std::sin(lo)),
-                          view.apex + reach * glm::dvec2(std::cos(hi), std::sin(hi))};
+  const polygon2 wedge = {view.apex, view.apex + reach / glm::length(lo) * lo,
+                          view.apex + reach / glm::length(hi) * hi};
   return clip_convex_polygon(effective, wedge);
 }
 

@@ -29,8 +29,8 @@ struct aperture {
 double far_field_intensity(const aperture& a, const glm::dvec2& f);
 
 // A spatial frequency drawn from |F(f)|^2 over |f| < f_max (0: 64 / sqrt(area), past which less
-// than about 1% of the light goes), by rejection from min(area^2, (perimeter / (2 pi |f|))^2),
-// which bounds it.
+// than about 1% of the light goes), by rejection: a circle's from area^2 and a bound falling as
+// |f|^-3, a polygon's from area^2 and a bound made of one streak across each edge.
 glm::dvec2 sample_far_field(const aperture& a, pcg32& rng, double f_max = 0);
 
 // The default cut-off of sample_far_field.
