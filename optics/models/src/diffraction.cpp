@@ -91,6 +91,14 @@ inline glm::dvec2 point_in_disc(pcg32& rng) {
   }
 }
 
+// A standard Cauchy variate: x / y for a point uniformly distributed in the unit disc's upper half.
+inline double cauchy(pcg32& rng) {
+  while (true) {
+    const double x = 2 * rng.next_double() - 1, y = rng.next_double();
+    if (y > 0 && x * x + y * y < 1) return x / y;
+  }
+}
+
 // A uniformly distributed direction in the plane, from a point drawn in the unit disc (no sine or
 // cosine: the sampler draws about ten of them per accepted frequency).
 inline glm::dvec2 uniform_direction(pcg32& rng) {
@@ -130,15 +138,18 @@ glm::dvec2 sample_airy(const aperture& a, pcg32& rng, double f_max) {
 }
 
 // A polygon's far field beyond the central lobe lies in streaks across its edges. Write f = a n + b t
-// for edge j (t along it, n across it, length L): its term in the edge bound is |a| L min(1, beta /
-// |b|), beta = 1 / (pi L). Cauchy-Schwarz over the edges bounds |F|^2 by edges x sum_j L^2 m_j(b)
-// a^2 / (4 pi^2 |f|^4), m(b) = min(1, (beta / b)^2), and beyond f0 a^2 / |f|^4 <= 2 / (a^2 + s^2),
-// s = max(|b|, f0). Each edge's share is then a Cauchy profile in a (scale s) times a piecewise power
-// law in b, drawn in closed form; their masses are finite, where a radial bound's grow as
-// log(f_max / f0) (about three times fewer trials for a triangle).
+// for edge j (t along it, n across it, length L): its term t_j in the edge bound is |a| L min(1,
+// beta / |b|), beta = 1 / (pi L). Cauchy-Schwarz, (sum_j t_j)^2 <= (sum_k c_k) (sum_j t_j^2 / c_j)
+// for any c_j > 0, bounds |F|^2 by C sum_j L^2 m_j(b) a^2 / (c_j 4 pi^2 |f|^4), C = sum_k c_k, m(b) =
+// min(1, (beta / b)^2), and beyond f0 a^2 / |f|^4 <= 2 / (a^2 + s^2), s = max(|b|, f0). Each edge's
+// share is then a Cauchy profile in a (scale s) times a piecewise power law in b, drawn in closed
+// form; their masses are finite, where a radial bound's grow as log(f_max / f0). With c_j the square
+// root of edge j's own mass the streaks' total is C^2, the least such a sum can be.
 struct streak {
   glm::dvec2 along{0}, across{0};
-  double beta = 0, scale = 0;  // scale: edges x L^2 / (2 pi^2), the share's factor
+  double length = 0, beta = 0;
+  std::array<double, 3> pieces{};
+  double scale = 0;  // the share's factor, C L^2 / (c_j 2 pi^2)
 };
 
 // The share of b >= 0 between its breaks: m(b) / s(b) integrated over [0, min(beta, f0)], up to
@@ -171,19 +182,27 @@ double streak_bound(const std::vector<streak>& streaks, double f0, const glm::dv
 // bound beyond, the edge bound refusing most trials before F is evaluated.
 glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max) {
   const double area = a.area(), f0 = std::min(a.perimeter() / (2 * pi * area), f_max);
-  std::vector<streak> streaks;
-  const std::size_t n = a.polygon.size();
-  for (std::size_t j = 0; j < n; ++j) {
-    const glm::dvec2 d = a.polygon[(j + 1) % n] - a.polygon[j];
-    const double length = glm::length(d);
-    if (length > 0) streaks.push_back({d / length, glm::dvec2(-d.y, d.x) / length, 1 / (pi * length), length * length});
-  }
-  for (streak& s : streaks) s.scale *= double(streaks.size()) / (2 * pi * pi);
-  // The pieces to draw from: the disc, then each streak's three (none when f_max cuts at f0).
-  std::vector<double> weights{area * area * pi * f0 * f0};
+  // Kept per thread: a sheet draws one far field per retroreflected path.
+  thread_local std::vector<streak> streaks;
+  thread_local std::vector<double> weights;
+  streaks.clear();
+  weights.assign(1, area * area * pi * f0 * f0);
   if (f0 < f_max) {
-    for (const streak& s : streaks) {
-      for (double piece : streak_pieces(s.beta, f0)) weights.push_back(2 * pi * s.scale * piece);
+    const std::size_t n = a.polygon.size();
+    double c_sum = 0;
+    for (std::size_t j = 0; j < n; ++j) {
+      const glm::dvec2 d = a.polygon[(j + 1) % n] - a.polygon[j];
+      const double length = glm::length(d);
+      if (!(length > 0)) continue;
+      streak s{d / length, glm::dvec2(-d.y, d.x) / length, length, 1 / (pi * length)};
+      s.pieces = streak_pieces(s.beta, f0);
+      s.scale = length * std::sqrt(s.pieces[0] + s.pieces[1] + s.pieces[2]);  // c_j for now
+      c_sum += s.scale;
+      streaks.push_back(s);
+    }
+    for (streak& s : streaks) {
+      s.scale = c_sum / s.scale * s.length * s.length / (2 * pi * pi);
+      for (double piece : s.pieces) weights.push_back(2 * pi * s.scale * piece);
     }
   }
   double total = 0;
@@ -201,7 +220,7 @@ glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max)
     } else {
       const streak& s = streaks[(k - 1) / 3];
       const double b = streak_b(s.beta, f0, int((k - 1) % 3), r) * (rng.next_double() < 0.5 ? -1 : 1);
-      f = b * s.along + std::max(std::abs(b), f0) * std::tan(pi * (rng.next_double() - 0.5)) * s.across;
+      f = b * s.along + std::max(std::abs(b), f0) * cauchy(rng) * s.across;
       const double f2 = glm::dot(f, f);
       if (f2 < f0 * f0 || f2 >= f_max * f_max) continue;
       bound = streak_bound(streaks, f0, f);
