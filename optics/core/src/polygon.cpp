@@ -21,8 +21,10 @@ double polygon_perimeter(const polygon2& p) {
 }
 
 polygon2 clip_convex_polygon(const polygon2& subject, const polygon2& clip) {
-  // Each clip edge adds at most one vertex: two buffers of that size, swapped, allocate once each.
-  polygon2 out, next;
+  // Each clip edge adds at most one vertex: two buffers of that size, swapped (the second kept per
+  // thread: sheets clip apertures once or twice per path).
+  thread_local polygon2 next;
+  polygon2 out;
   out.reserve(subject.size() + clip.size());
   next.reserve(subject.size() + clip.size());
   out = subject;

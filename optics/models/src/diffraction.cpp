@@ -140,26 +140,28 @@ glm::dvec2 sample_airy(const aperture& a, pcg32& rng, double f_max) {
 // A polygon's far field beyond the central lobe lies in streaks across its edges. Write f = a n + b t
 // for edge j (t along it, n across it, length L): its term t_j in the edge bound is |a| L min(1,
 // beta / |b|), beta = 1 / (pi L). Cauchy-Schwarz, (sum_j t_j)^2 <= (sum_k c_k) (sum_j t_j^2 / c_j)
-// for any c_j > 0, bounds |F|^2 by C sum_j L^2 m_j(b) a^2 / (c_j 4 pi^2 |f|^4), C = sum_k c_k, m(b) =
-// min(1, (beta / b)^2), and beyond f0 a^2 / |f|^4 <= 2 / (a^2 + s^2), s = max(|b|, f0). Each edge's
-// share is then a Cauchy profile in a (scale s) times a piecewise power law in b, drawn in closed
-// form; their masses are finite, where a radial bound's grow as log(f_max / f0). With c_j the square
-// root of edge j's own mass the streaks' total is C^2, the least such a sum can be.
+// for any c_j > 0, and a^2 <= |f|^2 bound |F|^2 by C sum_j L^2 m_j(b) / (c_j 4 pi^2 (a^2 + b^2)), C =
+// sum_k c_k, m(b) = min(1, (beta / b)^2). Beyond f0 each edge's share is a Cauchy profile in a
+// (scale |b|, cut to |f| >= f0) times a power law in b: b is drawn in closed form from m(b) pi / s(b),
+// s = max(|b|, f0), which is the share's integral over a for |b| >= f0 and bounds it, 2 asin(|b| /
+// f0) / |b|, below, where a draw is kept in that ratio. The masses are finite, where a radial bound's
+// grow as log(f_max / f0). With c_j the square root of edge j's own mass the streaks' total is about
+// C^2, near the least such a sum can be.
 struct streak {
   glm::dvec2 along{0}, across{0};
   double length = 0, beta = 0;
   std::array<double, 3> pieces{};
-  double scale = 0;  // the share's factor, C L^2 / (c_j 2 pi^2)
+  double scale = 0;  // the share's factor, C L^2 / (c_j 4 pi^2)
 };
 
-// The share of b >= 0 between its breaks: m(b) / s(b) integrated over [0, min(beta, f0)], up to
-// max(beta, f0) and beyond (per unit of 2 pi scale / pi, both signs of b together).
+// The integral of m(b) / s(b) over b >= 0 between its breaks: over [0, min(beta, f0)], up to
+// max(beta, f0) and beyond.
 std::array<double, 3> streak_pieces(double beta, double f0) {
   if (beta <= f0) return {beta / f0, beta / f0 - beta * beta / (f0 * f0), beta * beta / (2 * f0 * f0)};
   return {1.0, std::log(beta / f0), 0.5};
 }
 
-// b >= 0 in piece k of the share, from a uniform r in [0, 1) by inverting that piece's integral.
+// b >= 0 in piece k of m(b) / s(b), from a uniform r in [0, 1) by inverting that piece's integral.
 double streak_b(double beta, double f0, int k, double r) {
   const double lo = std::min(beta, f0), hi = std::max(beta, f0);
   if (k == 0) return lo * r;
@@ -167,41 +169,55 @@ double streak_b(double beta, double f0, int k, double r) {
   return beta <= f0 ? 1 / (1 / beta - r * (1 / beta - 1 / f0)) : f0 * std::exp(r * std::log(beta / f0));
 }
 
+// a across a streak at b, distributed as 1 / (a^2 + b^2) over |f| >= f0; empty when the draw of b
+// is refused (|b| < f0, in the ratio of the share's integral over a to its bound).
+std::optional<double> streak_a(double b, double f0, pcg32& rng) {
+  b = std::abs(b);
+  const double sign = rng.next_double() < 0.5 ? -1 : 1;
+  if (b >= f0) return sign * b * cauchy(rng);
+  const double x = b / f0;
+  if (!(x > 1e-12)) return std::nullopt;
+  const double reach = std::asin(x);  // |a| = b cot(phi), phi in (0, reach]: |a| >= sqrt(f0^2 - b^2)
+  if (rng.next_double() * (pi / 2) * x >= reach) return std::nullopt;
+  return sign * b / std::tan(reach * (1 - rng.next_double()));
+}
+
 // The bound the streaks add up to at f (|f| >= f0).
-double streak_bound(const std::vector<streak>& streaks, double f0, const glm::dvec2& f) {
+double streak_bound(const std::vector<streak>& streaks, const glm::dvec2& f) {
   double sum = 0;
   for (const streak& s : streaks) {
-    const double a = glm::dot(f, s.across), b = std::abs(glm::dot(f, s.along)), w = std::max(b, f0);
-    const double m = b > s.beta ? s.beta * s.beta / (b * b) : 1.0;
-    sum += s.scale * m / (a * a + w * w);
+    const double b = std::abs(glm::dot(f, s.along));
+    sum += b > s.beta ? s.scale * s.beta * s.beta / (b * b) : s.scale;
   }
-  return sum;
+  return sum / glm::dot(f, f);
 }
 
 // A polygon's |F|^2 by rejection from area^2 within f0 = perimeter / (2 pi area) and the streaks'
 // bound beyond, the edge bound refusing most trials before F is evaluated.
 glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max) {
-  const double area = a.area(), f0 = std::min(a.perimeter() / (2 * pi * area), f_max);
   // Kept per thread: a sheet draws one far field per retroreflected path.
   thread_local std::vector<streak> streaks;
   thread_local std::vector<double> weights;
   streaks.clear();
+  double perimeter = 0;
+  const std::size_t n = a.polygon.size();
+  for (std::size_t j = 0; j < n; ++j) {
+    const glm::dvec2 d = a.polygon[(j + 1) % n] - a.polygon[j];
+    const double length = glm::length(d);
+    perimeter += length;
+    if (length > 0) streaks.push_back({d / length, glm::dvec2(-d.y, d.x) / length, length, 1 / (pi * length)});
+  }
+  const double area = a.area(), f0 = std::min(perimeter / (2 * pi * area), f_max);
   weights.assign(1, area * area * pi * f0 * f0);
   if (f0 < f_max) {
-    const std::size_t n = a.polygon.size();
     double c_sum = 0;
-    for (std::size_t j = 0; j < n; ++j) {
-      const glm::dvec2 d = a.polygon[(j + 1) % n] - a.polygon[j];
-      const double length = glm::length(d);
-      if (!(length > 0)) continue;
-      streak s{d / length, glm::dvec2(-d.y, d.x) / length, length, 1 / (pi * length)};
+    for (streak& s : streaks) {
       s.pieces = streak_pieces(s.beta, f0);
-      s.scale = length * std::sqrt(s.pieces[0] + s.pieces[1] + s.pieces[2]);  // c_j for now
+      s.scale = s.length * std::sqrt(s.pieces[0] + s.pieces[1] + s.pieces[2]);  // c_j for now
       c_sum += s.scale;
-      streaks.push_back(s);
     }
     for (streak& s : streaks) {
-      s.scale = c_sum / s.scale * s.length * s.length / (2 * pi * pi);
+      s.scale = c_sum / s.scale * s.length * s.length / (4 * pi * pi);
       for (double piece : s.pieces) weights.push_back(2 * pi * s.scale * piece);
     }
   }
@@ -220,10 +236,11 @@ glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max)
     } else {
       const streak& s = streaks[(k - 1) / 3];
       const double b = streak_b(s.beta, f0, int((k - 1) % 3), r) * (rng.next_double() < 0.5 ? -1 : 1);
-      f = b * s.along + std::max(std::abs(b), f0) * cauchy(rng) * s.across;
-      const double f2 = glm::dot(f, f);
-      if (f2 < f0 * f0 || f2 >= f_max * f_max) continue;
-      bound = streak_bound(streaks, f0, f);
+      const std::optional<double> across = streak_a(b, f0, rng);
+      if (!across) continue;
+      f = b * s.along + *across * s.across;
+      if (glm::dot(f, f) >= f_max * f_max) continue;
+      bound = streak_bound(streaks, f);
     }
     const double v = rng.next_double() * bound;
     if (v >= edge_bound(a, f)) continue;

@@ -62,6 +62,7 @@ prism_path walk_plate(const plate_optics& o, const follow_back& follow, const gl
     }
     const glm::dvec3 n = *end.face_normal;  // into the plate
     if (in_plate) {
+      if (record.faces.empty()) record.faces.reserve(4);  // a cube corner's three, in one allocation
       record.faces.push_back(end);
       ++out.face_reflections;
       if (end.metal_reflectance) {

@@ -97,6 +97,7 @@ polygon2 full_cube_effective_aperture(const prism_sheet_geometry& g, const glm::
     if (glm::dot(d, axis) >= 0) return {};
   const polygon2 hexagon = full_cube_hexagon(g, d);
   polygon2 image;
+  image.reserve(hexagon.size());
   for (const glm::dvec2& v : hexagon) image.push_back(-v);
   return clip_convex_polygon(image, hexagon);
 }

@@ -138,6 +138,7 @@ polygon2 aperture_triangle(const prism_sheet_geometry& g, int pointing) {
   // In a triangle whose f's sum to 1 the vertex opposite edge k lies along +e_k, 2/3 of the
   // height from the centroid (the apex is under the centroid).
   polygon2 triangle;
+  triangle.reserve(3);
   for (const glm::dvec2& ek : groove_normals(g)) triangle.push_back(double(pointing) * 2 * g.pitch_mm / 3 * ek);
   return triangle;
 }
@@ -191,13 +192,17 @@ polygon2 face_order_aperture(const prism_sheet_geometry& g, const glm::dvec3& d,
 }
 
 corner_view triangular_corner_view(const prism_sheet_geometry& g, const glm::dvec3& d, int pointing) {
-  const polygon2 triangle = aperture_triangle(g, pointing);
-  return {glm::dvec2(d) * (g.depth_mm() / d.z), {triangle[0], triangle[1], triangle[2]}};
+  corner_view view{glm::dvec2(d) * (g.depth_mm() / d.z)};
+  const auto& e = groove_normals(g);
+  for (std::size_t k = 0; k < 3; ++k)
+    view.edge_ends[k] = double(pointing) * 2 * g.pitch_mm / 3 * e[k];  // as aperture_triangle
+  return view;
 }
 
 polygon2 effective_aperture(const prism_sheet_geometry& g, const glm::dvec3& d, int pointing) {
   const polygon2 triangle = aperture_triangle(g, pointing);
   polygon2 image;
+  image.reserve(3);
   const glm::dvec2 q = glm::dvec2(d) * (g.depth_mm() / d.z);  // apex (0, 0, -depth) + s d at the ridges
   for (const glm::dvec2& v : triangle) image.push_back(2.0 * q - v);
   return clip_convex_polygon(image, triangle);
