@@ -8,7 +8,7 @@ namespace airr {
 double polygon_area(const polygon2& p) {
   double a = 0;
   for (std::size_t i = 0; i < p.size(); ++i) {
-    const glm::dvec2 &u = p[i], &v = p[(i + 1) % p.size()];
+    const glm::dvec2 &u = p[i], &v = p[i + 1 < p.size() ? i + 1 : 0];
     a += u.x * v.y - u.y * v.x;
   }
   return 0.5 * std::abs(a);
@@ -16,7 +16,7 @@ double polygon_area(const polygon2& p) {
 
 double polygon_perimeter(const polygon2& p) {
   double l = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) l += glm::length(p[(i + 1) % p.size()] - p[i]);
+  for (std::size_t i = 0; i < p.size(); ++i) l += glm::length(p[i + 1 < p.size() ? i + 1 : 0] - p[i]);
   return l;
 }
 
@@ -29,11 +29,11 @@ polygon2 clip_convex_polygon(const polygon2& subject, const polygon2& clip) {
   next.reserve(subject.size() + clip.size());
   out = subject;
   for (std::size_t i = 0; i < clip.size() && !out.empty(); ++i) {
-    const glm::dvec2 a = clip[i], b = clip[(i + 1) % clip.size()];
+    const glm::dvec2 a = clip[i], b = clip[i + 1 < clip.size() ? i + 1 : 0];
     auto side = [&](const glm::dvec2& p) { return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x); };
     next.clear();
     for (std::size_t j = 0; j < out.size(); ++j) {
-      const glm::dvec2 p = out[j], q = out[(j + 1) % out.size()];
+      const glm::dvec2 p = out[j], q = out[j + 1 < out.size() ? j + 1 : 0];
       const double sp = side(p), sq = side(q);
       if (sp >= 0) next.push_back(p);
       if ((sp >= 0) != (sq >= 0)) next.push_back(p + (q - p) * (sp / (sp - sq)));

@@ -49,7 +49,7 @@ double intensity(const aperture& a, double area, const glm::dvec2& f) {
   // is |d| (E(a) - E(b)) / (2 i u) with E(x) = exp(-2 pi i f . x): one exponential per vertex.
   const std::size_t n = a.polygon.size();
   auto vertex_wave = [&](std::size_t j) {
-    const double phase = -2 * pi * glm::dot(f, a.polygon[j % n]);
+    const double phase = -2 * pi * glm::dot(f, a.polygon[j]);
     return std::complex<double>(std::cos(phase), std::sin(phase));
   };
   std::complex<double> sum(0, 0);
@@ -57,7 +57,7 @@ double intensity(const aperture& a, double area, const glm::dvec2& f) {
   std::complex<double> at_p = first;
   for (std::size_t j = 0; j < n; ++j) {
     const std::complex<double> at_q = j + 1 < n ? vertex_wave(j + 1) : first;
-    const glm::dvec2 d = a.polygon[(j + 1) % n] - a.polygon[j];
+    const glm::dvec2 d = a.polygon[j + 1 < n ? j + 1 : 0] - a.polygon[j];
     const double u = pi * glm::dot(f, d);
     // Near u = 0 the difference cancels: sinc(u) exp(i u) to second order instead.
     const std::complex<double> wave = std::abs(u) < 1e-4 ? at_p * std::complex<double>(1 - u * u * (1.0 / 6 + 0.5), u)
@@ -75,7 +75,7 @@ double edge_bound(const aperture& a, const glm::dvec2& f) {
   double sum = 0;
   const std::size_t n = a.polygon.size();
   for (std::size_t j = 0; j < n; ++j) {
-    const glm::dvec2 d = a.polygon[(j + 1) % n] - a.polygon[j];
+    const glm::dvec2 d = a.polygon[j + 1 < n ? j + 1 : 0] - a.polygon[j];
     const double u = pi * std::abs(glm::dot(f, d));
     sum += std::abs(f.x * d.y - f.y * d.x) * (u > 1 ? 1 / u : 1.0);
   }
@@ -202,7 +202,7 @@ glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max)
   double perimeter = 0;
   const std::size_t n = a.polygon.size();
   for (std::size_t j = 0; j < n; ++j) {
-    const glm::dvec2 d = a.polygon[(j + 1) % n] - a.polygon[j];
+    const glm::dvec2 d = a.polygon[j + 1 < n ? j + 1 : 0] - a.polygon[j];
     const double length = glm::length(d);
     perimeter += length;
     if (length > 0) streaks.push_back({d / length, glm::dvec2(-d.y, d.x) / length, length, 1 / (pi * length)});
