@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "airr/core/geometry.hpp"
 #include "airr/models/diffraction.hpp"
@@ -60,6 +61,42 @@ TEST(Diffraction, PolygonFarFieldIsTheSquaresSincSquared) {
     for (double fy = -reach; fy < reach; fy += h) sum += far_field_intensity(triangle, {fx + h / 2, fy + h / 2});
   }
   EXPECT_NEAR(sum * h * h / triangle.area(), 1.0, 0.01);
+}
+
+// The second moments the far-field draw's lower bound uses: a turned and moved rectangle's in
+// closed form (either orientation), a triangle's against a grid's sums.
+TEST(Diffraction, PolygonMomentsAreTheRectanglesAndAGridsSums) {
+  const double w = 0.3, h = 0.1, turn = 0.7;
+  const glm::dvec2 at(5, -2), u(std::cos(turn), std::sin(turn)), v(-u.y, u.x);
+  polygon2 rectangle{at - w / 2 * u - h / 2 * v, at + w / 2 * u - h / 2 * v, at + w / 2 * u + h / 2 * v,
+                     at - w / 2 * u + h / 2 * v};
+  const glm::dmat2 spread = w * h / 12 * (w * w * glm::outerProduct(u, u) + h * h * glm::outerProduct(v, v));
+  for (int pass = 0; pass < 2; ++pass) {
+    const polygon_moments m = moments(rectangle);
+    EXPECT_NEAR(m.area, w * h, 1e-12);
+    EXPECT_NEAR(glm::length(m.centroid - at), 0, 1e-12);
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(m.spread[i / 2][i % 2], spread[i / 2][i % 2], 1e-12);
+    std::reverse(rectangle.begin(), rectangle.end());
+  }
+  const polygon2 triangle{{0, 0}, {0.2, 0}, {0.05, 0.15}};
+  const polygon_moments m = moments(triangle);
+  double area = 0;
+  glm::dvec2 sum(0);
+  glm::dmat2 second(0);
+  const double step = 1e-4;
+  for (double x = step / 2; x < 0.2; x += step) {
+    for (double y = step / 2; y < 0.15; y += step) {
+      if (y > 3 * x || y > (0.2 - x)) continue;  // outside the edges from (0, 0) and (0.2, 0)
+      area += step * step;
+      sum += step * step * glm::dvec2(x, y);
+      second += step * step * glm::outerProduct(glm::dvec2(x, y) - m.centroid, glm::dvec2(x, y) - m.centroid);
+    }
+  }
+  EXPECT_NEAR(m.area, 0.015, 1e-12);
+  EXPECT_NEAR(glm::length(m.centroid - glm::dvec2(0.25, 0.15) / 3.0), 0, 1e-12);
+  EXPECT_NEAR(m.area / area, 1, 1e-3);
+  EXPECT_NEAR(glm::length(m.centroid - sum / area), 0, 1e-4);
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(m.spread[i / 2][i % 2], second[i / 2][i % 2], 1e-3 * second[0][0]);
 }
 
 // Samples within the central 6 x 6 lobes, binned by half lobes, against the analytic masses.

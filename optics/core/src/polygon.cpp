@@ -20,6 +20,34 @@ double polygon_perimeter(const polygon2& p) {
   return l;
 }
 
+polygon_moments moments(const polygon2& p) {
+  // Green's theorem over the edges, about the first corner (no cancellation far from the origin).
+  polygon_moments m;
+  if (p.empty()) return m;
+  const glm::dvec2 o = p[0];
+  double a = 0, sx = 0, sy = 0, ixx = 0, iyy = 0, ixy = 0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    const glm::dvec2 u = p[i] - o, v = p[i + 1 < p.size() ? i + 1 : 0] - o;
+    const double c = u.x * v.y - v.x * u.y;
+    a += c;
+    sx += (u.x + v.x) * c;
+    sy += (u.y + v.y) * c;
+    ixx += (u.x * u.x + u.x * v.x + v.x * v.x) * c;
+    iyy += (u.y * u.y + u.y * v.y + v.y * v.y) * c;
+    ixy += (u.x * v.y + 2 * u.x * u.y + 2 * v.x * v.y + v.x * u.y) * c;
+  }
+  a /= 2;
+  if (a == 0) return m;
+  const glm::dvec2 c(sx / (6 * a), sy / (6 * a));  // about o
+  m.area = std::abs(a);
+  m.centroid = o + c;
+  const double sign = a > 0 ? 1 : -1;
+  const double jxx = sign * ixx / 12 - m.area * c.x * c.x, jyy = sign * iyy / 12 - m.area * c.y * c.y;
+  const double jxy = sign * ixy / 24 - m.area * c.x * c.y;
+  m.spread = glm::dmat2(jxx, jxy, jxy, jyy);
+  return m;
+}
+
 polygon2 clip_convex_polygon(const polygon2& subject, const polygon2& clip) {
   // Each clip edge adds at most one vertex: two buffers of that size, swapped (the second kept per
   // thread: sheets clip apertures once or twice per path).

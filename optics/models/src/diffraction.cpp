@@ -193,7 +193,8 @@ double streak_bound(const std::vector<streak>& streaks, const glm::dvec2& f) {
 }
 
 // A polygon's |F|^2 by rejection from area^2 within f0 = perimeter / (2 pi area) and the streaks'
-// bound beyond, the edge bound refusing most trials before F is evaluated.
+// bound beyond, a lower bound taking most of the central lobe and the edge bound refusing most other
+// trials before F is evaluated.
 glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max) {
   // Kept per thread: a sheet draws one far field per retroreflected path.
   thread_local std::vector<streak> streaks;
@@ -207,7 +208,8 @@ glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max)
     perimeter += length;
     if (length > 0) streaks.push_back({d / length, glm::dvec2(-d.y, d.x) / length, length, 1 / (pi * length)});
   }
-  const double area = a.area(), f0 = std::min(perimeter / (2 * pi * area), f_max);
+  const polygon_moments shape = moments(a.polygon);
+  const double area = shape.area, f0 = std::min(perimeter / (2 * pi * area), f_max);
   weights.assign(1, area * area * pi * f0 * f0);
   if (f0 < f_max) {
     double c_sum = 0;
@@ -243,6 +245,10 @@ glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max)
       bound = streak_bound(streaks, f);
     }
     const double v = rng.next_double() * bound;
+    // Taken without F where a lower bound already takes it: |F| >= area - 2 pi^2 f^T J f about the
+    // centroid (cos x >= 1 - x^2 / 2), most of the central lobe.
+    const double least = area - 2 * pi * pi * glm::dot(f, shape.spread * f);
+    if (least > 0 && v < least * least) return f;
     if (v >= edge_bound(a, f)) continue;
     if (v < intensity(a, area, f)) return f;
   }
