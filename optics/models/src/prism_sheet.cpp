@@ -134,13 +134,18 @@ stretch_end follow(const prism_sheet_geometry& g, const std::array<glm::dvec2, 3
 
 }  // namespace
 
+namespace {
+
+// In a triangle whose f's sum to 1 the vertex opposite edge k lies along +e_k, 2/3 of the height
+// from the centroid (the apex is under the centroid).
+glm::dvec2 triangle_vertex(const prism_sheet_geometry& g, int pointing, std::size_t k) {
+  return double(pointing) * 2 * g.pitch_mm / 3 * groove_normals(g)[k];
+}
+
+}  // namespace
+
 polygon2 aperture_triangle(const prism_sheet_geometry& g, int pointing) {
-  // In a triangle whose f's sum to 1 the vertex opposite edge k lies along +e_k, 2/3 of the
-  // height from the centroid (the apex is under the centroid).
-  polygon2 triangle;
-  triangle.reserve(3);
-  for (const glm::dvec2& ek : groove_normals(g)) triangle.push_back(double(pointing) * 2 * g.pitch_mm / 3 * ek);
-  return triangle;
+  return {triangle_vertex(g, pointing, 0), triangle_vertex(g, pointing, 1), triangle_vertex(g, pointing, 2)};
 }
 
 namespace {
@@ -192,11 +197,8 @@ polygon2 face_order_aperture(const prism_sheet_geometry& g, const glm::dvec3& d,
 }
 
 corner_view triangular_corner_view(const prism_sheet_geometry& g, const glm::dvec3& d, int pointing) {
-  corner_view view{glm::dvec2(d) * (g.depth_mm() / d.z)};
-  const auto& e = groove_normals(g);
-  for (std::size_t k = 0; k < 3; ++k)
-    view.edge_ends[k] = double(pointing) * 2 * g.pitch_mm / 3 * e[k];  // as aperture_triangle
-  return view;
+  return {glm::dvec2(d) * (g.depth_mm() / d.z),
+          {triangle_vertex(g, pointing, 0), triangle_vertex(g, pointing, 1), triangle_vertex(g, pointing, 2)}};
 }
 
 polygon2 effective_aperture(const prism_sheet_geometry& g, const glm::dvec3& d, int pointing) {
