@@ -91,14 +91,6 @@ inline glm::dvec2 point_in_disc(pcg32& rng) {
   }
 }
 
-// A standard Cauchy variate: x / y for a point uniformly distributed in the unit disc's upper half.
-inline double cauchy(pcg32& rng) {
-  while (true) {
-    const double x = 2 * rng.next_double() - 1, y = rng.next_double();
-    if (y > 0 && x * x + y * y < 1) return x / y;
-  }
-}
-
 // A uniformly distributed direction in the plane, from a point drawn in the unit disc (no sine or
 // cosine: the sampler draws about ten of them per accepted frequency).
 inline glm::dvec2 uniform_direction(pcg32& rng) {
@@ -169,17 +161,18 @@ double streak_b(double beta, double f0, int k, double r) {
   return beta <= f0 ? 1 / (1 / beta - r * (1 / beta - 1 / f0)) : f0 * std::exp(r * std::log(beta / f0));
 }
 
-// a across a streak at b, distributed as 1 / (a^2 + b^2) over |f| >= f0; empty when the draw of b
-// is refused (|b| < f0, in the ratio of the share's integral over a to its bound).
+// a across a streak at b, distributed as 1 / (a^2 + b^2) over |f| >= f0, as b cot(phi) for phi the
+// angle of a point drawn uniformly in the box [-1, 1] x (0, x], x = min(|b| / f0, 1), and kept
+// within the unit disc and within asin(x) of the horizontal. It is kept with probability
+// asin(x) / (2 x): pi / 4 for |b| >= f0 (a Cauchy variate), and below that pi / 4 times the share's
+// integral over a, 2 asin(x) / |b|, over its bound, pi / f0. Empty when refused: the disc's draw
+// is refused as often, so the pieces keep their weights.
 std::optional<double> streak_a(double b, double f0, pcg32& rng) {
   b = std::abs(b);
-  const double sign = rng.next_double() < 0.5 ? -1 : 1;
-  if (b >= f0) return sign * b * cauchy(rng);
-  const double x = b / f0;
-  if (!(x > 1e-12)) return std::nullopt;
-  const double reach = std::asin(x);  // |a| = b cot(phi), phi in (0, reach]: |a| >= sqrt(f0^2 - b^2)
-  if (rng.next_double() * (pi / 2) * x >= reach) return std::nullopt;
-  return sign * b / std::tan(reach * (1 - rng.next_double()));
+  const double x = std::min(b / f0, 1.0);
+  const double p = 2 * rng.next_double() - 1, q = x * rng.next_double();
+  if (!(q > 0) || p * p + q * q > 1 || q * std::sqrt(1 - x * x) > std::abs(p) * x) return std::nullopt;
+  return b * p / q;
 }
 
 // The bound the streaks add up to at f (|f| >= f0).
@@ -233,7 +226,9 @@ glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max)
     glm::dvec2 f;
     double bound;
     if (k == 0) {
-      f = f0 * point_in_disc(rng);
+      f = glm::dvec2(2 * rng.next_double() - 1, 2 * rng.next_double() - 1);
+      if (glm::dot(f, f) >= 1) continue;  // kept with probability pi / 4, as a streak's draw
+      f *= f0;
       bound = area * area;
     } else {
       const streak& s = streaks[(k - 1) / 3];
