@@ -9,6 +9,8 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -17,6 +19,7 @@
 #include "airr/core/error.hpp"
 #include "airr/core/random.hpp"
 #include "airr/formats/scene_json.hpp"
+#include "airr/models/retro_model.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/render/tracer.hpp"
 #include "bench/designer_latency_bench.hpp"
@@ -70,6 +73,49 @@ double raw_embree_seconds(const airr::tracer_scene& ts, std::uint64_t ray_count,
   return since(t0);
 }
 
+// The tracer alone over every pixel at `spp`, as `airr render` traces them (no model image).
+struct traced {
+  double seconds = 0;
+  std::uint64_t rays = 0;
+};
+traced trace_all(const airr::tracer_scene& ts, std::uint64_t spp) {
+  const int w = ts.camera.width, h = ts.camera.height;
+  std::vector<float> sums(std::size_t(w) * h * 3, 0.0f);
+  std::atomic<std::uint64_t> rays{0};
+  const std::atomic<bool> never{false};
+  const auto t0 = clock_type::now();
+  tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), [&](const tbb::blocked_range<int>& r) {
+    std::uint64_t local = 0;
+    airr::trace_rows(ts, r.begin(), r.end(), 0, spp, sums, never, local);
+    rays += local;
+  });
+  return {since(t0), rays.load()};
+}
+
+// The scene's first sheet as each model the tracer can take (their default parameters), the
+// tracer's time for the same image, and each against the sinc-shift model's (the median of `runs`).
+void run_sheet_bench(const airr::scene& base, const std::string& scene_path, std::uint64_t spp, int runs) {
+  std::printf("sheet models: %s (%dx%d, %llu spp, median of %d runs), the tracer alone\n", scene_path.c_str(),
+              base.observer.width, base.observer.height, static_cast<unsigned long long>(spp), runs);
+  double sinc_seconds = 0;
+  for (const std::string type : {"sinc_shift", "prism_sheet", "bead_sheet"}) {
+    airr::scene s = base;
+    s.sheet().model =
+        airr::with_model_type(type == "sinc_shift" ? base.sheet().model : airr::retro_model_params{}, type);
+    airr::embree_device device;
+    airr::tracer_scene ts;
+    airr::build_tracer_scene(ts, device, s);
+    std::vector<traced> times;
+    for (int i = 0; i < runs; ++i) times.push_back(trace_all(ts, spp));
+    std::sort(times.begin(), times.end(), [](const traced& a, const traced& b) { return a.seconds < b.seconds; });
+    const traced& t = times[times.size() / 2];
+    if (type == "sinc_shift") sinc_seconds = t.seconds;
+    std::printf("%-12s %8.3f s  %12.0f rays/s  %5.2fx the sinc-shift model's time\n", type.c_str(), t.seconds,
+                double(t.rays) / t.seconds, t.seconds / sinc_seconds);
+    std::fflush(stdout);
+  }
+}
+
 }  // namespace
 
 void add_bench_command(CLI::App& app) {
@@ -88,6 +134,7 @@ void add_bench_command(CLI::App& app) {
     std::vector<double> model_error_tilts;
     std::uint64_t prop_triangles = 0;
     bool memory = false;
+    bool sheets = false;
   };
   auto opt = std::make_shared<options>();
   auto* cmd = app.add_subcommand(
@@ -119,7 +166,7 @@ void add_bench_command(CLI::App& app) {
       ->check(CLI::Range(1.0, 600.0))
       ->capture_default_str();
   cmd->add_option("--drag-csv", opt->drag_options.csv, "With --drag: write every frame as a CSV row here");
-  cmd->add_option("--runs", opt->runs, "With --model-image: runs per case (the median is reported)")
+  cmd->add_option("--runs", opt->runs, "With --model-image or --sheets: runs per case (the median is reported)")
       ->check(CLI::Range(1, 100));
   cmd->add_option("--tilts", opt->model_error_tilts, "With --model-error or --model-image: sheet tilts (deg)");
   cmd->add_flag("--memory", opt->memory,
@@ -129,6 +176,10 @@ void add_bench_command(CLI::App& app) {
                   "Instead: what a housing prop of this many triangles costs (load, Embree build, rays/s with and "
                   "without it)")
       ->check(CLI::Range(10, 20'000'000));
+  cmd->add_flag(
+      "--sheets", opt->sheets,
+      "Instead: the tracer's time for the scene's image with its sheet as the sinc-shift model, a prism sheet "
+      "and a bead sheet (their defaults), each against the sinc-shift's (--spp, --runs: the median)");
   cmd->add_option(
       "--compare", opt->noise_options.compare,
       "With --noise, --model-image, --model-error or --memory: also measure another build's airr executable, side "
@@ -203,22 +254,19 @@ void add_bench_command(CLI::App& app) {
     }
     airr::scene s = load_scene_noting(opt->scene_path);
     if (cmd->count("--size")) s.observer.width = s.observer.height = opt->noise_options.size;
+    if (opt->sheets) {
+      run_sheet_bench(s, opt->scene_path, opt->spp, opt->runs);
+      return;
+    }
     airr::embree_device device;
     airr::tracer_scene ts;
     airr::build_tracer_scene(ts, device, s);
     const int w = ts.camera.width, h = ts.camera.height;
 
     // Tracer throughput.
-    std::vector<float> sums(std::size_t(w) * h * 3, 0.0f);
-    std::atomic<std::uint64_t> rays{0};
-    const std::atomic<bool> never{false};
-    auto t0 = clock_type::now();
-    tbb::parallel_for(tbb::blocked_range<int>(0, h, 1), [&](const tbb::blocked_range<int>& r) {
-      std::uint64_t local = 0;
-      airr::trace_rows(ts, r.begin(), r.end(), 0, opt->spp, sums, never, local);
-      rays += local;
-    });
-    const double tracer_s = since(t0);
+    const traced traced_run = trace_all(ts, opt->spp);
+    const std::uint64_t rays = traced_run.rays;
+    const double tracer_s = traced_run.seconds;
     const double tracer_rate = double(rays) / tracer_s;
 
     double checksum = 0, stream_checksum = 0;
@@ -249,7 +297,7 @@ void add_bench_command(CLI::App& app) {
     std::printf("scene: %s (%dx%d, %llu spp)\n", opt->scene_path.c_str(), w, h,
                 static_cast<unsigned long long>(opt->spp));
     std::printf("tracer:        %12.0f rays/s  (%llu rays in %.3f s)\n", tracer_rate,
-                static_cast<unsigned long long>(rays.load()), tracer_s);
+                static_cast<unsigned long long>(rays), tracer_s);
     std::printf("raw embree:    %12.0f rays/s  (%llu rays in %.3f s, checksum %.1f)\n", raw_rate,
                 static_cast<unsigned long long>(raw_rays), raw_s, checksum);
     std::printf("raw streams:   %12.0f rays/s  (rtcIntersect1M, coherent streams of %d camera rays; checksum %.1f)\n",
