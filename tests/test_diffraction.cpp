@@ -214,6 +214,13 @@ TEST(Diffraction, SampledPolygonFarFieldsFollowTheirStreaks) {
   EXPECT_GT(far_field_fit({{{0, 0}, {0.2, 0}, {0.2, 0.02}, {0, 0.06}}}, 0.5, 12), 1e-3);
 }
 
+// Corners in a line (a clipped aperture can end so): no area to diffract by, and no endless draw.
+TEST(Diffraction, AnApertureWithoutAreaDoesNotSpread) {
+  pcg32 rng(3, 3);
+  const glm::dvec2 f = sample_far_field({{{0, 0}, {0.1, 0}, {0.2, 0}}}, rng);
+  EXPECT_EQ(f, glm::dvec2(0));
+}
+
 // The median angle between a retroreflected ray and the exact reversal: doubling the pitch halves
 // it, doubling the wavelength doubles it.
 TEST(Diffraction, PrismSheetSpreadScalesWithWavelengthOverPitch) {

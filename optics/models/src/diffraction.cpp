@@ -202,6 +202,7 @@ glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max)
     if (length > 0) streaks.push_back({d / length, glm::dvec2(-d.y, d.x) / length, length, 1 / (pi * length)});
   }
   const polygon_moments shape = moments(a.polygon);
+  if (!(shape.area > 0)) return glm::dvec2(0);  // corners in a line: no aperture to spread by
   const double area = shape.area, f0 = std::min(perimeter / (2 * pi * area), f_max);
   weights.assign(1, area * area * pi * f0 * f0);
   if (f0 < f_max) {
