@@ -83,21 +83,22 @@ double edge_bound(const aperture& a, const glm::dvec2& f) {
   return sum * sum / (4 * pi * pi * f2 * f2);
 }
 
-// A point uniformly distributed in the unit disc, drawn from the square around it.
-inline glm::dvec2 point_in_disc(pcg32& rng) {
-  while (true) {
-    const glm::dvec2 p(2 * rng.next_double() - 1, 2 * rng.next_double() - 1);
-    if (glm::dot(p, p) < 1) return p;
-  }
+// One draw of a point uniformly distributed in the unit disc from the square around it: kept with
+// probability pi / 4, empty otherwise.
+inline std::optional<glm::dvec2> point_in_disc(pcg32& rng) {
+  const glm::dvec2 p(2 * rng.next_double() - 1, 2 * rng.next_double() - 1);
+  if (glm::dot(p, p) < 1) return p;
+  return std::nullopt;
 }
 
 // A uniformly distributed direction in the plane, from a point drawn in the unit disc (no sine or
 // cosine: the sampler draws about ten of them per accepted frequency).
 inline glm::dvec2 uniform_direction(pcg32& rng) {
   while (true) {
-    const glm::dvec2 p = point_in_disc(rng);
-    const double p2 = glm::dot(p, p);
-    if (p2 > 1e-12) return p / std::sqrt(p2);
+    const std::optional<glm::dvec2> p = point_in_disc(rng);
+    if (!p) continue;
+    const double p2 = glm::dot(*p, *p);
+    if (p2 > 1e-12) return *p / std::sqrt(p2);
   }
 }
 
@@ -227,9 +228,9 @@ glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max)
     glm::dvec2 f;
     double bound;
     if (k == 0) {
-      f = glm::dvec2(2 * rng.next_double() - 1, 2 * rng.next_double() - 1);
-      if (glm::dot(f, f) >= 1) continue;  // kept with probability pi / 4, as a streak's draw
-      f *= f0;
+      const std::optional<glm::dvec2> p = point_in_disc(rng);
+      if (!p) continue;  // kept with probability pi / 4, as a streak's draw
+      f = f0 * *p;
       bound = area * area;
     } else {
       const streak& s = streaks[(k - 1) / 3];
