@@ -113,16 +113,17 @@ grid_spectrum spectrum_of(const image_rgb& padded, const std::atomic<bool>* canc
 correlated_grid correlate(const grid_spectrum& grid, const cv::Mat& kernel, const std::atomic<bool>* cancel) {
   const int w = grid.fft_width, h = grid.fft_height, r = kernel.rows / 2;
   const std::size_t reals = std::size_t(w) * h, complexes = std::size_t(h) * (w / 2 + 1);
-  // The kernel with offset o at index o modulo the transform's size.
-  fft_buffer<float> wrapped = real_buffer(reals);
-  std::fill_n(wrapped.data.get(), reals, 0.0f);
+  // The kernel's rows, offsets 0 to r then -r to -1 (the transform's first and last rows), each
+  // with offset o at index o modulo the transform's width.
+  fft_buffer<float> rows = real_buffer(std::size_t(w) * (2 * r + 1));
+  std::fill_n(rows.data.get(), rows.size, 0.0f);
   for (int y = -r; y <= r; ++y) {
     const float* row = kernel.ptr<float>(y + r);
-    float* dst = wrapped.data.get() + std::size_t((y + h) % h) * w;
+    float* dst = rows.data.get() + std::size_t(y >= 0 ? y : 2 * r + 1 + y) * w;
     for (int x = -r; x <= r; ++x) dst[(x + w) % w] = row[x + r];
   }
   fft_buffer<std::complex<float>> kernel_spectrum = complex_buffer(complexes);
-  fft_forward(w, h, wrapped.data.get(), kernel_spectrum.data.get());
+  fft_forward_end_rows(w, h, r + 1, r, rows.data.get(), kernel_spectrum.data.get());
   correlated_grid out;
   out.cols = grid.width;
   out.rows = grid.height;
