@@ -222,6 +222,7 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
   const auto t_loop = clock_type::now();
   for (const int parity : {0, 1}) {
     detail::parallel_rows((bins + 1 - parity) / 2, row_workers_of(p), [&](int j0, int j1) {
+      correlate_scratch scratch[2];
       for (int k = 2 * j0 + parity; k < 2 * j1 + parity && !cancel_requested(cancel); k += 2) {
         auto t = clock_type::now();
         const model_grid& fine_grid = m->grids[model_fine];
@@ -235,10 +236,10 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
         bin_seconds[std::size_t(k)][0] = since(t);
         if (cancel_requested(cancel)) break;
         t = clock_type::now();
-        correlated_grid fine = correlate(spectra[model_fine], kernels[model_fine], cancel);
+        correlated_grid fine = correlate(spectra[model_fine], kernels[model_fine], scratch[model_fine], cancel);
         if (cancel_requested(cancel)) break;
-        std::array<correlated_grid, 2> correlated = {std::move(fine),
-                                                     correlate(spectra[model_tail], kernels[model_tail], cancel)};
+        std::array<correlated_grid, 2> correlated = {
+            std::move(fine), correlate(spectra[model_tail], kernels[model_tail], scratch[model_tail], cancel)};
         if (cancel_requested(cancel)) break;
         bin_seconds[std::size_t(k)][1] = since(t);
         t = clock_type::now();
@@ -260,7 +261,11 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
           for (int c = 0; c < 3; ++c) out[c] += v[c] * weight;
         }
         bin_seconds[std::size_t(k)][2] = since(t);
-        if (kept) kept->bins[std::size_t(k)] = std::move(correlated);
+        if (kept) {
+          kept->bins[std::size_t(k)] = std::move(correlated);
+        } else {
+          for (int g : {model_fine, model_tail}) scratch[g].take_back(std::move(correlated[std::size_t(g)]));
+        }
       }
     });
   }

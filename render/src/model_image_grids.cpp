@@ -110,36 +110,58 @@ grid_spectrum spectrum_of(const image_rgb& padded, const std::atomic<bool>* canc
   return out;
 }
 
-correlated_grid correlate(const grid_spectrum& grid, const cv::Mat& kernel, const std::atomic<bool>* cancel) {
+namespace {
+
+template <class T>
+void fit(fft_buffer<T>& b, std::size_t n, fft_buffer<T> (*make)(std::size_t)) {
+  if (b.size != n) b = make(n);
+}
+
+}  // namespace
+
+correlated_grid correlate(const grid_spectrum& grid, const cv::Mat& kernel, correlate_scratch& scratch,
+                          const std::atomic<bool>* cancel) {
   const int w = grid.fft_width, h = grid.fft_height, r = kernel.rows / 2;
   const std::size_t reals = std::size_t(w) * h, complexes = std::size_t(h) * (w / 2 + 1);
   // The kernel's rows, offsets 0 to r then -r to -1 (the transform's first and last rows), each
   // with offset o at index o modulo the transform's width.
-  fft_buffer<float> rows = real_buffer(std::size_t(w) * (2 * r + 1));
-  std::fill_n(rows.data.get(), rows.size, 0.0f);
+  fit(scratch.rows, std::size_t(w) * (2 * r + 1), real_buffer);
+  std::fill_n(scratch.rows.data.get(), scratch.rows.size, 0.0f);
   for (int y = -r; y <= r; ++y) {
     const float* row = kernel.ptr<float>(y + r);
-    float* dst = rows.data.get() + std::size_t(y >= 0 ? y : 2 * r + 1 + y) * w;
+    float* dst = scratch.rows.data.get() + std::size_t(y >= 0 ? y : 2 * r + 1 + y) * w;
     for (int x = -r; x <= r; ++x) dst[(x + w) % w] = row[x + r];
   }
-  fft_buffer<std::complex<float>> kernel_spectrum = complex_buffer(complexes);
-  fft_forward_end_rows(w, h, r + 1, r, rows.data.get(), kernel_spectrum.data.get());
+  fit(scratch.kernel_spectrum, complexes, complex_buffer);
+  fft_forward_end_rows(w, h, r + 1, r, scratch.rows.data.get(), scratch.kernel_spectrum.data.get());
+  fit(scratch.product, complexes, complex_buffer);
   correlated_grid out;
   out.cols = grid.width;
   out.rows = grid.height;
   out.stride = w;
   // Correlation: the grid's spectrum times the kernel's conjugate, back, scaled by 1 / (w h).
   const float scale = 1.0f / float(reals);
+  const std::complex<float>* k = scratch.kernel_spectrum.data.get();
+  std::complex<float>* product = scratch.product.data.get();
   for (const auto& channel : grid.channels) {
     if (cancel_requested(cancel)) return {};
-    fft_buffer<std::complex<float>> product = complex_buffer(complexes);
-    for (std::size_t i = 0; i < complexes; ++i)
-      product.data[i] = channel.data[i] * std::conj(kernel_spectrum.data[i]) * scale;
-    fft_buffer<float> values = real_buffer(reals);
-    fft_inverse(w, h, product.data.get(), values.data.get());
+    for (std::size_t i = 0; i < complexes; ++i) product[i] = channel.data[i] * std::conj(k[i]) * scale;
+    fft_buffer<float> values;
+    if (!scratch.spare_values.empty() && scratch.spare_values.back().size == reals) {
+      values = std::move(scratch.spare_values.back());
+      scratch.spare_values.pop_back();
+    } else {
+      values = real_buffer(reals);
+    }
+    fft_inverse(w, h, product, values.data.get());
     out.channels.push_back(std::move(values));
   }
   return out;
+}
+
+void correlate_scratch::take_back(correlated_grid&& done) {
+  for (auto& c : done.channels) spare_values.push_back(std::move(c));
+  done.channels.clear();
 }
 
 grid_mapping make_grid(model_grid& grid, const cv::Mat& texels, int refine, double reach_mm, const part_frame& src,

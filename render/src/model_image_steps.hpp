@@ -91,8 +91,19 @@ struct correlated_grid {
   }
 };
 
+// What one worker's correlations of one grid reuse from bin to bin: fresh buffers of a grid's size
+// cost their pages' faults and zeroing (a tenth of a model image's time when every bin took new
+// ones). A bin's correlated grid given back lends its buffers to the next.
+struct correlate_scratch {
+  fft_buffer<float> rows;
+  fft_buffer<std::complex<float>> kernel_spectrum, product;
+  std::vector<fft_buffer<float>> spare_values;
+  void take_back(correlated_grid&& done);
+};
+
 // Empty (no channels) when `cancel` is set before it is done: it is checked between channels.
-correlated_grid correlate(const grid_spectrum& grid, const cv::Mat& kernel, const std::atomic<bool>* cancel = nullptr);
+correlated_grid correlate(const grid_spectrum& grid, const cv::Mat& kernel, correlate_scratch& scratch,
+                          const std::atomic<bool>* cancel = nullptr);
 
 // One grid over the display's texels (`refine` nodes per texel) and where display-local points
 // fall on it.
