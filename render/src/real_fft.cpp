@@ -1,6 +1,7 @@
 #include "real_fft.hpp"
 
 #include <fftw3.h>
+#include <sys/mman.h>
 
 #include <algorithm>
 #include <cstring>
@@ -76,16 +77,38 @@ const end_row_plans& end_row_plans_for(int width, int height, int count) {
 
 }  // namespace
 
+namespace {
+
+// Buffers are mapped straight from the system, not taken from the heap: a grid's (tens of MB) go
+// back when freed, where from a thread's malloc arena they stayed resident and raised a render's
+// later peak. The mapping's length is kept in a header before the data, as long as FFTW's
+// alignment needs.
+constexpr std::size_t header = 64;
+
+void* map_bytes(std::size_t bytes) {
+  const std::size_t total = bytes + header;
+  void* base = mmap(nullptr, total, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS | MAP_POPULATE, -1, 0);
+  if (base == MAP_FAILED) throw std::bad_alloc();
+  *static_cast<std::size_t*>(base) = total;
+  return static_cast<char*>(base) + header;
+}
+
+void unmap_bytes(void* p) {
+  if (!p) return;
+  char* base = static_cast<char*>(p) - header;
+  munmap(base, *reinterpret_cast<std::size_t*>(base));
+}
+
+}  // namespace
+
 fft_buffer<float> real_buffer(std::size_t n) {
-  float* p = fftwf_alloc_real(n);
-  if (!p) throw std::bad_alloc();
-  return {{p, [](float* q) { fftwf_free(q); }}, n};
+  return {{static_cast<float*>(map_bytes(n * sizeof(float))), [](float* q) { unmap_bytes(q); }}, n};
 }
 
 fft_buffer<std::complex<float>> complex_buffer(std::size_t n) {
-  auto* p = reinterpret_cast<std::complex<float>*>(fftwf_alloc_complex(n));
-  if (!p) throw std::bad_alloc();
-  return {{p, [](std::complex<float>* q) { fftwf_free(reinterpret_cast<fftwf_complex*>(q)); }}, n};
+  return {{static_cast<std::complex<float>*>(map_bytes(n * sizeof(std::complex<float>))),
+           [](std::complex<float>* q) { unmap_bytes(q); }},
+          n};
 }
 
 void fft_forward(int width, int height, float* in, std::complex<float>* out) {
