@@ -92,8 +92,8 @@ struct correlated_grid {
 };
 
 // What one worker's correlations of one grid reuse from bin to bin: fresh buffers of a grid's size
-// cost their pages' faults and zeroing (a tenth of a model image's time when every bin took new
-// ones). A bin's correlated grid given back lends its buffers to the next.
+// cost their pages' faults and zeroing. A bin's correlated grid given back lends its buffers to the
+// next.
 struct correlate_scratch {
   fft_buffer<float> rows;
   fft_buffer<std::complex<float>> kernel_spectrum, product;
