@@ -75,10 +75,6 @@ const end_row_plans& end_row_plans_for(int width, int height, int count) {
   return p;
 }
 
-}  // namespace
-
-namespace {
-
 // Buffers are mapped straight from the system, not taken from the heap: a grid's (tens of MB) go
 // back when freed, where from a thread's malloc arena they stayed resident and raised a render's
 // later peak. The mapping's length is kept in a header before the data, as long as FFTW's
