@@ -4,6 +4,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -100,6 +101,36 @@ TEST(BenchModelImage, ComparesWithAnotherBuild) {
       test::run_cli("bench --model-image --size 48 --runs 1 --presets rf-an --tilts 0 --compare /nonexistent/airr");
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.out.find("/nonexistent/airr: not an executable airr"), std::string::npos) << bad.out;
+}
+
+// --model-error --compare reads the other build's row (tracer noise, model image, view image, first
+// look, then both with the noise taken out): against itself, its model image and its model image
+// with the noise taken out are this build's own.
+TEST(BenchModelError, ComparesWithAnotherBuild) {
+  const test::command_result r =
+      test::run_cli("bench --model-error --size 32 --spp 16 --presets rf-ay --tilts 10 --compare " AIRR_CLI);
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  const std::size_t other = r.out.find("other build (");
+  ASSERT_NE(other, std::string::npos) << r.out;
+  auto row_after = [&](std::size_t from) {
+    std::istringstream lines(r.out.substr(from));
+    std::vector<double> numbers;
+    for (std::string line; std::getline(lines, line);) {
+      std::istringstream words(line);
+      std::string preset;
+      if (!(words >> preset) || preset != "rf-ay") continue;
+      for (std::string word; words >> word;) numbers.push_back(std::stod(word));
+      break;
+    }
+    return numbers;
+  };
+  const std::vector<double> own = row_after(0), its = row_after(other);
+  ASSERT_EQ(own.size(), 9u) << r.out;  // tilt, six percentages, two times
+  ASSERT_EQ(its.size(), 6u) << r.out;  // tilt, its noise, model, model with the noise out, this view, this view out
+  EXPECT_EQ(its[1], own[1]) << r.out;
+  EXPECT_EQ(its[2], own[2]) << r.out;
+  EXPECT_EQ(its[3], own[5]) << r.out;
+  EXPECT_EQ(its[4], own[3]) << r.out;
 }
 
 // `airr bench --drag` on a small image: a line per edit, the worst frame, both after-drag figures,

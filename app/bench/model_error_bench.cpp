@@ -48,9 +48,10 @@ void print_other_build(const build_under_test& b, const model_error_options& o,
     if (!(words >> preset >> tilt) || std::find(o.presets.begin(), o.presets.end(), preset) == o.presets.end()) {
       continue;
     }
-    double noise = 0, model = 0, first = 0, clean = 0;
+    // Its row: tracer noise, model image, view image, first look, model and view with the noise taken out.
+    double noise = 0, model = 0, view = 0, first = 0, clean = 0;
     char pct = 0;
-    if (!(words >> noise >> pct >> model >> pct >> first >> pct >> clean)) {
+    if (!(words >> noise >> pct >> model >> pct >> view >> pct >> first >> pct >> clean)) {
       std::printf("%-8s %6.0f %12s\n", preset.c_str(), tilt, "none");  // no model image there
       ++k;
       continue;

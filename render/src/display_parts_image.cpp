@@ -3,6 +3,7 @@
 #include "airr/render/display_parts_image.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -13,6 +14,7 @@
 
 #include "airr/core/cancel.hpp"
 #include "airr/core/geometry.hpp"
+#include "airr/core/low_discrepancy.hpp"
 #include "airr/layout/layout.hpp"
 #include "display_radiance.hpp"
 #include "model_image_steps.hpp"
@@ -108,7 +110,33 @@ struct corner {
   // miss the display.
   glm::dvec2 plane[2];
   bool on[2] = {false, false};
+  // Whether the display's emitting area lies within the lens's blur of where the ray meets its
+  // plane, either way (a thin lens shows the display in pixels whose corners miss it).
+  bool near = false;
+  glm::dvec2 blur{0};  // the lens's blur there (mm along the display's x and y), the larger way
 };
+
+// Whether the emitting area's local point `at` is within `reach` mm of the area.
+bool within(const part_frame& area, const glm::dvec2& at, const glm::dvec2& reach) {
+  return std::abs(at.x) <= 0.5 * area.width + reach.x && std::abs(at.y) <= 0.5 * area.height + reach.y;
+}
+
+// The lens's blur (mm along the display's x and y) on the display's plane for a ray leaving the
+// observer along `dir` and meeting the plane `travelled` mm later, arriving along `arrival`: the
+// aperture's cone around the point in focus cut by the plane, an ellipse drawn out along the
+// arrival's slant.
+glm::dvec2 blur_on_display(const planar_parts& d, const glm::dvec3& dir, double travelled, const glm::dvec3& arrival) {
+  if (!(d.cam.aperture_mm > 0)) return glm::dvec2(0.0);
+  const double in_focus = d.cam.focus_distance / glm::dot(dir, d.cam.forward);
+  const double across = d.cam.aperture_mm * std::abs(1 - travelled / in_focus);
+  const glm::dvec2 slant(glm::dot(arrival, d.area.u), glm::dot(arrival, d.area.v));
+  const double along = across / std::max(0.05, std::abs(glm::dot(arrival, d.area.n)));
+  const double l = glm::length(slant);
+  const glm::dvec2 e = l > 1e-12 ? slant / l : glm::dvec2(1, 0);
+  return {std::sqrt(along * along * e.x * e.x + across * across * e.y * e.y),
+          std::sqrt(along * along * e.y * e.y + across * across * e.x * e.x)};
+}
+
 corner corner_at(const planar_parts& d, double x, double y) {
   corner c;
   const glm::dvec3 dir = camera_direction(d.cam, x, y);
@@ -116,11 +144,18 @@ corner corner_at(const planar_parts& d, double x, double y) {
   if (const auto p = hit_part(d.area, d.cam.position, dir, false)) {
     c.plane[0] = part_local(d.area, *p);
     c.on[0] = true;
+    c.blur = blur_on_display(d, dir, glm::length(*p - d.cam.position), dir);
+    c.near = within(d.area, c.plane[0], 0.5 * c.blur);
   }
   if (const auto m = hit_part(d.hm, d.cam.position, dir, false)) {
-    if (const auto p = hit_part(d.area, *m, reflect(dir, d.hm.n), false)) {
+    const glm::dvec3 mirrored = reflect(dir, d.hm.n);
+    if (const auto p = hit_part(d.area, *m, mirrored, false)) {
       c.plane[1] = part_local(d.area, *p);
       c.on[1] = true;
+      const double travelled = glm::length(*m - d.cam.position) + glm::length(*p - *m);
+      const glm::dvec2 blur = blur_on_display(d, dir, travelled, mirrored);
+      c.near = c.near || within(d.area, c.plane[1], 0.5 * blur);
+      c.blur = glm::max(c.blur, blur);
     }
   }
   return c;
@@ -180,17 +215,32 @@ glm::ivec2 points_per_pixel(const planar_parts& d, const corner (&c)[4], const g
   const glm::dvec2 along = footprint / texel_mm;
   const bool edge = !alike(d, c[0], c[1]) || !alike(d, c[0], c[2]) || !alike(d, c[0], c[3]);
   const int least = edge ? std::max(k, 16) : k;
-  glm::ivec2 n(std::clamp(int(std::ceil(along.x)), least, 64), std::clamp(int(std::ceil(along.y)), least, 64));
-  while (n.x * n.y > 64 * k * k) (n.x > n.y ? n.x : n.y) /= 2;
-  return glm::max(n, glm::ivec2(1));
+  glm::dvec2 wanted = glm::ceil(glm::min(along, glm::dvec2(4096.0)));
+  // Over the cap, both ways thinned alike, so the points stay as far apart along the footprint as
+  // across it and the texels' level read (level_for) suits both.
+  const double cap = 64.0 * k * k;
+  if (wanted.x * wanted.y > cap) wanted = glm::floor(wanted * std::sqrt(cap / (wanted.x * wanted.y)));
+  return {std::clamp(int(wanted.x), least, 64), std::clamp(int(wanted.y), least, 64)};
 }
 
 // The texels' level whose spacing is nearest the pixel's points' (level 0 the finest, each next
 // one half as fine): points farther apart than the texels would alias a fine pattern.
-std::size_t level_for(const glm::dvec2& footprint, const glm::ivec2& n, double texel_mm, std::size_t levels) {
-  const double spacing = std::max(footprint.x / n.x, footprint.y / n.y) / texel_mm;
+std::size_t level_for(double spacing_mm, double texel_mm, std::size_t levels) {
+  const double spacing = spacing_mm / texel_mm;
   if (!(spacing > 1)) return 0;
   return std::min(levels - 1, std::size_t(std::lround(std::log2(spacing))));
+}
+
+// The display's light along ray r (both landings), on texel level `level`.
+glm::dvec3 light_along(const planar_parts& d, const image_rgb& level, const camera_ray& r) {
+  landing l[2];
+  const int m = follow(d, r.origin, r.dir, l);
+  glm::dvec3 sum(0.0);
+  for (int a = 0; a < m; ++a) {
+    const double profile = emission_at(d.emission.get(), d.area, l[a].dir);
+    sum += glm::dvec3(display_radiance(d.area, &level, 1.0f, l[a].local)) * (l[a].weight * profile);
+  }
+  return sum;
 }
 
 // Points on the lens for a pixel's n points: a rank-1 lattice (stratified in both directions)
@@ -208,6 +258,48 @@ struct lens_lattice {
   }
   int n, g;
 };
+
+// Pixel (x, y)'s mean light from n points on a grid in the pixel, each with its own lens point
+// (the lens moves them by a few of the grid's spacings at most), on the level their spacing suits.
+glm::dvec3 grid_mean(const planar_parts& d, const std::vector<image_rgb>& texels, int x, int y,
+                     const glm::dvec2& footprint, const glm::ivec2& n, double texel_mm) {
+  const image_rgb& level = texels[level_for(std::max(footprint.x / n.x, footprint.y / n.y), texel_mm, texels.size())];
+  const lens_lattice lens(n.x * n.y);
+  glm::dvec3 sum(0.0);
+  for (int j = 0; j < n.y; ++j) {
+    for (int i = 0; i < n.x; ++i) {
+      sum += light_along(d, level,
+                         make_camera_ray(d.cam, x + (i + 0.5) / n.x, y + (j + 0.5) / n.y, lens.point(j * n.x + i)));
+    }
+  }
+  return sum / double(n.x * n.y);
+}
+
+// Pixel (x, y)'s mean light where the lens moves a point farther than a few of the grid's
+// spacings: points on a grid, each with its own lens point, would land on the display as if at
+// random. Points
+// low-discrepancy in the pixel and on the lens together land evenly over the footprint widened by
+// the blur, dense enough for a k-th of the blur (at least the grid's n, at most 64 k^2 unless the
+// grid has more); off a grid they alias more, so they read the level one coarser than their
+// spacing. The kiosk's display seen at a grazing angle (128 x 128, its observer's 4 mm pupil):
+// 1.2% RMS of the whole image's mean from the converged parts, against 2.5% with the grid.
+glm::dvec3 spread_mean(const planar_parts& d, const std::vector<image_rgb>& texels, int x, int y,
+                       const glm::dvec2& footprint, const glm::dvec2& blur, const glm::ivec2& n, double texel_mm,
+                       int k) {
+  const glm::dvec2 reach = footprint + blur;
+  const double spacing = std::max(texel_mm, std::min(blur.x, blur.y) / k);
+  const double wanted = std::ceil(reach.x / spacing) * std::ceil(reach.y / spacing);
+  const double least = double(n.x) * n.y;
+  const int count = int(std::clamp(wanted, least, std::max(least, 64.0 * k * k)));
+  const std::size_t level =
+      std::min(level_for(std::sqrt(reach.x * reach.y / count), texel_mm, texels.size()) + 1, texels.size() - 1);
+  glm::dvec3 sum(0.0);
+  r4_walk q;
+  for (int s = 0; s < count; ++s, q.next()) {
+    sum += light_along(d, texels[level], make_camera_ray(d.cam, x + q.u[0], y + q.u[1], {q.u[2], q.u[3]}));
+  }
+  return sum / double(count);
+}
 
 }  // namespace
 
@@ -257,28 +349,22 @@ image_rgb display_parts_image(const scene& s, const std::vector<image_rgb>& texe
       for (int x = 0; x < w; ++x) {
         const corner c[4] = {top[std::size_t(x)], top[std::size_t(x) + 1], bottom[std::size_t(x)],
                              bottom[std::size_t(x) + 1]};
-        // A pixel whose corners see no display is taken to see none (a display smaller than a pixel,
-        // or a corner of it between pixel corners, is missed).
-        if (c[0].n == 0 && c[1].n == 0 && c[2].n == 0 && c[3].n == 0) continue;
+        // A pixel whose corners see no display, nor come within the lens's blur of it, is taken to
+        // see none (a display smaller than a pixel, or a corner of it between pixel corners, is
+        // missed).
+        if (c[0].n == 0 && c[1].n == 0 && c[2].n == 0 && c[3].n == 0 && !c[0].near && !c[1].near && !c[2].near &&
+            !c[3].near) {
+          continue;
+        }
         const glm::dvec2 footprint = footprint_of(c);
         const glm::ivec2 n = points_per_pixel(d, c, footprint, texel_mm, k);
-        const image_rgb& level = texels[level_for(footprint, n, texel_mm, texels.size())];
-        const lens_lattice lens(n.x * n.y);
-        glm::dvec3 sum(0.0);
-        for (int j = 0; j < n.y; ++j) {
-          for (int i = 0; i < n.x; ++i) {
-            const camera_ray r =
-                make_camera_ray(d.cam, x + (i + 0.5) / n.x, y + (j + 0.5) / n.y, lens.point(j * n.x + i));
-            landing l[2];
-            const int m = follow(d, r.origin, r.dir, l);
-            for (int a = 0; a < m; ++a) {
-              const double profile = emission_at(d.emission.get(), d.area, l[a].dir);
-              sum += glm::dvec3(display_radiance(d.area, &level, 1.0f, l[a].local)) * (l[a].weight * profile);
-            }
-          }
-        }
+        const glm::dvec2 blur = glm::max(glm::max(c[0].blur, c[1].blur), glm::max(c[2].blur, c[3].blur));
+        // A lens moving points by up to a few of the grid's spacings only jitters the grid.
+        const bool spread = blur.x > 4 * footprint.x / n.x || blur.y > 4 * footprint.y / n.y;
+        const glm::dvec3 mean = spread ? spread_mean(d, texels, x, y, footprint, blur, n, texel_mm, k)
+                                       : grid_mean(d, texels, x, y, footprint, n, texel_mm);
         float* o = out.rgb.data() + 3 * (std::size_t(y) * w + x);
-        for (int c3 = 0; c3 < 3; ++c3) o[c3] = float(sum[c3] / double(n.x * n.y));
+        for (int c3 = 0; c3 < 3; ++c3) o[c3] = float(mean[c3]);
       }
       std::swap(top, bottom);
     }

@@ -5,8 +5,10 @@
 // emission profile, the bezel black. Each pixel is the mean over a stratified set of points in the
 // pixel and on the lens, followed as the tracer's paths go (the sheets block, the half mirror
 // passes and reflects once) about one a texel, on the display's texels (area-averaged where a pixel
-// would span more than it takes points); docs/model-image.md. Props are not met, and a scene that
-// polarizes has none (its half mirror's light depends on the state).
+// would span more than it takes points); where a thin lens spreads them farther than a few of their
+// spacings, low-discrepancy points over the footprint widened by the blur; docs/model-image.md.
+// Props are not met, and a scene that polarizes has none (its half mirror's light depends on the
+// state).
 #include <atomic>
 #include <vector>
 

@@ -9,9 +9,11 @@
 
 namespace airr {
 
+inline constexpr std::array<double, 6> r6_alpha = {0.8986537126286992, 0.8075784952213447, 0.7257334129697596,
+                                                   0.6521830259439715, 0.5860866975779692, 0.5266889867007356};
+
 inline std::array<double, 6> r6_point(std::uint64_t i, const std::array<double, 6>& rotation) {
-  static constexpr std::array<double, 6> alpha = {0.8986537126286992, 0.8075784952213447, 0.7257334129697596,
-                                                  0.6521830259439715, 0.5860866975779692, 0.5266889867007356};
+  const std::array<double, 6>& alpha = r6_alpha;
   std::array<double, 6> u{};
   for (int k = 0; k < 6; ++k) {
     // i * alpha mod 1 without losing precision for large i: split i into high and low parts.
@@ -24,5 +26,17 @@ inline std::array<double, 6> r6_point(std::uint64_t i, const std::array<double, 
   }
   return u;
 }
+
+// The sequence's first four coordinates point after point (from point 0, rotated by 0.5 each way):
+// a step adds alpha, so a short run costs no more than a grid.
+struct r4_walk {
+  std::array<double, 4> u{0.5, 0.5, 0.5, 0.5};
+  void next() {
+    for (int k = 0; k < 4; ++k) {
+      u[k] += r6_alpha[k];
+      if (u[k] >= 1) u[k] -= 1;
+    }
+  }
+};
 
 }  // namespace airr
