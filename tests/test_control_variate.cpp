@@ -135,15 +135,16 @@ TEST(ModelImage, UniformDisplayIdealSheetIsRTmuL) {
 }
 
 TEST(ModelImage, InterpolatedPathsMatchTracedOnes) {
-  // The pixel-to-display map is projective: traced on every 8th pixel and interpolated, the image
-  // differs from one traced at every pixel by far less than a texel's contrast.
-  const scene s = test::chart_scene("rf-ay", 96);
+  // The pixel-to-display map is projective: traced on every 4th pixel and interpolated (the view
+  // image's stride, at 512 x 512), the image differs from one traced at every pixel by far less
+  // than a texel's contrast.
+  const scene s = test::chart_scene("rf-ay", 512);
   embree_device device;
   tracer_scene ts;
   build_tracer_scene(ts, device, s);
   model_image_params every, lattice;
   every.psf_samples = lattice.psf_samples = 20000;
-  lattice.path_stride = 8;
+  lattice.path_stride = 4;
   const auto a = compute_model_image(s, ts.retro.front(), ts.texture.get(), every);
   const auto b = compute_model_image(s, ts.retro.front(), ts.texture.get(), lattice);
   ASSERT_TRUE(a && b);
@@ -154,6 +155,30 @@ TEST(ModelImage, InterpolatedPathsMatchTracedOnes) {
   }
   EXPECT_GT(peak, 0.1);
   EXPECT_LT(worst, 1e-3 * peak);
+}
+
+// With least_paths 128 (the view image's), an image keeps at least 128 paths a side: at 96 x 96 a
+// stride of 8 traces every pixel's path, at 256 x 256 every second pixel's.
+TEST(ModelImage, ASmallImageKeepsAtLeast128PathsASide) {
+  auto image_with = [](int size, int stride) {
+    const scene s = test::chart_scene("rf-ay", size);
+    embree_device device;
+    tracer_scene ts;
+    build_tracer_scene(ts, device, s);
+    model_image_params p;
+    p.psf_samples = 20000;
+    p.path_stride = stride;
+    p.least_paths = 128;
+    const auto m = compute_model_image(s, ts.retro.front(), ts.texture.get(), p);
+    return m ? m->image.rgb : std::vector<float>{};
+  };
+  const std::vector<float> small_every = image_with(96, 1);
+  ASSERT_FALSE(small_every.empty());
+  EXPECT_TRUE(image_with(96, 8) == small_every);
+  const std::vector<float> every = image_with(256, 1), second = image_with(256, 2);
+  ASSERT_FALSE(every.empty());
+  EXPECT_FALSE(second == every);
+  EXPECT_TRUE(image_with(256, 8) == second);
 }
 
 // Without its pixels' paths kept (36 bytes a pixel), a model image traces a pixel's anew when

@@ -76,7 +76,9 @@ std::vector<float> pixel_angles(const ideal_parts& parts, const emission_profile
 std::vector<model_pixel> pixel_paths(const ideal_parts& parts, const emission_profile* emission,
                                      const model_image_params& p, const grid_mapping (&maps)[2], const model_grid& tail,
                                      const std::atomic<bool>* cancel) {
-  const int w = parts.cam.width, h = parts.cam.height, n = p.path_stride;
+  const int w = parts.cam.width, h = parts.cam.height;
+  const int n =
+      p.least_paths > 0 ? std::min(p.path_stride, std::max(1, std::min(w, h) / p.least_paths)) : p.path_stride;
   std::vector<model_pixel> out(std::size_t(w) * h);
   if (n <= 1) {
     detail::parallel_rows(h, row_workers_of(p), [&](int y0, int y1) {

@@ -44,6 +44,8 @@ struct model_image_params {
   // Ideal paths traced on every n-th pixel and interpolated between where all four neighbours
   // have one (1: every pixel); the path from a pixel to the display is smooth (projective).
   int path_stride = 1;
+  // The stride is lowered so that an image keeps at least this many paths a side (0: none).
+  int least_paths = 0;
   int threads = 0;  // 0: all cores; 1: the calling thread alone
   // Run on threads of its own at the caller's priority, not the shared pool's (row_workers): the
   // designer's model images beside a render whose pool threads are lowered.
