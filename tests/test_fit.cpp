@@ -169,7 +169,7 @@ TEST(SheetFit, RenderedMeasurementsFitBack) {
     fit["white_squares"].push_back({{"tilt_deg", t}, {"image", white_name}, {"square_mm", square_mm}});
   }
   fit["distance_series"].push_back({{"floating_distance_mm", 150}, {"edge_image", "tilt_00.exr"}});
-  for (int d = 175; d <= 300; d += 25) {
+  for (int d = 200; d <= 300; d += 50) {
     const std::string name = "distance_" + std::to_string(d) + ".exr";
     render_edge(0, d, name);
     fit["distance_series"].push_back({{"floating_distance_mm", d}, {"tilt_deg", 0}, {"edge_image", name}});
