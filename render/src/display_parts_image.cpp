@@ -277,12 +277,12 @@ glm::dvec3 grid_mean(const planar_parts& d, const std::vector<image_rgb>& texels
 
 // Pixel (x, y)'s mean light where the lens moves a point farther than a few of the grid's
 // spacings: points on a grid, each with its own lens point, would land on the display as if at
-// random. Points
-// low-discrepancy in the pixel and on the lens together land evenly over the footprint widened by
-// the blur, dense enough for a k-th of the blur (at least the grid's n, at most 64 k^2 unless the
-// grid has more); off a grid they alias more, so they read the level one coarser than their
-// spacing. The kiosk's display seen at a grazing angle (128 x 128, its observer's 4 mm pupil):
-// 1.2% RMS of the whole image's mean from the converged parts, against 2.5% with the grid.
+// random. Points low-discrepancy in the pixel and on the lens together land evenly over the
+// footprint widened by the blur, dense enough for a k-th of the blur (at least the grid's n, at
+// most 64 k^2 unless the grid has more); off a grid they alias more, so they read the level one
+// coarser than their spacing. The kiosk's display seen at a grazing angle (128 x 128, its
+// observer's 4 mm pupil): 1.2% RMS of the whole image's mean from the converged parts, against
+// 2.5% with the grid.
 glm::dvec3 spread_mean(const planar_parts& d, const std::vector<image_rgb>& texels, int x, int y,
                        const glm::dvec2& footprint, const glm::dvec2& blur, const glm::ivec2& n, double texel_mm,
                        int k) {
