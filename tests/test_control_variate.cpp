@@ -4,6 +4,8 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <initializer_list>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -160,25 +162,30 @@ TEST(ModelImage, InterpolatedPathsMatchTracedOnes) {
 // With least_paths 128 (the view image's), an image keeps at least 128 paths a side: at 96 x 96 a
 // stride of 8 traces every pixel's path, at 256 x 256 every second pixel's.
 TEST(ModelImage, ASmallImageKeepsAtLeast128PathsASide) {
-  auto image_with = [](int size, int stride) {
+  // The model images of a size x size chart scene at each stride, its tracer scene built once.
+  auto images_at = [](int size, std::initializer_list<int> strides) {
     const scene s = test::chart_scene("rf-ay", size);
     embree_device device;
     tracer_scene ts;
     build_tracer_scene(ts, device, s);
-    model_image_params p;
-    p.psf_samples = 20000;
-    p.path_stride = stride;
-    p.least_paths = 128;
-    const auto m = compute_model_image(s, ts.retro.front(), ts.texture.get(), p);
-    return m ? m->image.rgb : std::vector<float>{};
+    std::vector<std::vector<float>> images;
+    for (int stride : strides) {
+      model_image_params p;
+      p.psf_samples = 20000;
+      p.path_stride = stride;
+      p.least_paths = 128;
+      const auto m = compute_model_image(s, ts.retro.front(), ts.texture.get(), p);
+      images.push_back(m ? m->image.rgb : std::vector<float>{});
+    }
+    return images;
   };
-  const std::vector<float> small_every = image_with(96, 1);
-  ASSERT_FALSE(small_every.empty());
-  EXPECT_TRUE(image_with(96, 8) == small_every);
-  const std::vector<float> every = image_with(256, 1), second = image_with(256, 2);
-  ASSERT_FALSE(every.empty());
-  EXPECT_FALSE(second == every);
-  EXPECT_TRUE(image_with(256, 8) == second);
+  const auto small = images_at(96, {1, 8});
+  ASSERT_FALSE(small[0].empty());
+  EXPECT_TRUE(small[1] == small[0]);
+  const auto large = images_at(256, {1, 2, 8});
+  ASSERT_FALSE(large[0].empty());
+  EXPECT_FALSE(large[1] == large[0]);
+  EXPECT_TRUE(large[2] == large[1]);
 }
 
 // Without its pixels' paths kept (36 bytes a pixel), a model image traces a pixel's anew when

@@ -116,11 +116,6 @@ struct corner {
   glm::dvec2 blur{0};  // the lens's blur there (mm along the display's x and y), the larger way
 };
 
-// Whether the emitting area's local point `at` is within `reach` mm of the area.
-bool within(const part_frame& area, const glm::dvec2& at, const glm::dvec2& reach) {
-  return std::abs(at.x) <= 0.5 * area.width + reach.x && std::abs(at.y) <= 0.5 * area.height + reach.y;
-}
-
 // The lens's blur (mm along the display's x and y) on the display's plane for a ray leaving the
 // observer along `dir` and meeting the plane `travelled` mm later, arriving along `arrival`: the
 // aperture's cone around the point in focus cut by the plane, an ellipse drawn out along the
@@ -145,7 +140,7 @@ corner corner_at(const planar_parts& d, double x, double y) {
     c.plane[0] = part_local(d.area, *p);
     c.on[0] = true;
     c.blur = blur_on_display(d, dir, glm::length(*p - d.cam.position), dir);
-    c.near = within(d.area, c.plane[0], 0.5 * c.blur);
+    c.near = inside_part(d.area, c.plane[0], 0.5 * c.blur);
   }
   if (const auto m = hit_part(d.hm, d.cam.position, dir, false)) {
     const glm::dvec3 mirrored = reflect(dir, d.hm.n);
@@ -154,7 +149,7 @@ corner corner_at(const planar_parts& d, double x, double y) {
       c.on[1] = true;
       const double travelled = glm::length(*m - d.cam.position) + glm::length(*p - *m);
       const glm::dvec2 blur = blur_on_display(d, dir, travelled, mirrored);
-      c.near = c.near || within(d.area, c.plane[1], 0.5 * blur);
+      c.near = c.near || inside_part(d.area, c.plane[1], 0.5 * blur);
       c.blur = glm::max(c.blur, blur);
     }
   }

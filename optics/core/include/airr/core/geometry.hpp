@@ -81,9 +81,10 @@ inline glm::dvec2 part_local(const part_frame& f, const glm::dvec3& p) {
 // The world point at in-plane coordinates (mm from the centre along u and v).
 inline glm::dvec3 part_point(const part_frame& f, double x, double y) { return f.center + x * f.u + y * f.v; }
 
-// Whether in-plane coordinates lie on the rectangle (edges included).
-inline bool inside_part(const part_frame& f, const glm::dvec2& l) {
-  return std::abs(l.x) <= 0.5 * f.width && std::abs(l.y) <= 0.5 * f.height;
+// Whether in-plane coordinates lie on the rectangle (edges included), or within `margin` (mm along
+// x and y) of it.
+inline bool inside_part(const part_frame& f, const glm::dvec2& l, const glm::dvec2& margin = glm::dvec2(0.0)) {
+  return std::abs(l.x) <= 0.5 * f.width + margin.x && std::abs(l.y) <= 0.5 * f.height + margin.y;
 }
 
 // Where the ray o + t d (t > 1e-9) meets the part's plane; with `bounded`, only on the rectangle.
