@@ -136,6 +136,53 @@ TEST(ModelImage, UniformDisplayIdealSheetIsRTmuL) {
   }
 }
 
+// An ideal sheet returns each ray to its own point: a pixel is R x T x mu x L times the share of it
+// whose ideal paths land on the display, which the plain tracer's aerial samples measure. The
+// kiosk's region of paths is about twice the display's image wide: bins chosen over all of it gave
+// the image's edge pixels footprints several percent from their own.
+TEST(ModelImage, IdealSheetsEdgePixelsAreTheirShareOfTheDisplay) {
+  scene s = load_scene(asset_dir() + "/scenes/two_sheet_kiosk.json", {{"observer.width", "128"},
+                                                                      {"observer.height", "128"},
+                                                                      {"source.image", "\"\""},
+                                                                      {"source.emission_profile", "\"\""},
+                                                                      {"retroreflectors.0.model.type", "\"ideal\""}});
+  s.retroreflectors.resize(1);
+  s.observer.lens = observer_lens::pinhole;
+  embree_device device;
+  tracer_scene plain;
+  plain.use_model_image = false;
+  build_tracer_scene(plain, device, s);
+  const auto m = compute_model_image(s, plain.retro.front(), nullptr, model_image_params::for_image(128, 128));
+  ASSERT_TRUE(m);
+  const double full = s.half_mirror.reflectance * s.half_mirror.transmittance * s.source.intensity;
+  int x0 = m->image.width, y0 = m->image.height, x1 = -1, y1 = -1;
+  for (int y = 0; y < m->image.height; ++y) {
+    for (int x = 0; x < m->image.width; ++x) {
+      if (m->image.at(x, y)[1] > 0)
+        x0 = std::min(x0, x), y0 = std::min(y0, y), x1 = std::max(x1, x), y1 = std::max(y1, y);
+    }
+  }
+  ASSERT_GE(x1, x0);
+  const int spp = 1024;
+  double worst = 0;
+  int edge_pixels = 0;
+  for (int y = std::max(0, y0 - 2); y <= std::min(m->image.height - 1, y1 + 2); ++y) {
+    for (int x = std::max(0, x0 - 2); x <= std::min(m->image.width - 1, x1 + 2); ++x) {
+      const auto rotation = pixel_sequence_rotation(plain, x, y);
+      std::uint64_t rays = 0;
+      double sum = 0;
+      for (int i = 0; i < spp; ++i)
+        sum += estimate_components(plain, x, y, std::uint64_t(i), rotation, rays)[component_aerial].y;
+      const double share = sum / spp / full;
+      edge_pixels += share > 0.02 && share < 0.98;
+      worst = std::max(worst, std::abs(m->image.at(x, y)[1] / full - share));
+    }
+  }
+  std::printf("%d edge pixels; the model's share at most %.4f from the traced one\n", edge_pixels, worst);
+  EXPECT_GT(edge_pixels, 40);
+  EXPECT_LT(worst, 0.01);
+}
+
 TEST(ModelImage, InterpolatedPathsMatchTracedOnes) {
   // The pixel-to-display map is projective: traced on every 4th pixel and interpolated (the view
   // image's stride, at 512 x 512), the image differs from one traced at every pixel by far less

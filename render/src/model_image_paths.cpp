@@ -22,11 +22,25 @@ std::optional<ideal_path> trace_ideal(const ideal_parts& parts, double px, doubl
   return ideal_path{part_local(parts.src, r.landing), *p, r.towards_display, wi, polar_angle_deg(wi)};
 }
 
+// The display-plane step across one pixel along `step`: from the paths half a pixel either side,
+// or, where one of them misses (a pixel at the region of paths' edge), from the other and the
+// pixel's own; nullopt when both miss.
+static std::optional<glm::dvec2> footprint_column(const ideal_parts& parts, const std::optional<ideal_path>& centre,
+                                                  double px, double py, const glm::dvec2& step) {
+  const auto ahead = trace_ideal(parts, px + 0.5 * step.x, py + 0.5 * step.y);
+  const auto behind = trace_ideal(parts, px - 0.5 * step.x, py - 0.5 * step.y);
+  if (ahead && behind) return ahead->display - behind->display;
+  if (!centre) return std::nullopt;
+  if (ahead) return 2.0 * (ahead->display - centre->display);
+  if (behind) return 2.0 * (centre->display - behind->display);
+  return std::nullopt;
+}
+
 glm::dmat2 pixel_footprint(const ideal_parts& parts, double px, double py) {
-  const auto right = trace_ideal(parts, px + 0.5, py), left = trace_ideal(parts, px - 0.5, py);
-  const auto down = trace_ideal(parts, px, py + 0.5), up = trace_ideal(parts, px, py - 0.5);
-  if (!(right && left && down && up)) return glm::dmat2(0.0);
-  return glm::dmat2(right->display - left->display, down->display - up->display);
+  const auto centre = trace_ideal(parts, px, py);
+  const auto x = footprint_column(parts, centre, px, py, {1, 0}), y = footprint_column(parts, centre, px, py, {0, 1});
+  if (!(x && y)) return glm::dmat2(0.0);
+  return glm::dmat2(*x, *y);
 }
 
 static pixel_path pixel_ideal(const ideal_parts& parts, const emission_profile* emission, double x, double y) {
@@ -56,16 +70,19 @@ model_pixel pixel_path_at(const ideal_parts& parts, const emission_profile* emis
   return mapped(pixel_ideal(parts, emission, x + 0.5, y + 0.5), maps, tail);
 }
 
-std::vector<float> pixel_angles(const ideal_parts& parts, const emission_profile* emission, const model_image_params& p,
-                                const grid_mapping (&maps)[2], const model_grid& tail,
-                                const std::atomic<bool>* cancel) {
+pixel_angle_map pixel_angles(const ideal_parts& parts, const emission_profile* emission, const model_image_params& p,
+                             const grid_mapping (&maps)[2], const model_grid& fine, const model_grid& tail,
+                             const std::atomic<bool>* cancel) {
   const int w = parts.cam.width, h = parts.cam.height;
-  std::vector<float> out(std::size_t(w) * h);
+  pixel_angle_map out;
+  out.theta_deg.resize(std::size_t(w) * h);
+  out.on_fine_grid.resize(std::size_t(w) * h);
   detail::parallel_rows(h, row_workers_of(p), [&](int y0, int y1) {
     for (int y = y0; y < y1 && !cancel_requested(cancel); ++y) {
       for (int x = 0; x < w; ++x) {
         const model_pixel px = pixel_path_at(parts, emission, maps, tail, x, y);
-        out[std::size_t(y) * w + x] = px.ok ? px.theta_deg : std::numeric_limits<float>::quiet_NaN();
+        out.theta_deg[std::size_t(y) * w + x] = px.ok ? px.theta_deg : std::numeric_limits<float>::quiet_NaN();
+        out.on_fine_grid[std::size_t(y) * w + x] = lands_on_fine_grid(px, fine);
       }
     }
   });

@@ -54,12 +54,16 @@ image_rgb remap_model_image(const model_image& from, const scene& s, const model
   const std::shared_ptr<const emission_profile> emission = scene_emission_profile(s);
   std::vector<model_pixel> pixels = pixel_paths(parts, emission.get(), p, kept->maps, from.grids[model_tail], cancel);
   if (pixels.empty()) return {};
-  // Farther beyond the bins, a pixel's PSF would be a guess.
+  // Farther beyond the bins, a pixel's PSF would be a guess (beyond the fine grid, as in
+  // compute_model_image, the end bins' tails serve).
   const double first = from.bins.front().theta_deg, last = from.bins.back().theta_deg;
   const double spacing = from.bins.size() > 1 ? (last - first) / double(from.bins.size() - 1) : 0.0;
   const double margin = limits.beyond_bins * std::max(1.0, spacing);
   for (const model_pixel& px : pixels) {
-    if (px.ok && (px.theta_deg < first - margin || px.theta_deg > last + margin)) return {};
+    if (lands_on_fine_grid(px, from.grids[model_fine]) &&
+        (px.theta_deg < first - margin || px.theta_deg > last + margin)) {
+      return {};
+    }
   }
   image_rgb out;
   out.width = w;

@@ -45,7 +45,8 @@ struct ideal_path {
 std::optional<ideal_path> trace_ideal(const ideal_parts& parts, double px, double py);
 
 // The display-plane offset (u, v) per unit of pixel jitter at pixel point (px, py) (columns: x, y),
-// from the ideal paths half a pixel either side; zero where one of them misses.
+// from the ideal paths half a pixel either side (one side and the pixel's own where the other
+// misses); zero where neither side has a path.
 glm::dmat2 pixel_footprint(const ideal_parts& parts, double px, double py);
 
 // What a pixel needs of its ideal path.
@@ -128,10 +129,24 @@ std::vector<model_pixel> pixel_paths(const ideal_parts& parts, const emission_pr
                                      const model_image_params& p, const grid_mapping (&maps)[2], const model_grid& tail,
                                      const std::atomic<bool>* cancel);
 
+// Whether a pixel's ideal point lands on the fine grid: on the display or within the core's reach
+// of it, where the model's light is more than the PSF's tail. The bins' angles are chosen among
+// these pixels (the region of paths reaches far beyond the display, where the image is dark).
+inline bool lands_on_fine_grid(const model_pixel& px, const model_grid& fine) {
+  const glm::vec2 t = px.node[model_fine];
+  return px.ok && t.x >= 0 && t.y >= 0 && t.x < float(fine.padded.width - 1) && t.y < float(fine.padded.height - 1);
+}
+
 // Every pixel's angle of incidence on the sheet alone (path stride 1; NaN where pixel_paths' pixel is
-// not ok): 4 bytes a pixel where the paths take 36, for a model image that does not keep them.
-std::vector<float> pixel_angles(const ideal_parts& parts, const emission_profile* emission, const model_image_params& p,
-                                const grid_mapping (&maps)[2], const model_grid& tail, const std::atomic<bool>* cancel);
+// not ok) and whether it lands on the fine grid: 5 bytes a pixel where the paths take 36, for a
+// model image that does not keep them.
+struct pixel_angle_map {
+  std::vector<float> theta_deg;
+  std::vector<char> on_fine_grid;  // bytes: rows written in parallel would share a bit vector's words
+};
+pixel_angle_map pixel_angles(const ideal_parts& parts, const emission_profile* emission, const model_image_params& p,
+                             const grid_mapping (&maps)[2], const model_grid& fine, const model_grid& tail,
+                             const std::atomic<bool>* cancel);
 
 // `grid` is left without its padded nodes when `cancel` is set while they are made.
 grid_mapping make_grid(model_grid& grid, const cv::Mat& texels, int refine, double reach_mm, const part_frame& src,

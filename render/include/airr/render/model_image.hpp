@@ -189,8 +189,9 @@ struct remap_limits {
   // Six times as far: what a first look may still move when no closer view image is done (a drag
   // faster than view images are made, as on a loaded machine), rather than fall back to the coarse
   // first look (at 256 x 256, tilt 10: moved 6 deg, 1.4% from the moved layout's own view image;
-  // the coarse look 10%).
-  static remap_limits lenient() { return {6.0, 0.12, 0.6, 3.0}; }
+  // the coarse look 10%). Beyond the bins as far as a bin's own pixel may move: the bins span
+  // the angles of the pixels near the display alone, so their spacing is small.
+  static remap_limits lenient() { return {6.0, 0.12, 0.6, 6.0}; }
 };
 image_rgb remap_model_image(const model_image& from, const scene& s, const model_image_params& p,
                             const std::atomic<bool>* cancel = nullptr, const remap_limits& limits = {});
