@@ -22,7 +22,8 @@ namespace {
 // 4096^2 (1 spp): 30 bytes a pixel, 93 with components (the four its dark room can have), 688 MB
 // besides. Counted: while tracing, the sums 12 and their odd half 12 (single precision, turned
 // into the images in place) and the model image 12, which while it is made holds its pixels'
-// angles alone (4; their paths are traced anew where needed); 12 a component held, and the
+// angles alone (5: and whether each lands on the fine grid; their paths are traced anew where
+// needed); 12 a component held, and the
 // encoded file's share (about 2 a component).
 constexpr double final_bytes_per_pixel = 36, final_bytes_per_component = 14;
 // A session publishing every wave (the designer) keeps the predictions beside the sums (24 bytes a

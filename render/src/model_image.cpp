@@ -157,8 +157,9 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
   };
   // The bins' angles span the pixels that land on the fine grid (or, when none does, every pixel
   // with a path): the kiosk's region of paths is twice the aerial image's width, and bins spread
-  // over it left the image's pixels footprints up to 3% from their bins' (the aerial image 2.75%
-  // RMS of the image's mean from the tracer; 1.56% with the bins within the fine grid).
+  // over it gave the image's pixels the footprints of pixels far from them, several percent apart
+  // (the aerial image 2.75% RMS of the image's mean from the tracer; 1.56% with the bins within
+  // the fine grid).
   bool any_on_fine_grid = false;
   for (std::size_t i = 0; i < count && !any_on_fine_grid; ++i) any_on_fine_grid = on_fine_grid(i);
   auto angle = [&](std::size_t i) {
