@@ -96,6 +96,16 @@ TEST(DisplayParts, TheBenchFramedWholeSeesWhatTheTracerSees) {
   expect_parts_match_tracer(s, 64, 0.03, "bench, 50 deg");
 }
 
+// The kiosk through a pinhole: display_parts_image follows only the pixels around the display's
+// projection (and its mirror image's), and every pixel the tracer lights lies among them.
+TEST(DisplayParts, KiosksDisplayThroughAPinhole) {
+  const scene s = load_scene(asset_dir() + "/scenes/two_sheet_kiosk.json", {{"observer.width", "96"},
+                                                                            {"observer.height", "96"},
+                                                                            {"observer.lens", "\"pinhole\""},
+                                                                            {"source.image", "\"\""}});
+  expect_parts_match_tracer(s, 64, 0.03, "kiosk, pinhole, uniform display");
+}
+
 // Through a wide pupil (f/4 at 50 mm, focused on the aerial image) the display, seen at a grazing
 // angle in a strip a few pixels high, is blurred over several millimetres: pixels whose corners miss
 // it still see it (14 of the 78 the tracer lit at 256 spp were left dark when such pixels were

@@ -323,6 +323,44 @@ std::vector<image_rgb> display_parts_texels(const scene& s, const image_rgb* dis
   return levels;
 }
 
+namespace {
+
+// The pixels [x0, x1) x [y0, y1) whose corners a pinhole observer may see the display's emitting
+// area from, directly or mirrored in the half mirror's plane: those around the projections of its
+// corners and of their mirror images (a ray meeting the area either way passes within them), the
+// ways from which its front faces the observer. The whole image through a thin lens (its blur
+// reaches beyond them) or when a corner lies behind the observer.
+struct pixel_box {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+pixel_box pixels_seeing_display(const planar_parts& d) {
+  const int w = d.cam.width, h = d.cam.height;
+  const pixel_box whole{0, 0, w, h};
+  if (d.cam.aperture_mm > 0) return whole;
+  glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  for (const bool mirrored : {false, true}) {
+    // An observer (or its mirror image) behind the display's plane sees only its back that way.
+    const glm::dvec3 eye = mirrored ? mirror_point(d.cam.position, d.hm.center, d.hm.n) : d.cam.position;
+    if (!(glm::dot(eye - d.area.center, d.area.n) > 0)) continue;
+    for (const glm::dvec3& c : corners(d.area)) {
+      const glm::dvec3 point = mirrored ? mirror_point(c, d.hm.center, d.hm.n) : c;
+      if (!(glm::dot(point - d.cam.position, d.cam.forward) > 1e-9)) return whole;
+      const glm::dvec2 q = camera_project(d.cam, point);
+      lo = glm::min(lo, q);
+      hi = glm::max(hi, q);
+    }
+  }
+  if (!(lo.x <= hi.x)) return {};  // seen from behind both ways
+  // A pixel's corners lie at its integer points: a pixel is kept when one of them may lie within,
+  // a pixel's margin either way for rounding.
+  auto clamp_to = [](double v, int size) { return int(std::clamp(v, 0.0, double(size))); };
+  const pixel_box box{clamp_to(std::floor(lo.x) - 2, w), clamp_to(std::floor(lo.y) - 2, h),
+                      clamp_to(std::ceil(hi.x) + 2, w), clamp_to(std::ceil(hi.y) + 2, h)};
+  return box;
+}
+
+}  // namespace
+
 image_rgb display_parts_image(const scene& s, const std::vector<image_rgb>& texels, const model_image_params& p,
                               const std::atomic<bool>* cancel) {
   check_model_image_params(p);
@@ -334,16 +372,20 @@ image_rgb display_parts_image(const scene& s, const std::vector<image_rgb>& texe
   out.height = h;
   out.rgb.assign(std::size_t(w) * h * 3, 0.0f);
   const double texel_mm = std::min(d.area.width / texels[0].width, d.area.height / texels[0].height);
-  detail::parallel_rows(h, model_image_steps::row_workers_of(p), [&](int y0, int y1) {
-    std::vector<corner> top(std::size_t(w) + 1), bottom(std::size_t(w) + 1);
+  const pixel_box box = pixels_seeing_display(d);
+  if (box.x1 <= box.x0 || box.y1 <= box.y0) return cancel_requested(cancel) ? image_rgb{} : out;
+  const std::size_t columns = std::size_t(box.x1 - box.x0);
+  detail::parallel_rows(box.y1 - box.y0, model_image_steps::row_workers_of(p), [&](int r0, int r1) {
+    std::vector<corner> top(columns + 1), bottom(columns + 1);
+    const int y0 = box.y0 + r0, y1 = box.y0 + r1;
     for (int y = y0; y < y1 && !cancel_requested(cancel); ++y) {
-      for (int x = 0; x <= w; ++x) {
-        if (y == y0) top[std::size_t(x)] = corner_at(d, x, y);
-        bottom[std::size_t(x)] = corner_at(d, x, y + 1);
+      for (int x = box.x0; x <= box.x1; ++x) {
+        if (y == y0) top[std::size_t(x - box.x0)] = corner_at(d, x, y);
+        bottom[std::size_t(x - box.x0)] = corner_at(d, x, y + 1);
       }
-      for (int x = 0; x < w; ++x) {
-        const corner c[4] = {top[std::size_t(x)], top[std::size_t(x) + 1], bottom[std::size_t(x)],
-                             bottom[std::size_t(x) + 1]};
+      for (int x = box.x0; x < box.x1; ++x) {
+        const std::size_t i = std::size_t(x - box.x0);
+        const corner c[4] = {top[i], top[i + 1], bottom[i], bottom[i + 1]};
         // A pixel whose corners see no display, nor come within the lens's blur of it, is taken to
         // see none (a display smaller than a pixel, or a corner of it between pixel corners, is
         // missed).
