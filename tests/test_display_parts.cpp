@@ -118,6 +118,17 @@ TEST(DisplayParts, TheBenchThroughAWidePupilSeesWhatTheTracerSees) {
   expect_parts_match_tracer(s, 256, 0, "bench, 50 deg, f/4");
 }
 
+// At 512 x 512 the pupil's blur spans many pixels: the pixels followed reach that far around the
+// display's projection (reaching two pixels beyond it alone, 78 the tracer lights at 16 spp were
+// left dark).
+TEST(DisplayParts, TheBenchThroughAWidePupilAtFullSize) {
+  const scene s = load_scene(default_scene_path(), {{"observer.width", "512"},
+                                                    {"observer.height", "512"},
+                                                    {"observer.fov_deg", "50"},
+                                                    {"observer.lens", "\"thin_lens\""}});
+  expect_parts_match_tracer(s, 16, 0, "bench, 50 deg, f/4, 512 x 512");
+}
+
 // The kiosk's own observer sees its textured display at a grazing angle, each pixel's points moved
 // by its 4 mm pupil across many texels: four points a side come within 16% RMS (of the parts'
 // mean) of sixteen (26% when the points kept to a grid in the pixel, each with its own lens point;

@@ -325,37 +325,46 @@ std::vector<image_rgb> display_parts_texels(const scene& s, const image_rgb* dis
 
 namespace {
 
-// The pixels [x0, x1) x [y0, y1) whose corners a pinhole observer may see the display's emitting
-// area from, directly or mirrored in the half mirror's plane: those around the projections of its
+// The pixels [x0, x1) x [y0, y1) whose corners the observer may see the display's emitting area
+// from, directly or mirrored in the half mirror's plane: those around the projections of its
 // corners and of their mirror images (a ray meeting the area either way passes within them), the
-// ways from which its front faces the observer. The whole image through a thin lens (its blur
-// reaches beyond them) or when a corner lies behind the observer.
+// ways from which its front faces the observer. Through a thin lens, a ray from a lens point a
+// (|a| <= A / 2) reaches a point at depth z from the pixel a |1 / z - 1 / z_focus| (in tangent)
+// from the point's own projection: the box widens by that at the corners' depths (its extremes),
+// half as much again for the pixels' points spread over the blur. The whole image when a corner
+// lies behind the observer.
 struct pixel_box {
   int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
 };
 pixel_box pixels_seeing_display(const planar_parts& d) {
   const int w = d.cam.width, h = d.cam.height;
   const pixel_box whole{0, 0, w, h};
-  if (d.cam.aperture_mm > 0) return whole;
+  const double lens_radius = 0.5 * d.cam.aperture_mm;
+  if (lens_radius > 0 && !(d.cam.focus_distance > 0)) return whole;
   glm::dvec2 lo(std::numeric_limits<double>::infinity()), hi(-std::numeric_limits<double>::infinity());
+  double defocus = 0;  // the largest |1 / z - 1 / z_focus| at the corners
   for (const bool mirrored : {false, true}) {
-    // An observer (or its mirror image) behind the display's plane sees only its back that way.
+    // An observer (or its mirror image) behind the display's plane, its whole lens, sees only the
+    // display's back that way.
     const glm::dvec3 eye = mirrored ? mirror_point(d.cam.position, d.hm.center, d.hm.n) : d.cam.position;
-    if (!(glm::dot(eye - d.area.center, d.area.n) > 0)) continue;
+    if (!(glm::dot(eye - d.area.center, d.area.n) > -lens_radius)) continue;
     for (const glm::dvec3& c : corners(d.area)) {
       const glm::dvec3 point = mirrored ? mirror_point(c, d.hm.center, d.hm.n) : c;
-      if (!(glm::dot(point - d.cam.position, d.cam.forward) > 1e-9)) return whole;
+      const double depth = glm::dot(point - d.cam.position, d.cam.forward);
+      if (!(depth > 1e-9)) return whole;
       const glm::dvec2 q = camera_project(d.cam, point);
       lo = glm::min(lo, q);
       hi = glm::max(hi, q);
+      if (lens_radius > 0) defocus = std::max(defocus, std::abs(1 / depth - 1 / d.cam.focus_distance));
     }
   }
   if (!(lo.x <= hi.x)) return {};  // seen from behind both ways
   // A pixel's corners lie at its integer points: a pixel is kept when one of them may lie within,
-  // a pixel's margin either way for rounding.
+  // two pixels' margin for rounding.
+  const double margin = 2 + 1.5 * lens_radius * defocus * 0.5 * h / d.cam.tan_half_fov;
   auto clamp_to = [](double v, int size) { return int(std::clamp(v, 0.0, double(size))); };
-  const pixel_box box{clamp_to(std::floor(lo.x) - 2, w), clamp_to(std::floor(lo.y) - 2, h),
-                      clamp_to(std::ceil(hi.x) + 2, w), clamp_to(std::ceil(hi.y) + 2, h)};
+  const pixel_box box{clamp_to(std::floor(lo.x - margin), w), clamp_to(std::floor(lo.y - margin), h),
+                      clamp_to(std::ceil(hi.x + margin), w), clamp_to(std::ceil(hi.y + margin), h)};
   return box;
 }
 
