@@ -1,7 +1,7 @@
 // Ambient light from placed sources (spec section 11): the sun, a 0.53 degree disc of given
 // illuminance, and luminaires, Lambertian rectangles and discs. The sun seen in the half mirror
 // makes a glare spot where the mirrored direction points, R_hm times its luminance; a luminaire
-// lights a diffuse card as its solid angle says; each source is its own component.
+// lights a diffuse card as its solid angle says; each source, each luminaire too, is its own component.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -143,6 +143,77 @@ TEST(AmbientSources, ALuminaireLightsADiffuseCardAsItsSolidAngleSays) {
   EXPECT_NEAR(luminaire_luminance(disc), 2000, 1e-9);
 }
 
+// The illuminance at the origin, facing +z, from a Lambertian disc of luminance L, radius R, facing
+// -z at (x0, 0, h): L times the integral of cos^2 / r^2 = h^2 / r^4 over the disc (midpoint rule in
+// polar coordinates about its centre).
+double disc_illuminance(double L, double R, double x0, double h) {
+  const int rings = 400, sectors = 800;
+  double sum = 0;
+  for (int i = 0; i < rings; ++i) {
+    const double rho = (i + 0.5) * R / rings;
+    for (int j = 0; j < sectors; ++j) {
+      const double phi = (j + 0.5) * 2 * std::numbers::pi / sectors, x = x0 + rho * std::cos(phi),
+                   y = rho * std::sin(phi), r2 = x * x + y * y + h * h;
+      sum += h * h / (r2 * r2) * rho;
+    }
+  }
+  return L * sum * (R / rings) * (2 * std::numbers::pi / sectors);
+}
+
+TEST(AmbientSources, EachLuminaireIsItsOwnComponent) {
+  // The card of the test above under two discs: one on its axis, one beside it and higher, of
+  // other sizes and luminances. Each luminaire's own component shows the card as that disc
+  // alone lights it, the two add up to the luminaires' component, and each is the light of its
+  // path event's expression.
+  test::temp_dir dir;
+  test::write_plate(test::plate(2, 300, -60, 60, -60, 60), dir.file("card.glb"));
+  scene s = test::white_bench(500, 16);
+  s.source.luminance_cd_m2 = 500;
+  prop_params card;
+  card.name = "card";
+  card.mesh = dir.file("card.glb");
+  card.surface = prop_surface::diffuse;
+  card.albedo = {0.6, 0.6, 0.6};
+  s.props.push_back(card);
+  luminaire_params above, beside;
+  above.shape = beside.shape = luminaire_shape::disc;
+  above.pose = {.center_mm = {0, 0, 350}, .pitch_deg = 180};  // facing -z
+  above.width_mm = 60;
+  above.luminance_cd_m2 = 2000;
+  beside.pose = {.center_mm = {70, 0, 360}, .pitch_deg = 180};  // clear of the first seen from the card
+  beside.width_mm = 30;
+  beside.luminance_cd_m2 = 3000;
+  s.environment.luminaires = {above, beside};
+  s.observer.placement = observer_placement::look_at;
+  s.observer.position_mm = {0, -300, 500};
+  s.observer.look_at_mm = {0, 0, 300};
+  s.observer.fov_deg = 0.25;
+  check_scene(s, "card under two luminaires");
+  render_session session(s, {.threads = 2,
+                             .target_spp = 64,
+                             .components = true,
+                             .layers = std::make_shared<const path_layers>(
+                                 parse_layer_arguments({"first=A:luminaire0 .* E", "second=A:luminaire1 .* E"}, s, {})),
+                             .final_images_only = true});
+  const render_snapshot snap = session.wait_for(0, 64);
+  const std::vector<image_rgb> own = snap.luminaire_images();
+  ASSERT_EQ(own.size(), 2u);
+  const double first = mean_green(own[0]), second = mean_green(own[1]);
+  const double expected_first = 0.6 / std::numbers::pi * disc_illuminance(2000, 30, 0, 50),
+               expected_second = 0.6 / std::numbers::pi * disc_illuminance(3000, 15, 70, 60);
+  std::printf("card under two discs: %.4f and %.4f cd/m2 (components), analytic %.4f and %.4f\n", first, second,
+              expected_first, expected_second);
+  EXPECT_NEAR(expected_first, 0.6 * 2000 * 30.0 * 30 / (30.0 * 30 + 50.0 * 50), 1e-4 * expected_first);
+  EXPECT_NEAR(first, expected_first, 0.01 * expected_first);
+  EXPECT_NEAR(second, expected_second, 0.02 * expected_second);
+  const image_rgb all = snap.component_image(component_luminaires);
+  for (std::size_t i = 0; i < all.rgb.size(); ++i) {
+    EXPECT_NEAR(own[0].rgb[i] + own[1].rgb[i], all.rgb[i], 1e-5f * all.rgb[i]) << i;
+    EXPECT_EQ(own[0].rgb[i], snap.layer_image(0).rgb[i]) << i;
+    EXPECT_EQ(own[1].rgb[i], snap.layer_image(1).rgb[i]) << i;
+  }
+}
+
 TEST(AmbientSources, ALuminaireSeenFromItsFrontShowsItsLuminanceAndFromItsBackNothing) {
   scene s = test::white_bench(500, 8);
   s.observer.fov_deg = 2;
@@ -193,12 +264,16 @@ TEST(AmbientSources, SunAndLuminairesAreSavedAndBadValuesAreClearErrors) {
   fails("environment.luminaires.0.luminance_cd_m2=100", {"environment.luminaires[0]", "not both"});
   fails("environment.luminaires.0.shape=star", {"environment.luminaires[0].shape", "star"});
 
-  // The sun and the luminaires as components of `airr render`.
-  for (const char* component : {"sun", "luminaires"}) {
+  // The sun, the luminaires and the one luminaire's own as components of `airr render`.
+  for (const char* component : {"sun", "luminaires", "luminaire0"}) {
     const auto ok = test::run_cli("render " + path + " -o " + dir.file("part.exr") + " --spp 1 --component " +
                                   component + " --set observer.width=8 --set observer.height=8");
     EXPECT_EQ(ok.exit_code, 0) << ok.out;
   }
+  const auto none = test::run_cli("render " + path + " -o " + dir.file("part.exr") +
+                                  " --spp 1 --component luminaire1 --set observer.width=8 --set observer.height=8");
+  EXPECT_NE(none.exit_code, 0);
+  EXPECT_NE(none.out.find("the scene has 1 luminaire"), std::string::npos) << none.out;
 }
 
 TEST(AmbientSources, PathExpressionsNameTheSunAndEachLuminaire) {

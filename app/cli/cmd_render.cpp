@@ -1,6 +1,7 @@
 // airr render SCENE -o OUT.exr|OUT.png [--spp N] [--seed S] [--components | --component NAME]
 //             [--layer NAME=EXPR ...] [--stokes] [--set key=value ...] [--shard i/N]
 //             [--rays FILE [--rays-select EXPR] [--rays-limit N]]
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <functional>
@@ -65,12 +66,15 @@ void add_render_command(CLI::App& app) {
   auto* layers =
       cmd->add_flag("--components", opt->components,
                     "EXR: also write the image's components as layers aerial, direct, reflection, rest, room, sun, "
-                    "luminaires");
+                    "luminaires, and each luminaire's own: luminaire0, luminaire1, ...");
   cmd->add_option("--component", opt->component,
-                  "Write one component instead of the whole image: aerial, direct, reflection, rest, room, sun "
-                  "or luminaires")
-      ->check(
-          CLI::IsMember(std::vector<std::string>(std::begin(airr::component_names), std::end(airr::component_names))))
+                  "Write one component instead of the whole image: aerial, direct, reflection, rest, room, sun, "
+                  "luminaires or one luminaire's (luminaire0, ...)")
+      ->check(CLI::Validator(
+          [](const std::string& name) {
+            return airr::is_component_name(name) ? std::string() : "not a component: " + name;
+          },
+          "COMPONENT"))
       ->excludes(layers);
   cmd->add_option("--layer", opt->layers,
                   "EXR: also write the light of the paths a path expression selects as a layer NAME, e.g. "
@@ -96,6 +100,13 @@ void add_render_command(CLI::App& app) {
     airr::scene s = load_scene_noting(opt->scene_path, overrides);
     if (opt->seed) s.seed = *opt->seed;
     const bool split = opt->components || !opt->component.empty();
+    const int luminaires = int(s.environment.luminaires.size());
+    const std::vector<std::string> component_names = airr::component_layer_names(luminaires);
+    if (!opt->component.empty() &&
+        std::find(component_names.begin(), component_names.end(), opt->component) == component_names.end()) {
+      throw airr::input_error("--component " + opt->component + ": the scene has " + std::to_string(luminaires) +
+                              " luminaire" + (luminaires == 1 ? "" : "s"));
+    }
     if (opt->components && !opt->out.ends_with(".exr")) {
       throw airr::input_error(opt->out + ": --components needs an EXR output (layers); use --component for a PNG");
     }
@@ -109,7 +120,7 @@ void add_render_command(CLI::App& app) {
     if (!opt->layers.empty()) {
       if (!opt->out.ends_with(".exr")) throw airr::input_error(opt->out + ": --layer needs an EXR output (layers)");
       std::vector<std::string> taken;
-      if (opt->components) taken.assign(std::begin(airr::component_names), std::end(airr::component_names));
+      if (opt->components) taken = component_names;
       if (opt->stokes)
         taken.insert(taken.end(), std::begin(airr::stokes_layer_names), std::end(airr::stokes_layer_names));
       path_layers = std::make_shared<const airr::path_layers>(airr::parse_layer_arguments(opt->layers, s, taken));
@@ -170,18 +181,22 @@ void add_render_command(CLI::App& app) {
     std::vector<airr::image_rgb> parts, path_images;
     if (copied) {
       parts = snap.component_images();
+      for (auto& one : snap.luminaire_images()) parts.push_back(std::move(one));
       for (std::size_t k = 0; k < snap.layer_names.size(); ++k) path_images.push_back(snap.layer_image(k));
     }
     std::vector<airr::image_layer> layers;
-    for (int k = 0; k < airr::component_count && opt->components; ++k) {
-      const int at = snap.component_layout.slot[std::size_t(k)];
+    // The seven components, then each luminaire's own, from slot first_luminaire on.
+    const airr::component_slots& slots = snap.component_layout;
+    for (int k = 0; k < airr::component_count + slots.luminaires && opt->components; ++k) {
+      const std::string& name = component_names[std::size_t(k)];
+      const int at =
+          k < airr::component_count ? slots.slot[std::size_t(k)] : slots.first_luminaire + k - airr::component_count;
       if (copied)
-        layers.push_back({airr::component_names[k], &parts[std::size_t(k)]});
+        layers.push_back({name, &parts[std::size_t(k)]});
       else if (at < 0)
-        layers.push_back({.name = airr::component_names[k], .zeros = true});
+        layers.push_back({.name = name, .zeros = true});
       else
-        layers.push_back({airr::component_names[k], nullptr, snap.components->data(),
-                          std::size_t(snap.component_layout.count), std::size_t(at)});
+        layers.push_back({name, nullptr, snap.components->data(), std::size_t(slots.count), std::size_t(at)});
     }
     for (std::size_t k = 0; k < snap.layer_names.size(); ++k) {
       if (copied)
@@ -197,8 +212,8 @@ void add_render_command(CLI::App& app) {
       if (!job.root()) return;
     }
     if (!opt->component.empty()) {
-      for (int k = 0; k < airr::component_count; ++k) {
-        if (opt->component == airr::component_names[k]) image = parts[std::size_t(k)];
+      for (std::size_t k = 0; k < parts.size(); ++k) {
+        if (opt->component == component_names[k]) image = parts[k];
       }
     }
     airr::image_metadata meta = airr::render_metadata(s, snap, exposure);

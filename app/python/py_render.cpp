@@ -42,7 +42,7 @@ py::object render(const py_scene& ps, std::uint64_t spp, std::optional<std::uint
       arguments.push_back(n + "=" + e);
     }
     std::vector<std::string> taken;
-    if (components) taken.assign(std::begin(component_names), std::end(component_names));
+    if (components) taken = component_layer_names(int(s.environment.luminaires.size()));
     path_layers = std::make_shared<const airr::path_layers>(parse_layer_arguments(arguments, s, taken));
   }
   python_job job(std::move(progress));
@@ -73,9 +73,10 @@ py::object render(const py_scene& ps, std::uint64_t spp, std::optional<std::uint
   py::array_t<float> image = to_array(snap.image());
   if (!components && !path_layers) return image;
   py::dict parts;
-  const std::vector<image_rgb> split = snap.component_images();
-  for (int k = 0; components && k < component_count && k < int(split.size()); ++k)
-    parts[component_names[k]] = to_array(split[std::size_t(k)]);
+  std::vector<image_rgb> split = snap.component_images();
+  for (auto& one : snap.luminaire_images()) split.push_back(std::move(one));
+  const std::vector<std::string> names = component_layer_names(snap.component_layout.luminaires);
+  for (std::size_t k = 0; components && k < split.size(); ++k) parts[py::str(names[k])] = to_array(split[k]);
   for (std::size_t k = 0; k < snap.layer_names.size(); ++k)
     parts[py::str(snap.layer_names[k])] = to_array(snap.layer_image(k));
   return py::make_tuple(image, parts);
@@ -129,7 +130,8 @@ a file the disk could not hold raises ValueError before anything is traced.)");
 Returns the linear image as a float32 array of shape (height, width, 3): the same pixels `airr
 render SCENE -o out.exr --spp N [--seed S]` writes for the same scene. With components=True
 returns (image, components), components a dict of the image's parts ("aerial", "direct",
-"reflection", "rest", "room", "sun", "luminaires"), arrays of the same shape that add up to the image. With layers, a dict
+"reflection", "rest", "room", "sun", "luminaires"), arrays of the same shape that add up to the image,
+and each luminaire's own ("luminaire0", "luminaire1", ...), which add up to "luminaires". With layers, a dict
 {name: path expression} (docs/path-expressions.md), as `airr render --layer NAME=EXPR`: returns
 (image, parts), parts holding each layer's light and "unmatched" (the paths no layer selects),
 and the components when asked too; a bad expression raises ValueError pointing at the character.

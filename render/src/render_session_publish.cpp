@@ -89,6 +89,10 @@ bool render_session::publish(std::uint64_t gen, std::uint64_t spp, accumulation&
             components_out[i] = float(v + (model && aerial ? (*model)[j + std::size_t(c)] : 0.0f));
           }
         }
+        for (int k = 0; with_components && k < acc.slots.luminaires; ++k) {
+          const std::size_t i = 3 * (std::size_t(acc.slots.count) * p + std::size_t(acc.slots.first_luminaire + k));
+          for (std::size_t c = 0; c < 3; ++c) components_out[i + c] = float(acc.component_sums[i + c] * inv);
+        }
         for (std::size_t k = 0; k < layer_count; ++k) {
           const bool modelled = variate >> k & 1;
           for (int c = 0; c < 3; ++c) {

@@ -48,6 +48,15 @@ std::vector<image_rgb> render_snapshot::component_images() const {
   return out;
 }
 
+std::vector<image_rgb> render_snapshot::luminaire_images() const {
+  std::vector<image_rgb> out;
+  for (int k = 0; k < component_layout.luminaires && components; ++k) {
+    out.push_back(interleaved_image(components->data(), width, height, std::size_t(component_layout.count),
+                                    std::size_t(component_layout.first_luminaire + k)));
+  }
+  return out;
+}
+
 std::vector<float> render_snapshot::even_rgb() const {
   if (!rgb || !odd_rgb || spp < 2) return {};
   // Samples 0 .. spp-1: spp / 2 odd-numbered ones, the rest even-numbered.

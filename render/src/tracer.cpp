@@ -130,9 +130,11 @@ static sample_numbers draw_sample_numbers(const tracer_scene& ts, int px, int py
 static camera_ray first_ray(const tracer_scene& ts, int px, int py, const sample_numbers& n);
 
 // `first`: the camera ray; `first_hit`: its hit when it was traced already (in a stream), else null.
-// `layers`, when given, gets the radiance of each of ts.layers' layers.
+// `layers`, when given, gets the radiance of each of ts.layers' layers; `each_luminaire` each
+// luminaire's share of the luminaires' component.
 static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, const camera_ray& first,
-                                     const RTCRayHit* first_hit, std::uint64_t& rays, layer_sink* layers = nullptr);
+                                     const RTCRayHit* first_hit, std::uint64_t& rays, layer_sink* layers = nullptr,
+                                     glm::vec3* each_luminaire = nullptr);
 
 static glm::vec3 total(const component_radiance& c) {
   glm::vec3 sum(0.0f);
@@ -153,8 +155,9 @@ glm::vec3 trace_sample(const tracer_scene& ts, int px, int py, std::uint64_t sam
 // With `layers`, the prediction is taken from the layers `variate_layers` too.
 static component_radiance estimate_from(const tracer_scene& ts, int px, int py, const sample_numbers& n,
                                         const camera_ray& first, const RTCRayHit* first_hit, std::uint64_t& rays,
-                                        layer_sink* layers = nullptr, std::uint64_t variate_layers = 0) {
-  component_radiance c = trace_path(ts, n, first, first_hit, rays, layers);
+                                        layer_sink* layers = nullptr, std::uint64_t variate_layers = 0,
+                                        glm::vec3* each_luminaire = nullptr) {
+  component_radiance c = trace_path(ts, n, first, first_hit, rays, layers, each_luminaire);
   if (ts.model) {
     const glm::vec3 g = model_prediction(*ts.model, px, py, n.jitter, n.first_retro);
     c[component_aerial] -= g;
@@ -187,7 +190,8 @@ static camera_ray first_ray(const tracer_scene& ts, int px, int py, const sample
 
 template <class Polarization, class Label>
 static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n, const camera_ray& first,
-                                        const RTCRayHit* first_hit, std::uint64_t& rays, layer_sink* layers) {
+                                        const RTCRayHit* first_hit, std::uint64_t& rays, layer_sink* layers,
+                                        glm::vec3* each_luminaire) {
   constexpr bool with_polarization = polarized<Polarization>;
   pcg32& rng = n.rng;
   const auto& hm = ts.layout.half_mirror;
@@ -199,6 +203,7 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
   if constexpr (with_polarization)
     stack.paths[0].pol = path_polarization::at_observer(ts.layout, ts.camera.right, ts.camera.up, first.dir, ts.stokes);
   component_radiance radiance{};
+  radiance.each_luminaire = each_luminaire;
 
   while (stack.pending > 0) {
     path_state<Polarization, Label> p = stack.paths[--stack.pending];
@@ -293,17 +298,19 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
 }
 
 static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, const camera_ray& first,
-                                     const RTCRayHit* first_hit, std::uint64_t& rays, layer_sink* layers) {
+                                     const RTCRayHit* first_hit, std::uint64_t& rays, layer_sink* layers,
+                                     glm::vec3* each_luminaire) {
+  glm::vec3* e = each_luminaire;
   if (layers && layers->record) {
-    return ts.polarized ? trace_path_as<path_polarization, path_trail>(ts, n, first, first_hit, rays, layers)
-                        : trace_path_as<no_polarization, path_trail>(ts, n, first, first_hit, rays, layers);
+    return ts.polarized ? trace_path_as<path_polarization, path_trail>(ts, n, first, first_hit, rays, layers, e)
+                        : trace_path_as<no_polarization, path_trail>(ts, n, first, first_hit, rays, layers, e);
   }
   if (layers) {
-    return ts.polarized ? trace_path_as<path_polarization, path_label>(ts, n, first, first_hit, rays, layers)
-                        : trace_path_as<no_polarization, path_label>(ts, n, first, first_hit, rays, layers);
+    return ts.polarized ? trace_path_as<path_polarization, path_label>(ts, n, first, first_hit, rays, layers, e)
+                        : trace_path_as<no_polarization, path_label>(ts, n, first, first_hit, rays, layers, e);
   }
-  return ts.polarized ? trace_path_as<path_polarization, no_label>(ts, n, first, first_hit, rays, nullptr)
-                      : trace_path_as<no_polarization, no_label>(ts, n, first, first_hit, rays, nullptr);
+  return ts.polarized ? trace_path_as<path_polarization, no_label>(ts, n, first, first_hit, rays, nullptr, e)
+                      : trace_path_as<no_polarization, no_label>(ts, n, first, first_hit, rays, nullptr, e);
 }
 
 std::uint64_t model_layers(const tracer_scene& ts) {
@@ -333,20 +340,6 @@ std::uint64_t model_layers(const tracer_scene& ts) {
 static void add_prediction(const tracer_scene& ts, int x, int y, std::uint64_t i, const sample_numbers& n,
                            prediction_sums& predictions);
 
-component_slots possible_component_slots(const ambient_lights& a) {
-  component_slots s;
-  s.count = 0;
-  for (int k = 0; k < component_count; ++k) {
-    // The tracer adds to these only with such light (trace_path_as, sample_lights).
-    const bool possible = k == component_room         ? a.room > 0
-                          : k == component_sun        ? a.sun > 0
-                          : k == component_luminaires ? !a.luminaires.empty()
-                                                      : true;
-    s.slot[std::size_t(k)] = possible ? s.count++ : -1;
-  }
-  return s;
-}
-
 bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count,
                 std::vector<float>& sums, const std::atomic<bool>& cancel, std::uint64_t& rays,
                 std::vector<float>* odd_sums, std::vector<float>* component_sums, prediction_sums* predictions,
@@ -357,6 +350,8 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
   const std::uint64_t variate_layers = predictions ? 0 : model_layers(ts);
   const bool keep_predictions = predictions && ts.model && !predictions->all.empty();
   std::array<glm::vec3, max_path_layers + 1> layer_radiance;
+  std::array<glm::vec3, max_luminaires> luminaire_radiance;
+  const int luminaires = component_sums ? slots.luminaires : 0;
   std::optional<layer_sink> sink;
   if (layer_sums) sink.emplace(*ts.layers, layer_radiance.data());
   std::vector<std::array<double, 6>> rotations(std::size_t(w), std::array<double, 6>{});
@@ -386,10 +381,12 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
           const camera_ray& ray_k = camera_rays[std::size_t(k)];
           layer_sink* layers_out = sink ? &*sink : nullptr;
           if (layers_out) std::fill_n(layer_radiance.data(), layer_count, glm::vec3(0.0f));
+          std::fill_n(luminaire_radiance.data(), luminaires, glm::vec3(0.0f));
+          glm::vec3* each_luminaire = luminaires ? luminaire_radiance.data() : nullptr;
           const component_radiance c =
-              predictions
-                  ? trace_path(ts, numbers_k, ray_k, &hits[std::size_t(k)], rays, layers_out)
-                  : estimate_from(ts, x, y, numbers_k, ray_k, &hits[std::size_t(k)], rays, layers_out, variate_layers);
+              predictions ? trace_path(ts, numbers_k, ray_k, &hits[std::size_t(k)], rays, layers_out, each_luminaire)
+                          : estimate_from(ts, x, y, numbers_k, ray_k, &hits[std::size_t(k)], rays, layers_out,
+                                          variate_layers, each_luminaire);
           if (keep_predictions) add_prediction(ts, x, y, i, numbers_k, *predictions);
           const glm::vec3 L = total(c);
           if (component_sums) {
@@ -400,6 +397,12 @@ bool trace_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std
               comp[3 * at] += c[std::size_t(j)].x;
               comp[3 * at + 1] += c[std::size_t(j)].y;
               comp[3 * at + 2] += c[std::size_t(j)].z;
+            }
+            for (int j = 0; j < luminaires; ++j) {
+              float* one = comp + 3 * (slots.first_luminaire + j);
+              one[0] += luminaire_radiance[std::size_t(j)].x;
+              one[1] += luminaire_radiance[std::size_t(j)].y;
+              one[2] += luminaire_radiance[std::size_t(j)].z;
             }
           }
           if (layer_sums) {

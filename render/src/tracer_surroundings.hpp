@@ -13,12 +13,14 @@
 namespace airr::tracer_path {
 
 // Ambient light L of source `source` (an ambient_* index) reaching the eye along `p`: its image
-// component, and the layers of p's label with the ambient event.
+// component (and a luminaire's own, when kept), and the layers of p's label with the ambient event.
 template <class Polarization, class Label>
 void see_ambient(const path_state<Polarization, Label>& p, glm::vec3 L, image_component component, std::uint16_t source,
                  component_radiance& radiance, layer_sink* layers) {
   if constexpr (polarized<Polarization>) L *= p.pol.unpolarized_seen();  // ambient light is unpolarized
   radiance[component] += L;
+  if (component == component_luminaires && radiance.each_luminaire)
+    radiance.each_luminaire[source - ambient_first_luminaire] += L;
   if constexpr (!std::is_same_v<Label, no_label>) {
     Label label = p.label;
     label.push({path_event_kind::ambient, false, false, source});

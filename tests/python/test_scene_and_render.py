@@ -81,8 +81,10 @@ def test_the_sun_and_a_luminaire_are_components_and_the_psf_gives_the_smallest_c
     small_scene.set("environment.sun.elevation_deg", 60)
     small_scene.set("environment.luminaires", [{"luminance_cd_m2": 2000, "pose": {"center_mm": [0, 800, 200], "pitch_deg": -90}}])
     image, parts = airr.render(small_scene, spp=2, seed=1, components=True)
-    assert {"sun", "luminaires"} <= set(parts)
-    assert np.allclose(sum(parts.values()), image, rtol=1e-5, atol=1e-3)
+    assert {"sun", "luminaires", "luminaire0"} <= set(parts)
+    seven = ("aerial", "direct", "reflection", "rest", "room", "sun", "luminaires")
+    assert np.allclose(sum(parts[k] for k in seven), image, rtol=1e-5, atol=1e-3)
+    assert parts["luminaires"].max() > 0 and np.array_equal(parts["luminaire0"], parts["luminaires"])
     with pytest.raises(ValueError, match="below the horizon"):
         small_scene.set("environment.sun.elevation_deg", -10)
     p = airr.psf(small_scene, samples=20000)

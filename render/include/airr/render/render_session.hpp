@@ -103,6 +103,9 @@ struct render_snapshot {
   image_rgb component_image(int component) const;
   // All of them, in image_component order (empty without components).
   std::vector<image_rgb> component_images() const;
+  // Each luminaire's own component, luminaire_component_name(k) (component_layout.luminaires of
+  // them: kept with final_images_only).
+  std::vector<image_rgb> luminaire_images() const;
   // The mean of the even-numbered samples, derived from rgb and odd_rgb (empty without odd_rgb).
   std::vector<float> even_rgb() const;
 };

@@ -106,17 +106,32 @@ enum image_component {
 inline constexpr int component_count = 7;
 inline constexpr const char* component_names[component_count] = {"aerial", "direct", "reflection", "rest",
                                                                  "room",   "sun",    "luminaires"};
-using component_radiance = std::array<glm::vec3, component_count>;
+// A sample's light by component. With `each_luminaire`, luminaire k's share of the luminaires'
+// component is also added at each_luminaire[k].
+struct component_radiance : std::array<glm::vec3, component_count> {
+  glm::vec3* each_luminaire = nullptr;
+};
 
 // Where a pixel's component sums hold each component: `count` RGB triples a pixel, component k at
-// slot[k], or nowhere (-1) for one the scene cannot have (zero everywhere).
+// slot[k], or nowhere (-1) for one the scene cannot have (zero everywhere); and each luminaire's
+// share of the luminaires' component, `luminaires` of them from slot `first_luminaire`.
 struct component_slots {
   std::array<int, component_count> slot{0, 1, 2, 3, 4, 5, 6};
   int count = component_count;
+  int first_luminaire = -1;
+  int luminaires = 0;
 };
 // Only the components the scene's light can make: the room's, the sun's and the luminaires' only
-// with such light (a render's sums then take 48 bytes a pixel, not 84, in a dark room).
+// with such light (a render's sums then take 48 bytes a pixel, not 84, in a dark room), and each
+// luminaire's own (luminaire_component_name).
 component_slots possible_component_slots(const ambient_lights& a);
+// The name of luminaire k's own component: "luminaire0", "luminaire1", ... as its path event's.
+std::string luminaire_component_name(int k);
+// A render's components by name, as its layers: component_names, then each of `luminaires`
+// luminaires' own.
+std::vector<std::string> component_layer_names(int luminaires);
+// Whether `name` is a component's (component_names, or luminaire_component_name of any k < max_luminaires).
+bool is_component_name(const std::string& name);
 
 // The pixel's random rotation of the low-discrepancy sequence its samples share.
 std::array<double, 6> pixel_sequence_rotation(const tracer_scene& ts, int px, int py);
