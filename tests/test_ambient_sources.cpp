@@ -196,8 +196,10 @@ TEST(AmbientSources, EachLuminaireIsItsOwnComponent) {
                                  parse_layer_arguments({"first=A:luminaire0 .* E", "second=A:luminaire1 .* E"}, s, {})),
                              .final_images_only = true});
   const render_snapshot snap = session.wait_for(0, 64);
-  const std::vector<image_rgb> own = snap.luminaire_images();
-  ASSERT_EQ(own.size(), 2u);
+  const std::vector<image_rgb> parts = snap.component_images();
+  ASSERT_EQ(parts.size(), std::size_t(component_count + 2));
+  EXPECT_EQ(snap.component_image_names().back(), "luminaire1");
+  const std::vector<image_rgb> own(parts.end() - 2, parts.end());
   const double first = mean_green(own[0]), second = mean_green(own[1]);
   const double expected_first = 0.6 / std::numbers::pi * disc_illuminance(2000, 30, 0, 50),
                expected_second = 0.6 / std::numbers::pi * disc_illuminance(3000, 15, 70, 60);

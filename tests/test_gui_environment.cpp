@@ -1,5 +1,6 @@
 // The device in its room, in the designer under Xvfb: the viewing zone maps the smallest legible
-// character and marks the best eye; a ceiling luminaire shows in the layout views, 3D included.
+// character and marks the best eye; a ceiling luminaire shows in the layout views, 3D included;
+// the render view shows each luminaire's light as a component of its own.
 #include <fstream>
 #include <string>
 
@@ -28,6 +29,19 @@ int luminaire_pixels(const rgb8_image& img, const std::array<int, 4>& r) {
     }
   }
   return n;
+}
+
+// The mean column (0 left, 1 right) of the region's bright pixels, and how many there are.
+std::pair<double, int> bright_column(const rgb8_image& img, const std::array<int, 4>& r) {
+  double sum = 0;
+  int n = 0;
+  for (int y = r[1]; y < r[3]; ++y) {
+    for (int x = r[0]; x < r[2]; ++x) {
+      const unsigned char* p = img.at(x, y);
+      if (p[0] + p[1] + p[2] > 3 * 128) sum += double(x - r[0]) / (r[2] - r[0]), ++n;
+    }
+  }
+  return {n ? sum / n : -1, n};
 }
 
 }  // namespace
@@ -83,4 +97,38 @@ TEST(GuiEnvironment, ALuminaireShowsInTheLayoutViews) {
     }
   }
   EXPECT_GT(face[1], face[0] + 200) << "the panel's face in the 3D view";
+}
+
+// Two small panels facing the observer in front of the device, left and right: the render view's
+// component menu offers each luminaire's light, and each shows its own panel alone.
+TEST(GuiEnvironment, TheRenderViewShowsEachLuminairesLight) {
+  test::temp_dir dir;
+  scene s = load_scene(default_scene());
+  s.source.image = resolve_scene_path(s, s.source.image);
+  s.source.luminance_cd_m2 = 500;
+  for (double x : {-10.0, 10.0}) {
+    luminaire_params panel;
+    panel.width_mm = panel.height_mm = 6;
+    panel.luminance_cd_m2 = 3000;
+    panel.pose = {.center_mm = {x, 0, 300}};  // facing +z, the observer
+    s.environment.luminaires.push_back(panel);
+  }
+  std::ofstream(dir.file("panels.json")) << scene_to_json(s).dump(1);
+  double column[2] = {0, 0};
+  for (int k = 0; k < 2; ++k) {
+    const std::string shot = dir.file("luminaire" + std::to_string(k) + ".png");
+    const studio_run run = run_studio(dir, dir.file("panels.json") + " --component luminaire" + std::to_string(k) +
+                                               " --frames 30 --screenshot " + shot);
+    ASSERT_EQ(run.status, 0) << run.log;
+    EXPECT_NE(run.log.find("component luminaire" + std::to_string(k)), std::string::npos) << run.log;
+    const rgb8_image img = read_png(shot);
+    ASSERT_GT(img.width, 0) << run.log;
+    const auto regions = nlohmann::json::parse(std::ifstream(shot + ".json"));
+    const auto [c, n] = bright_column(img, region(regions, "render_image"));
+    std::printf("luminaire%d: %d bright pixels about column %.3f of the render view\n", k, n, c);
+    EXPECT_GT(n, 50) << "the panel's face";
+    column[k] = c;
+  }
+  EXPECT_LT(column[0], 0.45) << "the left panel alone";
+  EXPECT_GT(column[1], 0.55) << "the right panel alone";
 }

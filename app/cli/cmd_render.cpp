@@ -181,7 +181,6 @@ void add_render_command(CLI::App& app) {
     std::vector<airr::image_rgb> parts, path_images;
     if (copied) {
       parts = snap.component_images();
-      for (auto& one : snap.luminaire_images()) parts.push_back(std::move(one));
       for (std::size_t k = 0; k < snap.layer_names.size(); ++k) path_images.push_back(snap.layer_image(k));
     }
     std::vector<airr::image_layer> layers;

@@ -130,8 +130,14 @@ int main(int argc, char** argv) {
           std::vector<std::string>(std::begin(airr::ui::zone_quantity_keys), std::end(airr::ui::zone_quantity_keys))));
   cli.add_option("--plots", opt.plots, "The Plots window opens on this tab (mtf or bokeh)")
       ->check(CLI::IsMember({"mtf", "bokeh"}));
-  cli.add_option("--component", opt.component, "The render view shows one component of the image")
-      ->check(CLI::IsMember({"aerial", "direct", "reflection", "rest"}));
+  cli.add_option("--component", opt.component,
+                 "The render view shows one component of the image: aerial, direct, reflection, rest, room, sun, "
+                 "luminaires or one luminaire's (luminaire0, ...)")
+      ->check(CLI::Validator(
+          [](const std::string& name) {
+            return airr::is_component_name(name) ? std::string() : "not a component: " + name;
+          },
+          "COMPONENT"));
   cli.add_flag("--luminance-view", opt.luminance_view,
                "The render view shows luminance in false colour with its scale");
   cli.add_flag("--contrast-view", opt.contrast_view,
@@ -219,8 +225,9 @@ int main(int argc, char** argv) {
   st.session_options.first_look = true;
   st.session_options.quick_model_image = true;
   st.session_options.components = true;  // the render view can show each
-  for (int k = 0; k < airr::component_count; ++k) {
-    if (opt.component == airr::component_names[k]) st.view.component = k;
+  const std::vector<std::string> components = airr::component_layer_names(airr::max_luminaires);
+  for (std::size_t k = 0; k < components.size(); ++k) {
+    if (opt.component == components[k]) st.view.component = int(k);
   }
   st.view.luminance = opt.luminance_view;
   st.view.contrast = opt.contrast_view;
@@ -407,7 +414,7 @@ int main(int argc, char** argv) {
           const int shown = st.view.uploaded_component;
           std::fprintf(stderr, "wrote %s (%dx%d); the render view shows %s%s%s\n", opt.screenshot.c_str(), fw, fh,
                        ("the " + st.view.uploaded_estimate).c_str(), shown >= 0 ? ", component " : "",
-                       shown >= 0 ? airr::component_names[shown] : "");
+                       shown >= 0 ? airr::component_layer_names(airr::max_luminaires)[std::size_t(shown)].c_str() : "");
         } catch (const std::exception& e) {
           std::fprintf(stderr, "error: %s\n", e.what());
           exit_code = 1;

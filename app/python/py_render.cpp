@@ -73,9 +73,8 @@ py::object render(const py_scene& ps, std::uint64_t spp, std::optional<std::uint
   py::array_t<float> image = to_array(snap.image());
   if (!components && !path_layers) return image;
   py::dict parts;
-  std::vector<image_rgb> split = snap.component_images();
-  for (auto& one : snap.luminaire_images()) split.push_back(std::move(one));
-  const std::vector<std::string> names = component_layer_names(snap.component_layout.luminaires);
+  const std::vector<image_rgb> split = snap.component_images();
+  const std::vector<std::string> names = snap.component_image_names();
   for (std::size_t k = 0; components && k < split.size(); ++k) parts[py::str(names[k])] = to_array(split[k]);
   for (std::size_t k = 0; k < snap.layer_names.size(); ++k)
     parts[py::str(snap.layer_names[k])] = to_array(snap.layer_image(k));

@@ -27,6 +27,14 @@ component_slots possible_component_slots(const ambient_lights& a) {
   return s;
 }
 
+component_slots all_component_slots(const ambient_lights& a) {
+  component_slots s;
+  s.first_luminaire = component_count;
+  s.luminaires = int(a.luminaires.size());
+  s.count = component_count + s.luminaires;
+  return s;
+}
+
 std::string luminaire_component_name(int k) { return "luminaire" + std::to_string(k); }
 
 std::vector<std::string> component_layer_names(int luminaires) {

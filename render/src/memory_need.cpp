@@ -83,9 +83,10 @@ std::uint64_t render_memory_need(const scene& s, const session_params& p) {
   const std::uint64_t pixels = std::uint64_t(s.observer.width) * std::uint64_t(s.observer.height);
   // A path-expression layer: its double sums, the snapshot's floats and the image written of them.
   const std::uint64_t layers = p.layers ? pixels * 60 * p.layers->count() : 0;
+  const ambient_lights ambient = make_ambient_lights(s.environment);
   const int held = !p.components         ? 0
-                   : p.final_images_only ? possible_component_slots(make_ambient_lights(s.environment)).count
-                                         : component_count;
+                   : p.final_images_only ? possible_component_slots(ambient).count
+                                         : all_component_slots(ambient).count;
   return std::uint64_t(fixed_bytes) + traced_pixels_memory_need(pixels, held, p.final_images_only) + layers;
 }
 

@@ -271,7 +271,8 @@ void render_session::run_loop() {
     acc.odd_sums = acc.sums;
     // A render's images held to its end keep no sums of components its light cannot make; the
     // designer's views read all of them.
-    acc.slots = params_.final_images_only ? possible_component_slots(scene_.ambient) : component_slots{};
+    acc.slots =
+        params_.final_images_only ? possible_component_slots(scene_.ambient) : all_component_slots(scene_.ambient);
     acc.component_sums.assign(params_.components ? std::size_t(acc.slots.count) * acc.sums.size() : 0, 0.0f);
     acc.layer_sums.assign(scene_.layers ? scene_.layers->count() * acc.sums.size() : 0, 0.0f);
     // A render that publishes only at its target makes the predictions then (publish), in one

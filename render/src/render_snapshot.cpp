@@ -45,16 +45,15 @@ image_rgb render_snapshot::layer_image(std::size_t k) const {
 std::vector<image_rgb> render_snapshot::component_images() const {
   std::vector<image_rgb> out;
   for (int k = 0; k < component_count && components; ++k) out.push_back(component_image(k));
-  return out;
-}
-
-std::vector<image_rgb> render_snapshot::luminaire_images() const {
-  std::vector<image_rgb> out;
   for (int k = 0; k < component_layout.luminaires && components; ++k) {
     out.push_back(interleaved_image(components->data(), width, height, std::size_t(component_layout.count),
                                     std::size_t(component_layout.first_luminaire + k)));
   }
   return out;
+}
+
+std::vector<std::string> render_snapshot::component_image_names() const {
+  return components ? component_layer_names(component_layout.luminaires) : std::vector<std::string>{};
 }
 
 std::vector<float> render_snapshot::even_rgb() const {

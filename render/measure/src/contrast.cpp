@@ -28,9 +28,12 @@ std::array<double, 2> aerial_and_background(const float* components) {
 
 namespace {
 
-// The aerial image's luminance and the background's at pixel i.
-std::array<double, 2> pixel_luminances(const std::vector<float>& components, std::size_t i, double scale) {
-  const auto [aerial, background] = aerial_and_background(components.data() + 3 * component_count * i);
+// The aerial image's luminance and the background's at pixel i of w x h; a pixel's triples are
+// as many as the vector holds for each (the seven, and each luminaire's in a designer's session).
+std::array<double, 2> pixel_luminances(const std::vector<float>& components, int w, int h, std::size_t i,
+                                       double scale) {
+  const std::size_t per_pixel = components.size() / (std::size_t(w) * std::size_t(h));
+  const auto [aerial, background] = aerial_and_background(components.data() + per_pixel * i);
   return {scale * aerial, scale * background};
 }
 
@@ -51,7 +54,7 @@ contrast_summary contrast_inside(const std::vector<float>& components, int w, in
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       if (!wholly_inside(outline, x, y)) continue;
-      const auto [aerial, background] = pixel_luminances(components, std::size_t(y) * w + x, scale);
+      const auto [aerial, background] = pixel_luminances(components, w, h, std::size_t(y) * w + x, scale);
       out.aerial_luminance += aerial;
       out.background_luminance += background;
       const double c = pixel_contrast(aerial, background);
@@ -74,7 +77,7 @@ std::vector<float> contrast_map(const std::vector<float>& components, int w, int
     for (int x = 0; x < w; ++x) {
       if (!wholly_inside(outline, x, y)) continue;
       const std::size_t i = std::size_t(y) * w + x;
-      const auto [aerial, background] = pixel_luminances(components, i, 1.0);
+      const auto [aerial, background] = pixel_luminances(components, w, h, i, 1.0);
       out[i] = float(pixel_contrast(aerial, background));
     }
   }

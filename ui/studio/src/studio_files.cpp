@@ -134,12 +134,13 @@ bool studio_export_render(studio& st, const std::string& path) {
     for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
     const bool exr = ext == ".exr";
     const std::vector<image_rgb> parts = snap.component_images();
+    const std::vector<std::string> names = snap.component_image_names();
     // EXR: the whole image with its components as layers; PNG: what the view shows.
     std::vector<image_layer> layers;
-    for (std::size_t k = 0; k < parts.size() && exr; ++k) layers.push_back({component_names[k], &parts[k]});
+    for (std::size_t k = 0; k < parts.size() && exr; ++k) layers.push_back({names[k], &parts[k]});
     const int shown = st.view.component;
     const bool one = !exr && shown >= 0 && std::size_t(shown) < parts.size();
-    if (one) meta["airr:component"] = component_names[shown];
+    if (one) meta["airr:component"] = names[std::size_t(shown)];
     write_image(path, one ? parts[std::size_t(shown)] : snap.image(), meta, exposure, layers);
     st.status = "exported " + path + " (" + std::to_string(snap.spp) + " spp)";
     return true;

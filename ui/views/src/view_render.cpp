@@ -20,8 +20,10 @@ namespace airr::ui {
 
 // The component the view shows of this snapshot (-1: the whole image, the best estimate shown;
 // a component is the tracer's alone, and previews have none).
+// The component the view shows (its slot: the designer's session keeps every component at its own
+// index, then each luminaire's), or -1 for the whole image.
 static int shown_component(const studio& st, const render_snapshot& snap) {
-  return snap.components ? st.view.component : -1;
+  return snap.components && st.view.component < snap.component_layout.count ? st.view.component : -1;
 }
 
 // Uploads `pixel(i)` (linear RGB of pixel i) as the view's texture, as the exposure shows it or
@@ -51,7 +53,7 @@ static void upload_contrast(studio& st, const render_snapshot& snap, float expos
   const contrast_scale scale;
   std::vector<std::uint8_t> rgba(std::size_t(snap.width) * snap.height * 4);
   for (std::size_t i = 0; i < std::size_t(snap.width) * snap.height; ++i) {
-    const auto c = scale.colour(snap.components->data() + 3 * component_count * i);
+    const auto c = scale.colour(snap.components->data() + 3 * std::size_t(snap.component_layout.count) * i);
     std::copy(c.begin(), c.end(), rgba.begin() + std::ptrdiff_t(4 * i));
     rgba[4 * i + 3] = 255;
   }
@@ -120,7 +122,8 @@ static void upload_snapshot(studio& st, const render_snapshot& snap, float expos
   } else {
     upload_pixels(st, snap.width, snap.height, exposure, [&](std::size_t i) {
       return component < 0 ? snap.shown->data() + 3 * i
-                           : snap.components->data() + 3 * (component_count * i + std::size_t(component));
+                           : snap.components->data() +
+                                 3 * (std::size_t(snap.component_layout.count) * i + std::size_t(component));
     });
   }
   st.view.uploaded_component = component;
@@ -206,11 +209,18 @@ void draw_render_view(studio& st, double now) {
   }
   ImGui::SameLine();
   ImGui::SetNextItemWidth(9 * ImGui::GetFontSize());
-  static const char* const shows[] = {"whole image", "aerial image", "display, direct", "its reflection",
-                                      "the rest",    "room light",   "sunlight",        "luminaires' light"};
-  static_assert(IM_ARRAYSIZE(shows) == component_count + 1);
+  // The seven components, then each luminaire's light by its name.
+  std::vector<std::string> shows = {"whole image", "aerial image", "display, direct", "its reflection",
+                                    "the rest",    "room light",   "sunlight",        "luminaires' light"};
+  for (std::size_t k = 0; k < st.doc.environment.luminaires.size(); ++k) {
+    const std::string& name = st.doc.environment.luminaires[k].name;
+    shows.push_back("luminaire " + std::to_string(k) + (name.empty() ? "" : ": " + name));
+  }
   int show = st.view.component + 1;
-  if (ImGui::Combo("##component", &show, shows, IM_ARRAYSIZE(shows))) st.view.component = show - 1;
+  if (show >= int(shows.size())) show = 0;
+  std::vector<const char*> items;
+  for (const std::string& s : shows) items.push_back(s.c_str());
+  if (ImGui::Combo("##component", &show, items.data(), int(items.size()))) st.view.component = show - 1;
   if (ImGui::IsItemHovered()) {
     ImGui::SetTooltip(
         "The image's components: paths through a retroreflection (the aerial image), the display "
@@ -222,7 +232,8 @@ void draw_render_view(studio& st, double now) {
   const int shown = shown_component(st, snap);
   ImGui::Text("%llu spp  %.1f Mrays/s  %.1f s%s%s%s%s", static_cast<unsigned long long>(snap.spp), rays_per_s * 1e-6,
               snap.seconds, ("  " + st.view.uploaded_estimate).c_str(), shown >= 0 ? ": " : "",
-              shown >= 0 ? component_names[shown] : "", st.view.paused ? "  (paused)" : "");
+              shown >= 0 ? component_layer_names(snap.component_layout.luminaires)[std::size_t(shown)].c_str() : "",
+              st.view.paused ? "  (paused)" : "");
   if (!snap.error.empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", snap.error.c_str());
   if (ghost) {
     ImGui::TextColored(ImVec4(1, 0.55f, 1, 1), "showing the Ghosts window's class %d: %s", st.ghosts.shown + 1,
@@ -294,7 +305,8 @@ void draw_render_view(studio& st, double now) {
       readout = buf;
       if (snap.components) {
         const auto [aerial, background] =
-            aerial_and_background(snap.components->data() + 3 * component_count * (std::size_t(iy) * snap.width + ix));
+            aerial_and_background(snap.components->data() +
+                                  3 * std::size_t(snap.component_layout.count) * (std::size_t(iy) * snap.width + ix));
         std::snprintf(buf, sizeof buf, "  contrast %.3g", pixel_contrast(aerial, background));
         readout += buf;
       }

@@ -87,8 +87,9 @@ struct render_snapshot {
   double model_weight = 0;   // the model image's share of `shown`: 1 alone, 0 not at all
   double edit_seconds = 0;   // from the edit to this snapshot's publication
   // With session_params::components, RGB triples per pixel adding up to rgb, as component_layout
-  // lays them out (null otherwise, and in previews): all component_count of them, but in a session
-  // with final_images_only only those the scene can have (possible_component_slots).
+  // lays them out (null otherwise, and in previews): all of them, each at its own index and then
+  // each luminaire's (all_component_slots), but in a session with final_images_only only those the
+  // scene can have (possible_component_slots).
   std::shared_ptr<const std::vector<float>> components;
   component_slots component_layout;
   // With session_params::layers, their names (the unmatched paths' last) and as many RGB triples per
@@ -101,11 +102,10 @@ struct render_snapshot {
   image_rgb layer_image(std::size_t k) const;
   // One component (tracer.hpp's image_component) as an image; empty without components.
   image_rgb component_image(int component) const;
-  // All of them, in image_component order (empty without components).
+  // All of them, in image_component order, then each luminaire's own (component_layout.luminaires
+  // of them), named as component_image_names says (empty without components).
   std::vector<image_rgb> component_images() const;
-  // Each luminaire's own component, luminaire_component_name(k) (component_layout.luminaires of
-  // them: kept with final_images_only).
-  std::vector<image_rgb> luminaire_images() const;
+  std::vector<std::string> component_image_names() const;
   // The mean of the even-numbered samples, derived from rgb and odd_rgb (empty without odd_rgb).
   std::vector<float> even_rgb() const;
 };

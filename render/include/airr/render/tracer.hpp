@@ -125,6 +125,8 @@ struct component_slots {
 // with such light (a render's sums then take 48 bytes a pixel, not 84, in a dark room), and each
 // luminaire's own (luminaire_component_name).
 component_slots possible_component_slots(const ambient_lights& a);
+// Every component at its own index (slot[k] = k), then each luminaire's: the designer's views.
+component_slots all_component_slots(const ambient_lights& a);
 // The name of luminaire k's own component: "luminaire0", "luminaire1", ... as its path event's.
 std::string luminaire_component_name(int k);
 // A render's components by name, as its layers: component_names, then each of `luminaires`

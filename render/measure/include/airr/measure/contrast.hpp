@@ -18,7 +18,7 @@ inline constexpr double legible_image_share = 0.9;
 // One pixel's contrast: infinite where only the aerial image is lit, 1 where neither is.
 double pixel_contrast(double aerial, double background);
 // One pixel's aerial-image and background luminance from its components (component_count RGB
-// triples).
+// triples in image_component order; any after them, each luminaire's own, are not read).
 std::array<double, 2> aerial_and_background(const float* components);
 
 struct contrast_summary {
@@ -29,7 +29,8 @@ struct contrast_summary {
   int pixels = 0;                   // wholly inside the outline
 };
 
-// From components (component_count RGB triples per pixel, row-major w x h), each value times
+// From components (RGB triples per pixel, row-major w x h: component_count of them in
+// image_component order, and any more a session keeps after them), each value times
 // `scale` (1 for an image, 1 / spp for sums); the outline in pixels (aerial_outline).
 contrast_summary contrast_inside(const std::vector<float>& components, int w, int h,
                                  const std::array<glm::dvec2, 4>& outline, const std::vector<double>& thresholds,
