@@ -76,6 +76,12 @@ TEST(Polarization, ClosedFormsAreTheJonesMatricesMuellerMatrices) {
     polarizer.m = {{{std::sqrt(0.8), 0.0}, {0.0, std::sqrt(0.05)}}};
     expect_mueller_near(linear_retarder(a, 1.1), mueller_of(back * retarder * turn), 1e-14, "retarder");
     expect_mueller_near(linear_polarizer(a, 0.8, 0.05), mueller_of(back * polarizer * turn), 1e-14, "polarizer");
+    // Given as a world axis in a frame, at that angle from its x towards its y (its length free).
+    const polarization_frame f = polarization_frame::about(glm::normalize(glm::dvec3(0.3, -0.4, 0.8)));
+    const glm::dvec3 axis = 2.5 * (c * f.x + s * f.y);
+    expect_mueller_near(linear_retarder(f, axis, 1.1), mueller_of(back * retarder * turn), 1e-14, "retarder, axis");
+    expect_mueller_near(linear_polarizer(f, axis, 0.8, 0.05), mueller_of(back * polarizer * turn), 1e-14,
+                        "polarizer, axis");
   }
 }
 

@@ -36,7 +36,7 @@ path_polarization path_polarization::at_observer(const scene& s, const glm::dvec
   } else if (s.observer.analyzer_deg) {
     const double a = radians(*s.observer.analyzer_deg);
     const glm::dvec3 axis = std::cos(a) * right + std::sin(a) * up;
-    row = row_times(row, linear_polarizer(angle_in(p.frame, axis)));
+    row = row_times(row, linear_polarizer(p.frame, axis));
   }
   p.rows = {row, row, row};
   return p;
@@ -60,15 +60,15 @@ void path_polarization::films(const std::vector<film_params>& films, part_face f
   const double path = 1 / std::sqrt(1 - sin_t * sin_t);  // the film's thickness crossed at an angle
   const auto one = [&](const film_params& film) {
     if (film.face != face) return;
-    const double axis = angle_in(frame, axis_on(f, film.axis_deg));
+    const glm::dvec3 axis = axis_on(f, film.axis_deg);
     if (film.kind == film_kind::polarizer) {
-      const mueller m = linear_polarizer(axis, film.pass_transmittance, film.block_transmittance);
+      const mueller m = linear_polarizer(frame, axis, film.pass_transmittance, film.block_transmittance);
       return apply_here({m, m, m});
     }
     std::array<mueller, 3> m;
     for (std::size_t c = 0; c < 3; ++c) {
-      m[c] =
-          linear_retarder(axis, 2 * pi * film.retardance_waves * path * film.wavelength_nm / display_primaries_nm[c]);
+      m[c] = linear_retarder(frame, axis,
+                             2 * pi * film.retardance_waves * path * film.wavelength_nm / display_primaries_nm[c]);
     }
     apply_here(m);
   };
@@ -101,10 +101,10 @@ void path_polarization::half_mirror_reflection(const half_mirror_params& hm, con
   const mueller mirror = interface_mueller(-1.0, 1.0);
   if (hm.kind == half_mirror_kind::half_mirror) return apply(mirror, in, out);
   const reflective_polarizer_params& p = hm.polarizer;
-  const double pass = angle_in(in, axis_on(f, p.axis_deg));
+  const glm::dvec3 pass = axis_on(f, p.axis_deg);
   // The branch's scalar weight (the reflectance) divided out of the polarizer's.
   const double per = hm.reflectance > 0 ? 1 / hm.reflectance : 0;
-  apply(mirror * linear_polarizer(pass, per * p.pass_reflectance, per * p.block_reflectance), in, out);
+  apply(mirror * linear_polarizer(in, pass, per * p.pass_reflectance, per * p.block_reflectance), in, out);
 }
 
 void path_polarization::half_mirror_transmission(const half_mirror_params& hm, const part_frame& f,
@@ -121,8 +121,8 @@ void path_polarization::half_mirror_transmission(const half_mirror_params& hm, c
   }
   const reflective_polarizer_params& p = hm.polarizer;
   const double per = hm.transmittance > 0 ? 1 / hm.transmittance : 0;
-  const mueller m = linear_polarizer(angle_in(frame, axis_on(f, p.axis_deg)), per * p.pass_transmittance,
-                                     per * p.block_transmittance);
+  const mueller m =
+      linear_polarizer(frame, axis_on(f, p.axis_deg), per * p.pass_transmittance, per * p.block_transmittance);
   apply_here({m, m, m});
 }
 

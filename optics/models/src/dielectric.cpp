@@ -15,19 +15,27 @@ double fresnel_dielectric(double cos_i, double eta) {
   return 0.5 * (rs * rs + rp * rp);
 }
 
+namespace {
+
+// a / b by b's conjugate: the library's division (__divdc3) guards against overflow that these
+// ratios of order-one numbers cannot meet, at several times the cost.
+std::complex<double> over(std::complex<double> a, std::complex<double> b) { return a * std::conj(b) / std::norm(b); }
+
+}  // namespace
+
 fresnel_coefficients fresnel_amplitudes(double cos_i, std::complex<double> eta) {
   using complex = std::complex<double>;
   cos_i = std::clamp(cos_i, 0.0, 1.0);
   fresnel_coefficients f;
-  const complex sin2_t = complex(1 - cos_i * cos_i) / (eta * eta);
+  const complex sin2_t = over(complex(1 - cos_i * cos_i), eta * eta);
   f.cos_t = std::sqrt(complex(1.0) - sin2_t);
   if (f.cos_t.imag() < 0) f.cos_t = -f.cos_t;
   f.total = eta.imag() == 0 && sin2_t.real() > 1;
   const complex ci(cos_i);
-  f.rs = (ci - eta * f.cos_t) / (ci + eta * f.cos_t);
-  f.rp = (eta * ci - f.cos_t) / (eta * ci + f.cos_t);
-  f.ts = 2.0 * ci / (ci + eta * f.cos_t);
-  f.tp = 2.0 * ci / (eta * ci + f.cos_t);
+  f.rs = over(ci - eta * f.cos_t, ci + eta * f.cos_t);
+  f.rp = over(eta * ci - f.cos_t, eta * ci + f.cos_t);
+  f.ts = over(2.0 * ci, ci + eta * f.cos_t);
+  f.tp = over(2.0 * ci, eta * ci + f.cos_t);
   return f;
 }
 

@@ -32,6 +32,7 @@ jones adjoint(const jones& j) {
 struct double_angle {
   double c = 1, s = 0;
   explicit double_angle(double angle) : c(std::cos(2 * angle)), s(std::sin(2 * angle)) {}
+  double_angle(double cos_2, double sin_2) : c(cos_2), s(sin_2) {}
   // Of a world axis seen in a frame (angle_in's angle), from its components alone: no
   // trigonometry on the tracer's hot path.
   double_angle(const polarization_frame& f, const glm::dvec3& axis) {
@@ -61,8 +62,8 @@ mueller rotator_times(double_angle turn, mueller m) {
 // A part with amplitude factors `along` and `across` its axis at `axis` from x towards y: the
 // Jones matrix turn(-axis) diag(along, across) turn(axis), whose Mueller matrix is the product of
 // theirs (mueller_of, checked against it in tests/test_polarization.cpp).
-mueller axial_part(double axis, complex along, complex across) {
-  return rotator_times(double_angle(-axis), times_rotator(interface_mueller(along, across), double_angle(axis)));
+mueller axial_part(double_angle axis, complex along, complex across) {
+  return rotator_times(double_angle(axis.c, -axis.s), times_rotator(interface_mueller(along, across), axis));
 }
 
 }  // namespace
@@ -130,11 +131,19 @@ mueller mueller_of(const jones& j) {
 mueller rotator(double angle_rad) { return times_rotator(mueller::identity(), double_angle(angle_rad)); }
 
 mueller linear_polarizer(double axis_rad, double t_pass, double t_block) {
-  return axial_part(axis_rad, std::sqrt(t_pass), std::sqrt(t_block));
+  return axial_part(double_angle(axis_rad), std::sqrt(t_pass), std::sqrt(t_block));
 }
 
 mueller linear_retarder(double axis_rad, double retardance_rad) {
-  return axial_part(axis_rad, 1.0, std::polar(1.0, retardance_rad));
+  return axial_part(double_angle(axis_rad), 1.0, std::polar(1.0, retardance_rad));
+}
+
+mueller linear_polarizer(const polarization_frame& f, const glm::dvec3& axis, double t_pass, double t_block) {
+  return axial_part(double_angle(f, axis), std::sqrt(t_pass), std::sqrt(t_block));
+}
+
+mueller linear_retarder(const polarization_frame& f, const glm::dvec3& axis, double retardance_rad) {
+  return axial_part(double_angle(f, axis), 1.0, std::polar(1.0, retardance_rad));
 }
 
 mueller interface_mueller(complex rs, complex rp) {

@@ -74,6 +74,11 @@ struct polarization_frame {
 // The angle of a world axis (a polarizer's or a film's) seen along the frame's k: from x towards y.
 double angle_in(const polarization_frame& f, const glm::dvec3& axis);
 
+// linear_polarizer and linear_retarder with their axis a world direction, at its angle_in the
+// frame: worked out from the axis's components, with no trigonometry (the tracer's path).
+mueller linear_polarizer(const polarization_frame& f, const glm::dvec3& axis, double t_pass = 1, double t_block = 0);
+mueller linear_retarder(const polarization_frame& f, const glm::dvec3& axis, double retardance_rad);
+
 // The rotator that rewrites a Stokes vector of frame `from` in frame `to` (same k).
 mueller reframe(const polarization_frame& from, const polarization_frame& to);
 // reframe(from, to) * m, without the rotator's zeros.
