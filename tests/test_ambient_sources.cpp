@@ -57,6 +57,26 @@ double mean_green(const image_rgb& img) {
   return sum / double(img.rgb.size() / 3);
 }
 
+// The white bench with a diffuse card (albedo 0.6, its mesh in `dir`) facing +z at z = 300 between
+// the observer and the device, seen from below and in front through a narrow field about its centre
+// (1.6 mm across: a luminaire's illuminance falls 0.03% towards its edge).
+scene card_scene(const test::temp_dir& dir) {
+  test::write_plate(test::plate(2, 300, -60, 60, -60, 60), dir.file("card.glb"));
+  scene s = test::white_bench(500, 16);
+  s.source.luminance_cd_m2 = 500;
+  prop_params card;
+  card.name = "card";
+  card.mesh = dir.file("card.glb");
+  card.surface = prop_surface::diffuse;
+  card.albedo = {0.6, 0.6, 0.6};
+  s.props.push_back(card);
+  s.observer.placement = observer_placement::look_at;
+  s.observer.position_mm = {0, -300, 500};
+  s.observer.look_at_mm = {0, 0, 300};
+  s.observer.fov_deg = 0.25;
+  return s;
+}
+
 // Where the eye sees the sun in the half mirror: the sun's direction mirrored in its plane.
 glm::dvec2 glare_pixel(const scene& s) {
   const pinhole_camera cam = make_camera(s);
@@ -105,26 +125,13 @@ TEST(AmbientSources, ALuminaireLightsADiffuseCardAsItsSolidAngleSays) {
   // out, a disc luminaire of radius 30 mm facing it. On the axis of a Lambertian disc the
   // illuminance is pi L R^2 / (R^2 + h^2), so the card shows albedo L R^2 / (R^2 + h^2).
   test::temp_dir dir;
-  test::write_plate(test::plate(2, 300, -60, 60, -60, 60), dir.file("card.glb"));
-  scene s = test::white_bench(500, 16);
-  s.source.luminance_cd_m2 = 500;
-  prop_params card;
-  card.name = "card";
-  card.mesh = dir.file("card.glb");
-  card.surface = prop_surface::diffuse;
-  card.albedo = {0.6, 0.6, 0.6};
-  s.props.push_back(card);
+  scene s = card_scene(dir);
   luminaire_params disc;
   disc.shape = luminaire_shape::disc;
   disc.pose = {.center_mm = {0, 0, 350}, .pitch_deg = 180};  // facing -z
   disc.width_mm = 60;
   disc.luminance_cd_m2 = 2000;
   s.environment.luminaires.push_back(disc);
-  // Seen from below and in front, past the disc's edge, through a narrow field about the card's centre.
-  s.observer.placement = observer_placement::look_at;
-  s.observer.position_mm = {0, -300, 500};
-  s.observer.look_at_mm = {0, 0, 300};
-  s.observer.fov_deg = 0.25;  // 1.6 mm across: the illuminance falls 0.03% towards its edge
   check_scene(s, "card under a luminaire");
   const render_snapshot snap = render_with_layers(s, {"lit=A:luminaire0 P:card E"}, 64);
   const double expected = 0.6 * 2000 * 30.0 * 30 / (30.0 * 30 + 50.0 * 50);
@@ -166,15 +173,7 @@ TEST(AmbientSources, EachLuminaireIsItsOwnComponent) {
   // alone lights it, the two add up to the luminaires' component, and each is the light of its
   // path event's expression.
   test::temp_dir dir;
-  test::write_plate(test::plate(2, 300, -60, 60, -60, 60), dir.file("card.glb"));
-  scene s = test::white_bench(500, 16);
-  s.source.luminance_cd_m2 = 500;
-  prop_params card;
-  card.name = "card";
-  card.mesh = dir.file("card.glb");
-  card.surface = prop_surface::diffuse;
-  card.albedo = {0.6, 0.6, 0.6};
-  s.props.push_back(card);
+  scene s = card_scene(dir);
   luminaire_params above, beside;
   above.shape = beside.shape = luminaire_shape::disc;
   above.pose = {.center_mm = {0, 0, 350}, .pitch_deg = 180};  // facing -z
@@ -184,10 +183,6 @@ TEST(AmbientSources, EachLuminaireIsItsOwnComponent) {
   beside.width_mm = 30;
   beside.luminance_cd_m2 = 3000;
   s.environment.luminaires = {above, beside};
-  s.observer.placement = observer_placement::look_at;
-  s.observer.position_mm = {0, -300, 500};
-  s.observer.look_at_mm = {0, 0, 300};
-  s.observer.fov_deg = 0.25;
   check_scene(s, "card under two luminaires");
   render_session session(s, {.threads = 2,
                              .target_spp = 64,
