@@ -79,9 +79,19 @@ TEST(Polarization, ClosedFormsAreTheJonesMatricesMuellerMatrices) {
     // Given as a world axis in a frame, at that angle from its x towards its y (its length free).
     const polarization_frame f = polarization_frame::about(glm::normalize(glm::dvec3(0.3, -0.4, 0.8)));
     const glm::dvec3 axis = 2.5 * (c * f.x + s * f.y);
-    expect_mueller_near(linear_retarder(f, axis, 1.1), mueller_of(back * retarder * turn), 1e-14, "retarder, axis");
     expect_mueller_near(linear_polarizer(f, axis, 0.8, 0.05), mueller_of(back * polarizer * turn), 1e-14,
                         "polarizer, axis");
+    // And a row of a path's matrix through them, without the matrices.
+    const glm::dvec4 row(0.9, -0.3, 0.45, 0.2);
+    const auto row_near = [&](const glm::dvec4& got, const mueller& m, const char* what) {
+      for (int k = 0; k < 4; ++k) {
+        const double want = row[0] * m.m[0][k] + row[1] * m.m[1][k] + row[2] * m.m[2][k] + row[3] * m.m[3][k];
+        EXPECT_NEAR(got[k], want, 1e-14) << what << ", column " << k << " at " << deg << " deg";
+      }
+    };
+    row_near(row_through_axial_part(row, f, axis, 1.0, std::polar(1.0, 1.1)), linear_retarder(a, 1.1), "retarder row");
+    row_near(row_through_axial_part(row, f, axis, std::sqrt(0.8), std::sqrt(0.05)), linear_polarizer(a, 0.8, 0.05),
+             "polarizer row");
   }
 }
 

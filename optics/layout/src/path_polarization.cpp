@@ -48,10 +48,6 @@ void path_polarization::apply(const mueller& m, const polarization_frame& in, co
   frame = in;
 }
 
-void path_polarization::apply_here(const std::array<mueller, 3>& m) {
-  for (std::size_t c = 0; c < 3; ++c) rows[c] = row_times(rows[c], m[c]);
-}
-
 void path_polarization::films(const std::vector<film_params>& films, part_face face, const part_frame& f,
                               bool leaving) {
   if (films.empty()) return;
@@ -61,16 +57,15 @@ void path_polarization::films(const std::vector<film_params>& films, part_face f
   const auto one = [&](const film_params& film) {
     if (film.face != face) return;
     const glm::dvec3 axis = axis_on(f, film.axis_deg);
-    if (film.kind == film_kind::polarizer) {
-      const mueller m = linear_polarizer(frame, axis, film.pass_transmittance, film.block_transmittance);
-      return apply_here({m, m, m});
-    }
-    std::array<mueller, 3> m;
     for (std::size_t c = 0; c < 3; ++c) {
-      m[c] = linear_retarder(frame, axis,
-                             2 * pi * film.retardance_waves * path * film.wavelength_nm / display_primaries_nm[c]);
+      if (film.kind == film_kind::polarizer) {
+        rows[c] = row_through_axial_part(rows[c], frame, axis, std::sqrt(film.pass_transmittance),
+                                         std::sqrt(film.block_transmittance));
+      } else {
+        const double retardance = 2 * pi * film.retardance_waves * path * film.wavelength_nm / display_primaries_nm[c];
+        rows[c] = row_through_axial_part(rows[c], frame, axis, 1.0, std::polar(1.0, retardance));
+      }
     }
-    apply_here(m);
   };
   // Going back, light leaving a face meets its outermost film first.
   if (leaving) {
@@ -121,9 +116,11 @@ void path_polarization::half_mirror_transmission(const half_mirror_params& hm, c
   }
   const reflective_polarizer_params& p = hm.polarizer;
   const double per = hm.transmittance > 0 ? 1 / hm.transmittance : 0;
-  const mueller m =
-      linear_polarizer(frame, axis_on(f, p.axis_deg), per * p.pass_transmittance, per * p.block_transmittance);
-  apply_here({m, m, m});
+  const glm::dvec3 axis = axis_on(f, p.axis_deg);
+  for (glm::dvec4& row : rows) {
+    row = row_through_axial_part(row, frame, axis, std::sqrt(per * p.pass_transmittance),
+                                 std::sqrt(per * p.block_transmittance));
+  }
 }
 
 void path_polarization::mirror(const glm::dvec3& k_in) {

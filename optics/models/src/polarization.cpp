@@ -142,8 +142,15 @@ mueller linear_polarizer(const polarization_frame& f, const glm::dvec3& axis, do
   return axial_part(double_angle(f, axis), std::sqrt(t_pass), std::sqrt(t_block));
 }
 
-mueller linear_retarder(const polarization_frame& f, const glm::dvec3& axis, double retardance_rad) {
-  return axial_part(double_angle(f, axis), 1.0, std::polar(1.0, retardance_rad));
+glm::dvec4 row_through_axial_part(const glm::dvec4& row, const polarization_frame& f, const glm::dvec3& axis,
+                                  complex along, complex across) {
+  // row R(-axis) D R(axis), D = interface_mueller(along, across), each a few products on a row.
+  const double_angle t(f, axis);
+  const double a1 = row[1] * t.c + row[2] * t.s, a2 = -row[1] * t.s + row[2] * t.c;
+  const double s = std::norm(along), p = std::norm(across), plus = 0.5 * (s + p), minus = 0.5 * (s - p);
+  const complex c = std::conj(along) * across;
+  const double b1 = row[0] * minus + a1 * plus, b2 = a2 * c.real() + row[3] * c.imag();
+  return {row[0] * plus + a1 * minus, b1 * t.c - b2 * t.s, b1 * t.s + b2 * t.c, -a2 * c.imag() + row[3] * c.real()};
 }
 
 mueller interface_mueller(complex rs, complex rp) {

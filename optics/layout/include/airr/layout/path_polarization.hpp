@@ -70,7 +70,6 @@ struct path_polarization {
 
  private:
   void apply(const mueller& m, const polarization_frame& in, const polarization_frame& out);
-  void apply_here(const std::array<mueller, 3>& m);  // one matrix a channel, the direction kept
 };
 
 }  // namespace airr

@@ -74,10 +74,14 @@ struct polarization_frame {
 // The angle of a world axis (a polarizer's or a film's) seen along the frame's k: from x towards y.
 double angle_in(const polarization_frame& f, const glm::dvec3& axis);
 
-// linear_polarizer and linear_retarder with their axis a world direction, at its angle_in the
-// frame: worked out from the axis's components, with no trigonometry (the tracer's path).
+// linear_polarizer with its axis a world direction, at its angle_in the frame: worked out from the
+// axis's components, with no trigonometry (the tracer's path).
 mueller linear_polarizer(const polarization_frame& f, const glm::dvec3& axis, double t_pass = 1, double t_block = 0);
-mueller linear_retarder(const polarization_frame& f, const glm::dvec3& axis, double retardance_rad);
+// A row of a path's matrix times a part with amplitude factors `along` and `across` its axis, a
+// world direction seen in the frame: row * M without forming M (a polarizer: along sqrt(t_pass),
+// across sqrt(t_block); a retarder: 1 and e^(i retardance)).
+glm::dvec4 row_through_axial_part(const glm::dvec4& row, const polarization_frame& f, const glm::dvec3& axis,
+                                  complex along, complex across);
 
 // The rotator that rewrites a Stokes vector of frame `from` in frame `to` (same k).
 mueller reframe(const polarization_frame& from, const polarization_frame& to);
