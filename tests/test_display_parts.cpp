@@ -106,27 +106,28 @@ TEST(DisplayParts, KiosksDisplayThroughAPinhole) {
   expect_parts_match_tracer(s, 64, 0.03, "kiosk, pinhole, uniform display");
 }
 
+// The default scene framed at 50 deg through its thin lens (f/4 at 50 mm), size x size pixels.
+static scene bench_through_wide_pupil(int size) {
+  const std::string side = std::to_string(size);
+  return load_scene(default_scene_path(), {{"observer.width", side},
+                                           {"observer.height", side},
+                                           {"observer.fov_deg", "50"},
+                                           {"observer.lens", "\"thin_lens\""}});
+}
+
 // Through a wide pupil (f/4 at 50 mm, focused on the aerial image) the display, seen at a grazing
 // angle in a strip a few pixels high, is blurred over several millimetres: pixels whose corners miss
 // it still see it (14 of the 78 the tracer lit at 256 spp were left dark when such pixels were
 // skipped).
 TEST(DisplayParts, TheBenchThroughAWidePupilSeesWhatTheTracerSees) {
-  const scene s = load_scene(default_scene_path(), {{"observer.width", "96"},
-                                                    {"observer.height", "96"},
-                                                    {"observer.fov_deg", "50"},
-                                                    {"observer.lens", "\"thin_lens\""}});
-  expect_parts_match_tracer(s, 256, 0, "bench, 50 deg, f/4");
+  expect_parts_match_tracer(bench_through_wide_pupil(96), 256, 0, "bench, 50 deg, f/4");
 }
 
 // At 512 x 512 the pupil's blur spans many pixels: the pixels followed reach that far around the
 // display's projection (reaching two pixels beyond it alone, 78 the tracer lights at 16 spp were
 // left dark).
 TEST(DisplayParts, TheBenchThroughAWidePupilAtFullSize) {
-  const scene s = load_scene(default_scene_path(), {{"observer.width", "512"},
-                                                    {"observer.height", "512"},
-                                                    {"observer.fov_deg", "50"},
-                                                    {"observer.lens", "\"thin_lens\""}});
-  expect_parts_match_tracer(s, 16, 0, "bench, 50 deg, f/4, 512 x 512");
+  expect_parts_match_tracer(bench_through_wide_pupil(512), 16, 0, "bench, 50 deg, f/4, 512 x 512");
 }
 
 // The kiosk's own observer sees its textured display at a grazing angle, each pixel's points moved

@@ -171,7 +171,7 @@ double apart(const corner& a, const corner& b) {
 // mirror image (a slanted view only draws the footprint out).
 double shortest_footprint(const planar_parts& d) {
   const double pixel_angle = 2 * d.cam.tan_half_fov / d.cam.height;
-  const glm::dvec3 mirrored = d.cam.position - 2 * glm::dot(d.cam.position - d.hm.center, d.hm.n) * d.hm.n;
+  const glm::dvec3 mirrored = mirror_point(d.cam.position, d.hm.center, d.hm.n);
   double nearest = std::numeric_limits<double>::infinity();
   for (const glm::dvec3& eye : {d.cam.position, mirrored}) {
     const glm::dvec2 l = part_local(d.area, eye);
