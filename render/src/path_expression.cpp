@@ -25,6 +25,13 @@ std::string event_text(const path_event& e) {
       if (e.index == ambient_room) return "A:room";
       if (e.index == ambient_sun) return "A:sun";
       return "A:luminaire" + std::to_string(e.index - ambient_first_luminaire);
+    case path_event_kind::film: {
+      const std::string whose = e.index == films_on_display ? "D"
+                                : e.index == films_on_half_mirror
+                                    ? "H"
+                                    : "S" + std::to_string(e.index - films_on_first_sheet);
+      return "F:" + whose + (e.front ? ":front" : ":back");
+    }
   }
   return "?";
 }
@@ -37,7 +44,8 @@ std::string label_text(const path_label& l) {
 
 bool event_pattern::accepts(const path_event& e) const {
   return e.kind == kind && (taken < 0 || int(e.taken) == taken) && (front < 0 || int(e.front) == front) &&
-         (index == -1 || int(e.index) == index || (index == any_luminaire && e.index >= ambient_first_luminaire));
+         (index == -1 || int(e.index) == index || (index == any_luminaire && e.index >= ambient_first_luminaire) ||
+          (index == any_sheets_films && e.index >= films_on_first_sheet));
 }
 
 // Recursive descent over the grammar of docs/path-expressions.md, building the Glushkov automaton:
@@ -221,8 +229,12 @@ class path_expression_parser {
       case 'A':
         e.kind = path_event_kind::ambient;
         break;
+      case 'F':
+        e.kind = path_event_kind::film;
+        out_.sees_films_ = true;
+        break;
       default:
-        fail("expected an event (D, E, H, S, P or A), '.', '(' or '['");
+        fail("expected an event (D, E, H, S, P, A or F), '.', '(' or '['");
     }
     ++pos_;
     if (e.kind == path_event_kind::sheet && std::isdigit(static_cast<unsigned char>(peek()))) e.index = number();
@@ -266,13 +278,25 @@ class path_expression_parser {
         } else {
           bad("A takes room, sun, luminaire or luminaireK (e.g. luminaire0), not '" + w + "'");
         }
+      } else if (e.kind == path_event_kind::film) {
+        if (w == "front" || w == "back") {
+          e.front = w == "front";
+        } else if (e.index != -1) {
+          bad("a film's part is named once");
+        } else if (w == "D" || w == "H") {
+          e.index = w == "D" ? films_on_display : films_on_half_mirror;
+        } else if (w[0] == 'S' && w.size() <= 4 && w.find_first_not_of("0123456789", 1) == std::string::npos) {
+          e.index = w.size() == 1 ? event_pattern::any_sheets_films : films_on_first_sheet + std::stoi(w.substr(1));
+        } else {
+          bad("F takes its part (D, H, S or a sheet, e.g. S0), front or back, not '" + w + "'");
+        }
       } else {
         bad(std::string(e.kind == path_event_kind::display ? "D" : "E") + " takes no qualifier");
       }
     }
     if (!ends_event(peek())) {
       pos_ = start;
-      fail("expected an event (D, E, H, S, P or A), '.', '(' or '[' followed by a space or an operator");
+      fail("expected an event (D, E, H, S, P, A or F), '.', '(' or '[' followed by a space or an operator");
     }
     return e;
   }
@@ -302,11 +326,13 @@ path_expression path_expression::bound(const scene& s, bool strict) const {
 }
 
 bool path_expression::matches(const path_label& l) const {
-  if (l.count == 0) return nullable_;
   positions current;
+  bool started = false;
   for (int i = 0; i < l.count; ++i) {
     const path_event& e = l.at(i);
-    positions reach = i == 0 ? first_ : positions();
+    if (e.kind == path_event_kind::film && !sees_films_) continue;
+    positions reach = started ? positions() : first_;
+    started = true;
     for (std::size_t p = 0; p < positions_.size(); ++p)
       if (current.test(p)) reach |= positions_[p].follow;
     positions next;
@@ -319,7 +345,7 @@ bool path_expression::matches(const path_label& l) const {
     if (next.none()) return false;
     current = next;
   }
-  return (current & last_).any();
+  return started ? (current & last_).any() : nullable_;
 }
 
 std::uint64_t path_layers::select(const path_label& l) const {

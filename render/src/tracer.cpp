@@ -92,6 +92,9 @@ using tracer_path::path_stack;
 using tracer_path::path_state;
 using tracer_path::path_trail;
 using tracer_path::polarized;
+using tracer_path::push_display;
+using tracer_path::push_half_mirror;
+using tracer_path::push_sheet;
 using tracer_path::scatter_at_prop;
 using tracer_path::see_ambient;
 using tracer_path::see_luminaire;
@@ -254,7 +257,7 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
           }
           radiance[component_of(p)] += L;
           if constexpr (!std::is_same_v<Label, no_label>) {
-            p.label.push({path_event_kind::display});
+            push_display(p.label, ts.layout.source.films);
             layers->add(p.label, L);
           }
         }
@@ -286,7 +289,8 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
       }
       p.origin = hit + rs.shift_mm.x * f.u + rs.shift_mm.y * f.v;
       p.throughput *= glm::vec3(rs.channels) * float(rs.weight);
-      p.label.push({path_event_kind::sheet, rs.retroreflected, false, std::uint16_t(part - part_first_sheet)});
+      const auto k = std::uint16_t(part - part_first_sheet);
+      push_sheet(p.label, ts.layout.retroreflectors[k].films, rs.retroreflected, k);
       if (rs.retroreflected) {
         ++p.retroreflections;
       } else {
@@ -325,12 +329,13 @@ std::uint64_t model_layers(const tracer_scene& ts) {
     // The sheet sends the light straight back the way the camera's ray came to it.
     const glm::dvec3 to_sheet = c.by_reflection ? reflect(c.camera_dir, c.hm.n) : c.camera_dir;
     const bool display_side_front = glm::dot(-to_sheet, c.hm.n) < 0;
+    const auto& films = ts.layout.half_mirror.films;
     path_label l;
     l.push({path_event_kind::eye});
-    l.push({path_event_kind::half_mirror, c.by_reflection, c.by_reflection == eye_side_front, 0});
-    l.push({path_event_kind::sheet, true, false, std::uint16_t(c.sheet)});
-    l.push({path_event_kind::half_mirror, !c.by_reflection, !c.by_reflection == display_side_front, 0});
-    l.push({path_event_kind::display});
+    push_half_mirror(l, films, c.by_reflection, eye_side_front, 0);
+    push_sheet(l, ts.layout.retroreflectors[std::size_t(c.sheet)].films, true, std::uint16_t(c.sheet));
+    push_half_mirror(l, films, !c.by_reflection, display_side_front, 0);
+    push_display(l, ts.layout.source.films);
     mask &= ts.layers->select(l);
   }
   const std::uint64_t unmatched = std::uint64_t(1) << ts.layers->layers.size();

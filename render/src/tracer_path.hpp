@@ -39,13 +39,52 @@ struct path_trail : path_label {
     float length;
     glm::vec3 throughput;
   };
-  std::array<segment, max_path_events> segments;
+  std::array<segment, max_path_interactions> segments;
   int segment_count = 0;
   void add_segment(const glm::dvec3& origin, const glm::dvec3& dir, float length, const glm::vec3& throughput) {
-    if (segment_count < max_path_events)
+    if (segment_count < max_path_interactions)
       segments[std::size_t(segment_count++)] = {glm::vec3(origin), glm::vec3(dir), length, throughput};
   }
 };
+
+// The films on `face` of a part (`whose`: films_on_display ...) as one event, when it has any.
+template <class Label>
+void push_films(Label& label, const std::vector<film_params>& films, part_face face, std::uint16_t whose) {
+  if constexpr (!std::is_same_v<Label, no_label>) {
+    if (std::any_of(films.begin(), films.end(), [&](const film_params& f) { return f.face == face; }))
+      label.push({path_event_kind::film, false, face == part_face::front, whose});
+  }
+}
+
+// A half mirror's reflection or transmission (`order`: the plate path's), with its films, as the
+// tracer meets them going back: the films of the face the light leaves by (the traced ray's side,
+// the front when `traced_from_front`), the half mirror, the films of the face the light arrived on.
+template <class Label>
+void push_half_mirror(Label& label, const std::vector<film_params>& films, bool reflected, bool traced_from_front,
+                      std::uint16_t order) {
+  const part_face eye_side = traced_from_front ? part_face::front : part_face::back;
+  const part_face other_side = traced_from_front ? part_face::back : part_face::front;
+  const part_face arrived_on = reflected ? eye_side : other_side;
+  push_films(label, films, eye_side, films_on_half_mirror);
+  label.push({path_event_kind::half_mirror, reflected, arrived_on == part_face::front, order});
+  push_films(label, films, arrived_on, films_on_half_mirror);
+}
+
+// Sheet k sending the light back through the films on its front, in and out.
+template <class Label>
+void push_sheet(Label& label, const std::vector<film_params>& films, bool retroreflected, std::uint16_t k) {
+  const auto whose = std::uint16_t(films_on_first_sheet + k);
+  push_films(label, films, part_face::front, whose);
+  label.push({path_event_kind::sheet, retroreflected, false, k});
+  push_films(label, films, part_face::front, whose);
+}
+
+// The display's emission through the films on its front.
+template <class Label>
+void push_display(Label& label, const std::vector<film_params>& films) {
+  push_films(label, films, part_face::front, films_on_display);
+  label.push({path_event_kind::display});
+}
 
 // `Polarization`: path_polarization when the scene polarizes, else nothing (the path as it was).
 // `Label`: path_label when layers are asked for, path_trail for the ray file, else nothing.
@@ -100,13 +139,11 @@ bool meet_thin_half_mirror(const half_mirror_params& hm, const part_frame& f, co
   const glm::dvec3 reflected = reflect(p.dir, f.n);
   // The traced ray comes from the front (the normal's side): reflected light arrived there.
   const bool from_front = glm::dot(p.dir, f.n) < 0;
-  const path_event reflection{path_event_kind::half_mirror, true, from_front, 0};
-  const path_event transmission{path_event_kind::half_mirror, false, !from_front, 0};
   p.origin = hit;
   if (stack.splits_left > 0) {
     --stack.splits_left;
     path_state<Polarization, Label> r = p;
-    r.label.push(reflection);
+    push_half_mirror(r.label, hm.films, true, from_front, 0);
     r.dir = reflected;
     r.throughput *= float(hm.reflectance);
     ++r.depth;
@@ -114,11 +151,11 @@ bool meet_thin_half_mirror(const half_mirror_params& hm, const part_frame& f, co
     if constexpr (with_polarization) r.pol.half_mirror_reflected(hm, f, reflected);
     stack.paths[stack.pending++] = r;
     p.throughput *= float(hm.transmittance);
-    p.label.push(transmission);
+    push_half_mirror(p.label, hm.films, false, from_front, 0);
     if constexpr (with_polarization) p.pol.half_mirror_passed(hm, f);
   } else {
     const bool reflect_it = rng.next_double() * hm_total < hm.reflectance;
-    p.label.push(reflect_it ? reflection : transmission);
+    push_half_mirror(p.label, hm.films, reflect_it, from_front, 0);
     if (reflect_it) {
       p.dir = reflected;
       ++p.mirror_reflections;
@@ -157,8 +194,7 @@ bool meet_plate(const half_mirror_params& hm, const part_frame& f, const glm::dv
     std::size_t k = 0;
     while (k + 1 < family.size() && u >= family[k].weight) u -= family[k++].weight;
     q.origin = entry + family[k].advance * t * along + (reflected ? glm::dvec3(0) : across);
-    // As at the thin half mirror: reflected light arrived on the traced ray's side.
-    q.label.push({path_event_kind::half_mirror, reflected, reflected == (cos_n < 0), std::uint16_t(k)});
+    push_half_mirror(q.label, hm.films, reflected, cos_n < 0, std::uint16_t(k));
     if (reflected) {
       q.dir = reflect(q.dir, f.n);
       ++q.mirror_reflections;
@@ -241,6 +277,12 @@ struct layer_sink {
     if (!(add(static_cast<const path_label&>(t), L) & 1) || !record) return;
     // The light's order: the trail's last segment first, each turned around. A segment carries
     // what reaches the eye divided by the throughput from the eye to it.
+    // The events segments leave, eye first: the films a segment crosses are not where it ends.
+    std::array<path_event, max_path_interactions> ends;
+    int end_count = 0;
+    for (int i = 0; i < t.count && end_count < max_path_interactions; ++i)
+      if (t.events[std::size_t(i)].kind != path_event_kind::film)
+        ends[std::size_t(end_count++)] = t.events[std::size_t(i)];
     std::vector<ray_segment> out;
     out.reserve(std::size_t(t.segment_count));
     for (int j = t.segment_count - 1; j >= 0; --j) {
@@ -250,7 +292,7 @@ struct layer_sink {
       r.direction = -g.dir;
       r.length = g.length;
       for (int c = 0; c < 3; ++c) r.radiance[c] = g.throughput[c] > 0 ? L[c] / g.throughput[c] : 0.0f;
-      r.event = t.events[std::size_t(j + 1)];  // events are eye first: the one at the segment's far end
+      r.event = ends[std::size_t(j + 1)];  // the one at the segment's far end
       out.push_back(r);
     }
     add_to_record(*record, {x, y, sample, 0, 0, L}, out, segment_limit);

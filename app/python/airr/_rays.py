@@ -11,7 +11,7 @@ PATH = np.dtype([("x", "<u4"), ("y", "<u4"), ("sample", "<u8"), ("first_segment"
 SEGMENT = np.dtype([("start", "<f4", 3), ("direction", "<f4", 3), ("length", "<f4"), ("radiance", "<f4", 3),
                     ("kind", "u1"), ("taken", "u1"), ("front", "u1"), ("reserved", "u1"), ("index", "<u2"),
                     ("reserved2", "<u2")])
-EVENT_KINDS = ("display", "eye", "half_mirror", "sheet", "prop")
+EVENT_KINDS = ("display", "eye", "half_mirror", "sheet", "prop", "ambient")
 
 
 def read_rays(path):

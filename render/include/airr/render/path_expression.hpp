@@ -19,11 +19,12 @@ struct event_pattern {
   int taken = -1;  // H: r 1, t 0; S: retro 1, other 0
   int front = -1;
   // H: the plate order; S: the sheet; P: the prop (from its name when bound); A: the source
-  // (any_luminaire: every luminaire).
+  // (any_luminaire: every luminaire); F: whose films (any_sheets_films: any sheet's).
   int index = -1;
   std::string prop_name;  // P:name, resolved to `index` by bind
 
   static constexpr int any_luminaire = -3;
+  static constexpr int any_sheets_films = -4;
   bool accepts(const path_event& e) const;
 };
 
@@ -38,7 +39,8 @@ class path_expression {
   // `strict`, else matches nothing.
   path_expression bound(const scene& s, bool strict) const;
 
-  // Whether the whole label, display to eye, is one the expression describes.
+  // Whether the whole label, display to eye, is one the expression describes. An expression that
+  // names no film (F) reads labels without their film events.
   bool matches(const path_label& l) const;
   const std::string& text() const { return text_; }
 
@@ -56,6 +58,7 @@ class path_expression {
   std::vector<position> positions_;
   positions first_, last_;
   bool nullable_ = false;
+  bool sees_films_ = false;
 };
 
 // Named expressions whose images a render keeps as layers, and the paths none of them selects as

@@ -8,28 +8,36 @@
 namespace airr {
 
 // `ambient`: light from around the device (index: ambient_room, the room's uniform surround;
-// ambient_sun; luminaire k: ambient_first_luminaire + k).
-enum class path_event_kind : std::uint8_t { display, eye, half_mirror, sheet, prop, ambient };
+// ambient_sun; luminaire k: ambient_first_luminaire + k). `film`: the films on one face of a part,
+// crossed together (index: films_on_display, films_on_half_mirror; sheet k's:
+// films_on_first_sheet + k).
+enum class path_event_kind : std::uint8_t { display, eye, half_mirror, sheet, prop, ambient, film };
 inline constexpr std::uint16_t ambient_room = 0;
 inline constexpr std::uint16_t ambient_sun = 1;
 inline constexpr std::uint16_t ambient_first_luminaire = 2;
+inline constexpr std::uint16_t films_on_display = 0;
+inline constexpr std::uint16_t films_on_half_mirror = 1;
+inline constexpr std::uint16_t films_on_first_sheet = 2;
 
 struct path_event {
   path_event_kind kind = path_event_kind::display;
   // half_mirror: reflected (else transmitted); sheet: retroreflected (else sent back otherwise).
   bool taken = false;
-  // half_mirror: the light arrived on the face its normal points to (else the back).
+  // half_mirror: the light arrived on the face its normal points to (else the back); film: the
+  // films lie on that face.
   bool front = false;
   // half_mirror: the plate path's order (reflected: 0 the near face, k the far face after k - 1
   // round trips inside; transmitted: k round trips), 0 for a thin half mirror; sheet: its index
-  // in the scene; prop: its index among the scene's props; ambient: which source.
+  // in the scene; prop: its index among the scene's props; ambient: which source; film: whose.
   std::uint16_t index = 0;
 
   bool operator==(const path_event&) const = default;
 };
 
-// render.max_depth interactions at most, and the display and the eye.
-inline constexpr int max_path_events = 64 + 2;
+// render.max_depth interactions at most (64), and the display and the eye; the films of the face
+// the light arrived on and of the face it left by at each, and of the display's front.
+inline constexpr int max_path_interactions = 64 + 2;
+inline constexpr int max_path_events = 3 * 64 + 2 + 1;
 
 struct path_label {
   std::array<path_event, max_path_events> events{};  // in the order recorded: eye first
