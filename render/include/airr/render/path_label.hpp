@@ -1,6 +1,7 @@
 #pragma once
 // A light path's label: the events it met, from the display to the eye (docs/path-expressions.md).
 // The tracer, going backward, records them eye first; `at` reads them in the light's order.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <string>
@@ -19,17 +20,22 @@ inline constexpr std::uint16_t films_on_display = 0;
 inline constexpr std::uint16_t films_on_half_mirror = 1;
 inline constexpr std::uint16_t films_on_first_sheet = 2;
 
+// Trivially made (a label's unused room costs nothing); path_event{} is the display.
 struct path_event {
-  path_event_kind kind = path_event_kind::display;
+  path_event() = default;
+  constexpr path_event(path_event_kind kind, bool taken = false, bool front = false, std::uint16_t index = 0)
+      : kind(kind), taken(taken), front(front), index(index) {}
+
+  path_event_kind kind;
   // half_mirror: reflected (else transmitted); sheet: retroreflected (else sent back otherwise).
-  bool taken = false;
+  bool taken;
   // half_mirror: the light arrived on the face its normal points to (else the back); film: the
   // films lie on that face.
-  bool front = false;
+  bool front;
   // half_mirror: the plate path's order (reflected: 0 the near face, k the far face after k - 1
   // round trips inside; transmitted: k round trips), 0 for a thin half mirror; sheet: its index
   // in the scene; prop: its index among the scene's props; ambient: which source; film: whose.
-  std::uint16_t index = 0;
+  std::uint16_t index;
 
   bool operator==(const path_event&) const = default;
 };
@@ -40,8 +46,17 @@ inline constexpr int max_path_interactions = 64 + 2;
 inline constexpr int max_path_events = 3 * 64 + 2 + 1;
 
 struct path_label {
-  std::array<path_event, max_path_events> events{};  // in the order recorded: eye first
+  std::array<path_event, max_path_events> events;  // in the order recorded: eye first; [0, count) set
   int count = 0;
+
+  // Made, copied and assigned by the events it holds: paths split and copy their labels often.
+  path_label() {}
+  path_label(const path_label& o) : count(o.count) { std::copy_n(o.events.begin(), count, events.begin()); }
+  path_label& operator=(const path_label& o) {
+    count = o.count;
+    std::copy_n(o.events.begin(), count, events.begin());
+    return *this;
+  }
 
   void push(const path_event& e) {
     if (count < max_path_events) events[std::size_t(count++)] = e;

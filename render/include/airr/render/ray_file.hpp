@@ -22,7 +22,7 @@ struct ray_segment {
   glm::vec3 direction{0.0f};
   float length = 0;
   glm::vec3 radiance{0.0f};
-  path_event event;
+  path_event event{};
 };
 
 // A path of pixel (x, y)'s sample `sample`: its segments [first_segment, first_segment +
