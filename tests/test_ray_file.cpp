@@ -1,6 +1,7 @@
 // The ray file (docs/ray-file.md): the paths it keeps add up, pixel by pixel, to the layers their
 // expression selects; its segments join from the display to the eye; the limit keeps a prefix;
-// bad input is refused before anything is traced or written.
+// one pass keeps several expressions' paths as their own passes would; bad input is refused before anything is traced
+// or written.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -128,6 +129,48 @@ TEST(RayFile, TheLimitKeepsTheFirstPaths) {
     EXPECT_EQ(some.paths[i].sample, all.paths[i].sample);
     EXPECT_EQ(some.paths[i].contribution, all.paths[i].contribution);
   }
+}
+
+// One pass for several expressions keeps in each record what a pass of its own keeps, with room
+// to spare and with a limit that cuts each short at a different row.
+TEST(RayFile, OnePassKeepsEachExpressionsPathsAsItsOwnPassWould) {
+  test::temp_dir dir;
+  const scene s = scene_with_mirror(dir);
+  const std::vector<std::string> expressions = {"D .* S0:retro .* E", "D [^S0:retro]* E", "D P:mirror .* E"};
+  int cut = 0;
+  for (const std::uint64_t limit : {std::uint64_t(1'000'000), std::uint64_t(30)}) {
+    const ray_file_params p{.segment_limit = limit, .spp = 2, .threads = 2};
+    const std::vector<ray_record> together = record_rays(s, expressions, p);
+    ASSERT_EQ(together.size(), expressions.size());
+    for (std::size_t k = 0; k < expressions.size(); ++k) {
+      ray_file_params own = p;
+      own.select = expressions[k];
+      const ray_record alone = record_rays(s, own);
+      const ray_record& r = together[k];
+      EXPECT_EQ(r.complete, alone.complete) << expressions[k];
+      EXPECT_GT(r.paths.size(), 3u) << expressions[k];
+      ASSERT_EQ(r.paths.size(), alone.paths.size()) << expressions[k] << ", limit " << limit;
+      ASSERT_EQ(r.segments.size(), alone.segments.size()) << expressions[k];
+      for (std::size_t i = 0; i < r.paths.size(); ++i) {
+        EXPECT_EQ(r.paths[i].x, alone.paths[i].x);
+        EXPECT_EQ(r.paths[i].y, alone.paths[i].y);
+        EXPECT_EQ(r.paths[i].sample, alone.paths[i].sample);
+        EXPECT_EQ(r.paths[i].segment_count, alone.paths[i].segment_count);
+        EXPECT_EQ(r.paths[i].contribution, alone.paths[i].contribution);
+      }
+      for (std::size_t i = 0; i < r.segments.size(); ++i) {
+        EXPECT_EQ(r.segments[i].start, alone.segments[i].start);
+        EXPECT_EQ(r.segments[i].event, alone.segments[i].event);
+      }
+      if (limit == 1'000'000) {
+        EXPECT_EQ(r.selected, alone.selected) << expressions[k];
+      }
+      std::printf("limit %llu, %-20s %3zu paths, %4zu segments, %s\n", static_cast<unsigned long long>(limit),
+                  expressions[k].c_str(), r.paths.size(), r.segments.size(), r.complete ? "complete" : "cut short");
+      cut += !r.complete;
+    }
+  }
+  EXPECT_EQ(cut, int(expressions.size()));  // each cut short by the small limit
 }
 
 TEST(RayFile, BadInputIsRefusedBeforeAnythingIsWritten) {

@@ -33,12 +33,6 @@ void add_to_record(ray_record& r, ray_path path, const std::vector<ray_segment>&
 
 namespace {
 
-path_layers selection(const scene& s, const ray_file_params& p) {
-  path_layers l;
-  l.layers.push_back({"rays", path_expression::parse(p.select).bound(s, true)});
-  return l;
-}
-
 int workers(int threads) { return threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency())); }
 
 // What the pass holds at most: each row of a wave of rows its own record up to the limit, and the
@@ -60,7 +54,7 @@ void check_ray_file(const std::string& path, const scene& s, const ray_file_para
   if (p.segment_limit < 1 || p.segment_limit > max_ray_segments)
     throw input_error(path + ": the ray limit must be in [1, " + std::to_string(max_ray_segments) + "] segments (is " +
                       std::to_string(p.segment_limit) + ")");
-  selection(s, p);  // throws, pointing at the character
+  path_expression::parse(p.select).bound(s, true);  // throws, pointing at the character
   const std::string reason = reason_cannot_create(path);
   if (!reason.empty()) throw input_error(path + ": cannot write the ray file: " + reason);
   std::error_code ec;
@@ -74,44 +68,59 @@ void check_ray_file(const std::string& path, const scene& s, const ray_file_para
   check_memory_need("ray file of " + std::to_string(p.segment_limit) + " segments", record_memory_need(p));
 }
 
-ray_record record_rays(const scene& s, const ray_file_params& p, const std::function<bool(double)>& progress) {
-  const path_layers select = selection(s, p);
+std::vector<ray_record> record_rays(const scene& s, const std::vector<std::string>& expressions,
+                                    const ray_file_params& p, const std::function<bool(double)>& progress) {
+  path_layers select;
+  for (std::size_t k = 0; k < expressions.size(); ++k)
+    select.layers.push_back({"rays" + std::to_string(k), path_expression::parse(expressions[k]).bound(s, true)});
   embree_device device;
   tracer_scene ts;
   ts.use_model_image = false;
   build_tracer_scene(ts, device, s);
-  ray_record all;
+  const std::size_t classes = expressions.size();
+  std::vector<ray_record> all(classes);
+  const auto any_complete = [&] {
+    return std::any_of(all.begin(), all.end(), [](const ray_record& r) { return r.complete; });
+  };
   const int height = ts.camera.height, wave = workers(p.threads);
   const std::atomic<bool> never{false};
-  for (int y0 = 0; y0 < height && all.complete; y0 += wave) {
+  for (int y0 = 0; y0 < height && any_complete(); y0 += wave) {
     const int rows = std::min(wave, height - y0);
-    const std::uint64_t left = p.segment_limit - all.segments.size();
-    std::vector<ray_record> records(static_cast<std::size_t>(rows));
+    std::vector<std::uint64_t> left(classes);
+    for (std::size_t k = 0; k < classes; ++k) left[k] = all[k].complete ? p.segment_limit - all[k].segments.size() : 0;
+    std::vector<std::vector<ray_record>> records(static_cast<std::size_t>(rows), std::vector<ray_record>(classes));
     detail::parallel_rows(rows, p.threads, [&](int a, int b) {
       for (int r = a; r < b; ++r) {
-        glm::vec3 radiance[2]{};
-        layer_sink sink{select, radiance};
-        sink.record = &records[std::size_t(r)];
-        sink.segment_limit = left;
+        std::vector<glm::vec3> radiance(select.count());
+        layer_sink sink{select, radiance.data()};
+        sink.records = records[std::size_t(r)];
+        sink.segment_limits = left;
         std::uint64_t rays = 0;
         tracer_path::label_rows(ts, y0 + r, y0 + r + 1, p.first_sample, p.spp, sink, never, rays);
       }
     });
-    for (const ray_record& r : records) {
-      for (const ray_path& path : r.paths) {
-        const auto from = r.segments.begin() + path.first_segment;
-        add_to_record(all, path, std::vector<ray_segment>(from, from + path.segment_count), p.segment_limit);
+    for (const std::vector<ray_record>& row : records) {
+      for (std::size_t k = 0; k < classes; ++k) {
+        const ray_record& r = row[k];
+        for (const ray_path& path : r.paths) {
+          const auto from = r.segments.begin() + path.first_segment;
+          add_to_record(all[k], path, std::vector<ray_segment>(from, from + path.segment_count), p.segment_limit);
+        }
+        // The paths a row counted beyond its own limit do not fit either.
+        all[k].selected += r.selected - r.paths.size();
+        if (!r.complete) all[k].complete = false;
       }
-      // The paths a row counted beyond its own limit do not fit either.
-      all.selected += r.selected - r.paths.size();
-      if (!r.complete) all.complete = false;
     }
     if (progress && !progress(double(y0 + rows) / height)) {
-      all.complete = false;
+      for (ray_record& r : all) r.complete = false;
       break;
     }
   }
   return all;
+}
+
+ray_record record_rays(const scene& s, const ray_file_params& p, const std::function<bool(double)>& progress) {
+  return std::move(record_rays(s, {p.select}, p, progress).front());
 }
 
 namespace {

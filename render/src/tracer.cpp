@@ -305,7 +305,7 @@ static component_radiance trace_path(const tracer_scene& ts, sample_numbers n, c
                                      const RTCRayHit* first_hit, std::uint64_t& rays, layer_sink* layers,
                                      glm::vec3* each_luminaire) {
   glm::vec3* e = each_luminaire;
-  if (layers && layers->record) {
+  if (layers && !layers->records.empty()) {
     return ts.polarized ? trace_path_as<path_polarization, path_trail>(ts, n, first, first_hit, rays, layers, e)
                         : trace_path_as<no_polarization, path_trail>(ts, n, first, first_hit, rays, layers, e);
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <map>
+#include <span>
 #include <string>
 #include <type_traits>
 
@@ -242,9 +243,10 @@ struct layer_sink {
   };
   std::array<remembered, 64> seen{};
   std::map<std::string, census_class>* census = nullptr;  // every label's light, when kept
-  // The paths layer 0 selects, when kept; the pixel and the sample being traced.
-  ray_record* record = nullptr;
-  std::uint64_t segment_limit = 0;
+  // When kept: the paths each layer selects, each record up to its segment limit (the first
+  // records.size() layers); the pixel and the sample being traced.
+  std::span<ray_record> records;
+  std::span<const std::uint64_t> segment_limits;
   std::uint32_t x = 0, y = 0;
   std::uint64_t sample = 0;
 
@@ -274,15 +276,16 @@ struct layer_sink {
   }
 
   void add(const tracer_path::path_trail& t, const glm::vec3& L) {
-    if (!(add(static_cast<const path_label&>(t), L) & 1) || !record) return;
-    // The light's order: the trail's last segment first, each turned around. A segment carries
-    // what reaches the eye divided by the throughput from the eye to it.
+    const std::uint64_t kept = add(static_cast<const path_label&>(t), L) & ((std::uint64_t(1) << records.size()) - 1);
+    if (kept == 0) return;
     // The events segments leave, eye first: the films a segment crosses are not where it ends.
     std::array<path_event, max_path_interactions> ends;
     int end_count = 0;
     for (int i = 0; i < t.count && end_count < max_path_interactions; ++i)
       if (t.events[std::size_t(i)].kind != path_event_kind::film)
         ends[std::size_t(end_count++)] = t.events[std::size_t(i)];
+    // The light's order: the trail's last segment first, each turned around. A segment carries
+    // what reaches the eye divided by the throughput from the eye to it.
     std::vector<ray_segment> out;
     out.reserve(std::size_t(t.segment_count));
     for (int j = t.segment_count - 1; j >= 0; --j) {
@@ -295,13 +298,14 @@ struct layer_sink {
       r.event = ends[std::size_t(j + 1)];  // the one at the segment's far end
       out.push_back(r);
     }
-    add_to_record(*record, {x, y, sample, 0, 0, L}, out, segment_limit);
+    for (std::size_t k = 0; k < records.size(); ++k)
+      if (kept >> k & 1) add_to_record(records[k], {x, y, sample, 0, 0, L}, out, segment_limits[k]);
   }
 };
 
 namespace tracer_path {
 // Traces samples [first, first + count) of rows [y0, y1) with labels into `sink` (the trails when
-// sink.record is set), as a render traces them, without the control variate.
+// sink.records are given), as a render traces them, without the control variate.
 void label_rows(const tracer_scene& ts, int y0, int y1, std::uint64_t first, std::uint64_t count, layer_sink& sink,
                 const std::atomic<bool>& cancel, std::uint64_t& rays);
 }  // namespace tracer_path

@@ -8,11 +8,8 @@ namespace airr::ui {
 
 namespace {
 
-// Up to ghost_paths_kept paths of the class, as polylines: each segment's start, then the eye.
-std::vector<std::vector<glm::vec3>> paths_of(const scene& s, const std::string& expression,
-                                             const std::atomic<bool>& cancel) {
-  const ray_record r =
-      record_rays(s, {.select = expression, .segment_limit = 2000, .spp = 1}, [&](double) { return !cancel.load(); });
+// Up to ghost_paths_kept paths of a class, as polylines: each segment's start, then the eye.
+std::vector<std::vector<glm::vec3>> paths_of(const ray_record& r) {
   std::vector<std::vector<glm::vec3>> out;
   // Spread over the paths found rather than the first few of one corner.
   const std::size_t step = std::max<std::size_t>(1, r.paths.size() / ghost_paths_kept);
@@ -38,11 +35,16 @@ ghost_job::ghost_job(const scene& s, const ghost_params& p, std::uint64_t genera
             ghost_findings f;
             f.table = compute_ghost_table(s, q, [&ctx](const std::string&, double done) { ctx.report(0.8 * done); });
             if (ctx.cancel) return std::nullopt;
-            for (std::size_t k = 0; k < f.table.classes.size(); ++k) {
-              f.paths.push_back(paths_of(s, f.table.classes[k].expression, ctx.cancel));
-              if (ctx.cancel) return std::nullopt;
-              ctx.report(0.8 + 0.2 * double(k + 1) / double(f.table.classes.size()));
-            }
+            // Every class's paths in one pass, each up to its own 2000 segments.
+            std::vector<std::string> expressions;
+            for (const ghost_class& c : f.table.classes) expressions.push_back(c.expression);
+            const std::vector<ray_record> records =
+                record_rays(s, expressions, {.segment_limit = 2000, .spp = 1}, [&ctx](double done) {
+                  ctx.report(0.8 + 0.2 * done);
+                  return !ctx.cancel.load();
+                });
+            if (ctx.cancel) return std::nullopt;
+            for (const ray_record& r : records) f.paths.push_back(paths_of(r));
             return f;
           },
           5),

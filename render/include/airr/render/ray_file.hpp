@@ -67,6 +67,11 @@ void check_ray_file(const std::string& path, const scene& s, const ray_file_para
 // are kept. `progress` gets the fraction of rows done and may stop the pass (returns false: the
 // record is left incomplete).
 ray_record record_rays(const scene& s, const ray_file_params& p, const std::function<bool(double)>& progress = {});
+// The same pass keeping the paths of each of `expressions` in a record of its own (p.select
+// unused), each up to p.segment_limit segments, as record_rays would one by one; a record's
+// `selected` counts the rows the pass traced, which goes on while a record has room.
+std::vector<ray_record> record_rays(const scene& s, const std::vector<std::string>& expressions,
+                                    const ray_file_params& p, const std::function<bool(double)>& progress = {});
 
 // Writes the record atomically; throws input_error naming the file and the system's reason.
 void write_ray_file(const std::string& path, const scene& s, const ray_file_params& p, const ray_record& r);
