@@ -62,10 +62,10 @@ TEST(SheetShiftTable, AHollowPrismSheetMatchesTheShippedCornerCubeAtSmallTilts) 
   EXPECT_FALSE(analysis::sheet_shift_unit_mm({.type = "bead_sheet", .values = {}}, ""));
 }
 
-// The sheet's Mueller matrices carry its polarization into the sinc-shift model: in the p-AIRR
-// scene with the RF-Ay-like sheet pitched 25 deg (where its paths mix S2 and S3 by a third), the
-// sheet and a preset with its traced matrices give the same gain; the preset without them (the
-// field kept as by a mirror) is far off.
+// The sheet's Mueller matrices carry its polarization into the sinc-shift and microfacet models:
+// in the p-AIRR scene with the RF-Ay-like sheet pitched 25 deg (where its paths mix S2 and S3 by a
+// third), the sheet and a preset with its traced matrices give the same gain; the models without
+// them (the field kept as by a mirror) are far off.
 TEST(SheetShiftTable, ASheetsMuellerMatricesCarryItsPAirrGain) {
   const sheet_description sheet = load_sheet(asset_dir() + "/sheets/prism-rf-ay-like.json");
   const analysis::traced_sheet traced =
@@ -87,12 +87,25 @@ TEST(SheetShiftTable, ASheetsMuellerMatricesCarryItsPAirrGain) {
     set_model_value(m, "preset", dir.file(file));
     return m;
   };
+  // The microfacet model takes the same matrices from the preset (its own blur, the sheet's light).
+  retro_model_params microfacet{.type = "microfacet", .values = {}};
+  const double microfacet_mirror = gain_with(microfacet);
+  set_model_value(microfacet, "polarization_preset", dir.file("with.json"));
   const double explicit_gain = gain_with(sheet.model), fitted = gain_with(preset_model("with.json")),
-               mirror = gain_with(preset_model("without.json"));
-  std::printf("p-AIRR gain at 25 deg: the sheet %.4f, a preset with its matrices %.4f, without %.4f\n", explicit_gain,
-              fitted, mirror);
+               mirror = gain_with(preset_model("without.json")), microfacet_fitted = gain_with(microfacet);
+  std::printf(
+      "p-AIRR gain at 25 deg: the sheet %.4f, a preset with its matrices %.4f, without %.4f; the microfacet "
+      "model with them %.4f, without %.4f\n",
+      explicit_gain, fitted, mirror, microfacet_fitted, microfacet_mirror);
   EXPECT_NEAR(fitted / explicit_gain, 1.0, 0.03);
   EXPECT_GT(std::abs(mirror / explicit_gain - 1.0), 0.1);
+  EXPECT_NEAR(microfacet_fitted / explicit_gain, 1.0, 0.03);
+  EXPECT_GT(std::abs(microfacet_mirror / explicit_gain - 1.0), 0.1);
+  // A preset without matrices is refused, naming the field.
+  set_model_value(microfacet, "polarization_preset", dir.file("without.json"));
+  const std::string e = test::error_of([&] { make_retro_model(microfacet, {}); });
+  EXPECT_NE(e.find("polarization_preset"), std::string::npos) << e;
+  EXPECT_NE(e.find("no Mueller matrices"), std::string::npos) << e;
 }
 
 TEST(SheetShiftTable, APresetsTableTravelsBesideItAndIsRead) {

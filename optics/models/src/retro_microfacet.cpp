@@ -32,6 +32,7 @@
 
 #include "airr/core/error.hpp"
 #include "airr/core/geometry.hpp"
+#include "airr/models/preset.hpp"
 
 namespace airr {
 namespace {
@@ -151,14 +152,25 @@ const retro_model_kind& microfacet_retro_kind() {
         number_field("alpha_internal", "", 0, 1, 0.0005, "Beckmann roughness of the cube faces", 0.05),
         number_field("internal_reflectance", "", 0, 1, 0.83, "Reflectance of each aluminium-coated cube face"),
         number_field("eta", "", 1, 3, 1.5046, "Refractive index of the prism sheet"),
+        text_field("polarization_preset", field_kind::preset,
+                   "A preset whose Mueller matrix per incidence (fitted by airr predict-preset from a traced "
+                   "sheet) the retroreflected light takes; empty: the field kept as by a mirror"),
     };
-    k.make = [](const model_values& v, const model_setting&) -> std::unique_ptr<retro_model> {
+    k.make = [](const model_values& v, const model_setting& setting) -> std::unique_ptr<retro_model> {
       microfacet_params p;
       p.alpha_surface = v.number("alpha_surface");
       p.alpha_internal = v.number("alpha_internal");
       p.internal_reflectance = v.number("internal_reflectance");
       p.eta = v.number("eta");
       p.mu = v.number("mu");
+      if (const std::string name = v.text("polarization_preset"); !name.empty()) {
+        const sheet_preset preset = load_preset(name, setting.base_dir);
+        if (preset.polarization.empty())
+          v.fail("polarization_preset",
+                 "the preset " + name + " has no Mueller matrices (airr predict-preset fits them from a sheet)");
+        p.polarization_theta_deg = preset.theta_deg;
+        p.polarization = preset.polarization;
+      }
       return std::make_unique<microfacet_retro>(p);
     };
     return k;
@@ -167,7 +179,9 @@ const retro_model_kind& microfacet_retro_kind() {
 }
 
 microfacet_retro::microfacet_retro(const microfacet_params& p)
-    : alpha_surface_(p.alpha_surface),
+    : polarization_theta_deg_(p.polarization_theta_deg),
+      polarization_(p.polarization),
+      alpha_surface_(p.alpha_surface),
       alpha_internal_(p.alpha_internal),
       internal_reflectance_(p.internal_reflectance),
       eta_(p.eta),
@@ -180,6 +194,13 @@ microfacet_retro::microfacet_retro(const microfacet_params& p)
 }
 
 retro_sample microfacet_retro::sample(const glm::dvec3& wi, retro_samples u) const { return trace(wi, u).sample; }
+
+retro_sample microfacet_retro::sample_polarized(const glm::dvec3& wi, retro_samples u) const {
+  microfacet_trace t = trace(wi, u);
+  if (t.branch == microfacet_branch::retro && t.sample.weight > 0 && !polarization_.empty())
+    t.sample.polarization = interpolate_by_angle(polarization_theta_deg_, polarization_, polar_angle_deg(wi));
+  return t.sample;
+}
 
 microfacet_trace microfacet_retro::trace(const glm::dvec3& wi, retro_samples u) const {
   microfacet_trace out;

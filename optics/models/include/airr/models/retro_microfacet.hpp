@@ -2,10 +2,13 @@
 // The microfacet retroreflector (spec 2.3): a prism sheet of index eta with aluminium-coated
 // cube-corner prisms. Light reflects off the front surface (Fresnel), or refracts in and is either
 // retroreflected by three rough mirror faces and refracts out, or leaves in a Lambertian lobe.
+#include <vector>
+
 #include <glm/glm.hpp>
 
 #include "airr/models/dielectric.hpp"
 #include "airr/models/model_params.hpp"
+#include "airr/models/polarization.hpp"
 #include "airr/models/retro_model.hpp"
 
 namespace airr {
@@ -51,6 +54,10 @@ struct microfacet_params {
   double internal_reflectance = 0.83;
   double eta = 1.5046;
   double mu = 1.0;
+  // A fitted Mueller matrix of the retroreflected light per incidence angle (a preset's, as the
+  // sinc-shift model takes it); empty: the identity (the field kept as by a mirror facing the light).
+  std::vector<double> polarization_theta_deg;
+  std::vector<mueller> polarization;
 };
 
 // The model's scene-file entry ("microfacet").
@@ -60,10 +67,15 @@ class microfacet_retro final : public retro_model {
  public:
   explicit microfacet_retro(const microfacet_params& p);
   retro_sample sample(const glm::dvec3& wi, retro_samples u) const override;
+  // With the fitted Mueller matrix at wi's incidence on the retroreflected branch (the front
+  // surface's reflection and the diffuse lobe: none).
+  retro_sample sample_polarized(const glm::dvec3& wi, retro_samples u) const override;
   // The same sample, with the branch it took (for tests and analysis).
   microfacet_trace trace(const glm::dvec3& wi, retro_samples u) const;
 
  private:
+  std::vector<double> polarization_theta_deg_;
+  std::vector<mueller> polarization_;
   double alpha_surface_;
   double alpha_internal_;
   double internal_reflectance_;
