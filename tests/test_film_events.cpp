@@ -17,16 +17,13 @@
 #include "airr/render/ray_file.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/render/tracer.hpp"
+#include "test_helpers.hpp"
 
 using namespace airr;
 
 namespace {
 
-path_label label_of(const std::vector<path_event>& light_order) {
-  path_label l;
-  for (auto it = light_order.rbegin(); it != light_order.rend(); ++it) l.push(*it);
-  return l;
-}
+using test::label_of;
 
 bool matches(const std::string& expression, const std::vector<path_event>& light_order) {
   return path_expression::parse(expression).matches(label_of(light_order));

@@ -14,6 +14,7 @@
 #include "airr/layout/scene.hpp"
 #include "airr/models/preset.hpp"
 #include "airr/models/retro_model.hpp"
+#include "airr/render/path_label.hpp"
 #include "airr/render/render_session.hpp"
 #include "error_of.hpp"
 
@@ -100,11 +101,18 @@ command_result run_command(const std::string& shell_command);
 command_result run_cli(const std::string& args);
 // The command failed with exactly one line, "error: ...", holding every one of `must_contain`.
 void expect_one_line_error(const command_result& r, const std::vector<std::string>& must_contain);
-// uniform_source_scene(20) as JSON, changed by `edit`, written to `dir`/scene.json; its path.
 // A fitted preset against the table it was synthesised from: the same tilts, and a, mu (each
 // tilt) and c within `relative` of the table's; prints the table of both.
 void expect_preset_near_table(const sheet_preset& fitted, const sheet_preset& table, double relative);
 
+// uniform_source_scene(20) as JSON, changed by `edit`, written to `dir`/scene.json; its path.
 std::string scene_file(const temp_dir& dir, const std::function<void(nlohmann::json&)>& edit);
+
+// A path label from events in the light's order (the tracer records them eye first).
+inline path_label label_of(const std::vector<path_event>& light_order) {
+  path_label l;
+  for (auto it = light_order.rbegin(); it != light_order.rend(); ++it) l.push(*it);
+  return l;
+}
 
 }  // namespace airr::test

@@ -25,12 +25,7 @@ using namespace airr;
 
 namespace {
 
-// A label from events in the light's order.
-path_label label_of(const std::vector<path_event>& light_order) {
-  path_label l;
-  for (auto it = light_order.rbegin(); it != light_order.rend(); ++it) l.push(*it);
-  return l;
-}
+using test::label_of;
 
 const path_event D{path_event_kind::display}, E{path_event_kind::eye};
 path_event H(bool reflected, int order = 0, bool front = true) {
