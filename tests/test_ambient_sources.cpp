@@ -13,6 +13,7 @@
 #include "airr/core/geometry.hpp"
 #include "airr/formats/scene_json.hpp"
 #include "airr/layout/layout.hpp"
+#include "airr/models/plate.hpp"
 #include "airr/render/path_expression.hpp"
 #include "airr/render/render_session.hpp"
 #include "airr/render/tracer.hpp"
@@ -165,6 +166,47 @@ double disc_illuminance(double L, double R, double x0, double h) {
     }
   }
   return L * sum * (R / rings) * (2 * std::numbers::pi / sectors);
+}
+
+// Light sampled from a lit card crosses a plate half mirror as the tracer's own paths do: a 3 mm
+// uncoated plate between the card and a disc luminaire above it (their light meeting it at 0-31
+// deg), the card seen through it from 56 deg. The card shows the plate's transmission along the
+// view times the quadrature of the disc's light with the plate's transmission at each point's own
+// incidence (the plate's transmission at 45 deg, which the sampled light took before, is 2% less
+// than at 0).
+TEST(AmbientSources, LightSampledThroughAPlateCrossesItAtItsOwnAngle) {
+  test::temp_dir dir;
+  scene s = card_scene(dir);
+  luminaire_params disc;
+  disc.shape = luminaire_shape::disc;
+  disc.pose = {.center_mm = {0, 0, 350}, .pitch_deg = 180};  // facing -z
+  disc.width_mm = 60;
+  disc.luminance_cd_m2 = 2000;
+  s.environment.luminaires.push_back(disc);
+  s.half_mirror.kind = half_mirror_kind::plate;
+  s.half_mirror.plate.thickness_mm = 3;
+  s.half_mirror.plate.index = 1.52;
+  s.half_mirror.pose = {.center_mm = {0, 0, 330}, .pitch_deg = 0};  // facing +z, 30 mm over the card
+  check_scene(s, "card under a luminaire, behind a plate");
+  const plate_params& plate = s.half_mirror.plate;
+  const auto passed = [&](double cos_i) { return plate_paths_at(plate, cos_i, true).transmitted_total; };
+  // The disc (radius 30, 50 mm over the card's centre), midpoint rule in polar coordinates.
+  const int rings = 200, sectors = 400;
+  double sum = 0;
+  for (int i = 0; i < rings; ++i) {
+    const double rho = (i + 0.5) * 30.0 / rings, r2 = rho * rho + 50.0 * 50.0;
+    sum += sectors * passed(50 / std::sqrt(r2)) * 2500 / (r2 * r2) * rho;
+  }
+  const double illuminance = 2000 * sum * (30.0 / rings) * (2 * std::numbers::pi / sectors);
+  const double view_cos = 200 / std::hypot(300.0, 200.0);  // from (0, -300, 500) to (0, 0, 300)
+  const double expected = passed(view_cos) * 0.6 * illuminance / std::numbers::pi;
+  const double at_45 = passed(std::sqrt(0.5)) * passed(view_cos) * 0.6 * 2000 * 900 / (900 + 2500);
+  const render_snapshot snap = render_with_layers(s, {"lit=A:luminaire0 P:card H:t E"}, 64);
+  const double lit = mean_green(snap.layer_image(0));
+  std::printf("card through a plate: %.4f cd/m2, quadrature %.4f, with the plate's 45 deg transmission %.4f\n", lit,
+              expected, at_45);
+  EXPECT_NEAR(lit, expected, 0.005 * expected);
+  EXPECT_GT(std::abs(at_45 / expected - 1), 0.01);  // what the check tells apart
 }
 
 TEST(AmbientSources, EachLuminaireIsItsOwnComponent) {

@@ -70,6 +70,8 @@ void check_ray_file(const std::string& path, const scene& s, const ray_file_para
 
 std::vector<ray_record> record_rays(const scene& s, const std::vector<std::string>& expressions,
                                     const ray_file_params& p, const std::function<bool(double)>& progress) {
+  if (expressions.size() > std::size_t(max_path_layers))
+    throw input_error("rays of at most " + std::to_string(max_path_layers) + " expressions in one pass");
   path_layers select;
   for (std::size_t k = 0; k < expressions.size(); ++k)
     select.layers.push_back({"rays" + std::to_string(k), path_expression::parse(expressions[k]).bound(s, true)});

@@ -173,6 +173,25 @@ bool meet_thin_half_mirror(const half_mirror_params& hm, const part_frame& f, co
 // transmitted families split or chosen by their totals, and within a family one path chosen by
 // its share (so its Mueller matrix is divided by its own weight, the family's scalar weight
 // applied); the light leaves the plate's face where that path leaves it.
+// A ray (traced back along `dir`) crossing the plate whose mid-plane it meets at `hit`: where it
+// enters the near face, the way along the faces its paths advance inside, and the step from the
+// near face to the far one; a path of `advance` plate thicknesses leaves at `leaving`.
+struct plate_crossing {
+  glm::dvec3 entry, along, across;
+  double thickness_mm;
+  glm::dvec3 leaving(double advance, bool transmitted) const {
+    return entry + advance * thickness_mm * along + (transmitted ? across : glm::dvec3(0));
+  }
+};
+inline plate_crossing cross_plate(const plate_params& plate, const part_frame& f, const glm::dvec3& hit,
+                                  const glm::dvec3& dir) {
+  const double cos_n = glm::dot(dir, f.n), t = plate.thickness_mm;
+  const glm::dvec3 tangent = dir - cos_n * f.n;
+  const double tangent_length = glm::length(tangent);
+  return {hit - dir * (0.5 * t / std::abs(cos_n)), tangent_length > 1e-12 ? tangent / tangent_length : glm::dvec3(0),
+          (cos_n < 0 ? -t : t) * f.n, t};
+}
+
 template <class Polarization, class Label>
 bool meet_plate(const half_mirror_params& hm, const part_frame& f, const glm::dvec3& hit,
                 path_state<Polarization, Label>& p, path_stack<Polarization, Label>& stack, pcg32& rng) {
@@ -180,13 +199,7 @@ bool meet_plate(const half_mirror_params& hm, const part_frame& f, const glm::dv
   const double cos_i = std::abs(cos_n);
   if (cos_i < 1e-9) return false;  // along the plate: it meets an edge
   const plate_paths paths = plate_paths_at(hm.plate, cos_i, cos_n < 0);
-  const double t = hm.plate.thickness_mm;
-  // Where the light enters the near face, and the way along the faces it advances inside.
-  const glm::dvec3 entry = hit - p.dir * (0.5 * t / cos_i);
-  const glm::dvec3 tangent = p.dir - cos_n * f.n;
-  const double tangent_length = glm::length(tangent);
-  const glm::dvec3 along = tangent_length > 1e-12 ? tangent / tangent_length : glm::dvec3(0);
-  const glm::dvec3 across = (cos_n < 0 ? -t : t) * f.n;  // near face to far face
+  const plate_crossing crossing = cross_plate(hm.plate, f, hit, p.dir);
 
   const auto take = [&](path_state<Polarization, Label>& q, bool reflected, double weight) {
     const auto& family = reflected ? paths.reflected : paths.transmitted;
@@ -194,7 +207,7 @@ bool meet_plate(const half_mirror_params& hm, const part_frame& f, const glm::dv
     double u = rng.next_double() * total;
     std::size_t k = 0;
     while (k + 1 < family.size() && u >= family[k].weight) u -= family[k++].weight;
-    q.origin = entry + family[k].advance * t * along + (reflected ? glm::dvec3(0) : across);
+    q.origin = crossing.leaving(family[k].advance, !reflected);
     push_half_mirror(q.label, hm.films, reflected, cos_n < 0, std::uint16_t(k));
     if (reflected) {
       q.dir = reflect(q.dir, f.n);

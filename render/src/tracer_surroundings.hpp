@@ -44,10 +44,14 @@ void see_luminaire(const tracer_scene& ts, int which, const path_state<Polarizat
 }
 
 // How much of the light along a straight line gets through to `from` over [0, t_max): the half
-// mirror passes its transmittance (its plate's offset ignored), anything else stops it.
+// mirror passes its transmittance, anything else stops it. A plate passes its transmission at the
+// line's incidence, and the line goes on from where one of its transmitted paths (drawn by its
+// share) leaves it, as the tracer's own paths do (the light's end, shifted as much, is taken as
+// lying on the luminaire still).
 inline float transmittance_along(const tracer_scene& ts, glm::dvec3 from, const glm::dvec3& dir, double t_max,
-                                 std::uint64_t& rays) {
+                                 pcg32& rng, std::uint64_t& rays) {
   if (meet_luminaire(ts.ambient, from, dir, t_max).which >= 0) return 0;
+  const half_mirror_params& hm = ts.layout.half_mirror;
   float passed = 1;
   for (int crossing = 0; crossing < 4; ++crossing) {
     RTCRayHit rh = make_ray_hit(from, dir, ray_epsilon_mm);
@@ -56,9 +60,24 @@ inline float transmittance_along(const tracer_scene& ts, glm::dvec3 from, const 
     ++rays;
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return passed;
     if (rh.hit.instID[0] != part_half_mirror) return 0;
-    passed *= float(ts.layout.half_mirror.transmittance);
-    from += dir * double(rh.ray.tfar);
+    const glm::dvec3 hit = from + dir * double(rh.ray.tfar);
     t_max -= double(rh.ray.tfar);
+    from = hit;
+    if (hm.kind == half_mirror_kind::plate) {
+      const part_frame& f = ts.frames[part_half_mirror];
+      const double cos_n = glm::dot(dir, f.n);
+      if (std::abs(cos_n) < 1e-9) return 0;
+      const plate_paths paths = plate_paths_at(hm.plate, std::abs(cos_n), cos_n < 0);
+      if (!(paths.transmitted_total > 0)) return 0;
+      double u = rng.next_double() * paths.transmitted_total;
+      std::size_t k = 0;
+      while (k + 1 < paths.transmitted.size() && u >= paths.transmitted[k].weight) u -= paths.transmitted[k++].weight;
+      from = cross_plate(hm.plate, f, hit, dir).leaving(paths.transmitted[k].advance, true);
+      t_max -= glm::dot(from - hit, dir);
+      passed *= float(paths.transmitted_total);
+    } else {
+      passed *= float(hm.transmittance);
+    }
   }
   return 0;
 }
@@ -76,7 +95,7 @@ void sample_lights(const tracer_scene& ts, const path_state<Polarization, Label>
     const glm::dvec3 w = sun_sample_direction(a, u1, u2);
     const double cos_here = glm::dot(n, w);
     if (cos_here > 0) {
-      const float passed = transmittance_along(ts, p.origin, w, std::numeric_limits<double>::infinity(), rays);
+      const float passed = transmittance_along(ts, p.origin, w, std::numeric_limits<double>::infinity(), rng, rays);
       // The disc's luminance times its solid angle is the illuminance it makes facing it.
       if (passed > 0)
         see_ambient(p, reflected * float(a.sun_lux * cos_here) * passed, component_sun, ambient_sun, radiance, layers);
@@ -90,7 +109,7 @@ void sample_lights(const tracer_scene& ts, const path_state<Polarization, Label>
     const glm::dvec3 w = to / std::sqrt(r2);
     const double cos_here = glm::dot(n, w), cos_there = -glm::dot(l.frame.n, w);
     if (cos_here <= 0 || cos_there <= 0 || !(l.luminance > 0)) continue;
-    const float passed = transmittance_along(ts, p.origin, w, std::sqrt(r2) * (1 - 1e-6), rays);
+    const float passed = transmittance_along(ts, p.origin, w, std::sqrt(r2) * (1 - 1e-6), rng, rays);
     if (passed > 0) {
       const double geometry = cos_here * cos_there * l.area_mm2 / r2;
       see_ambient(p, reflected * l.luminance * float(geometry) * passed, component_luminaires,
