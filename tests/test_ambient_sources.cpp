@@ -78,6 +78,16 @@ scene card_scene(const test::temp_dir& dir) {
   return s;
 }
 
+// A disc luminaire (radius 30 mm, 2000 cd/m2) facing down on the card's centre from 50 mm above.
+luminaire_params disc_over_card() {
+  luminaire_params disc;
+  disc.shape = luminaire_shape::disc;
+  disc.pose = {.center_mm = {0, 0, 350}, .pitch_deg = 180};  // facing -z
+  disc.width_mm = 60;
+  disc.luminance_cd_m2 = 2000;
+  return disc;
+}
+
 // Where the eye sees the sun in the half mirror: the sun's direction mirrored in its plane.
 glm::dvec2 glare_pixel(const scene& s) {
   const pinhole_camera cam = make_camera(s);
@@ -127,11 +137,7 @@ TEST(AmbientSources, ALuminaireLightsADiffuseCardAsItsSolidAngleSays) {
   // illuminance is pi L R^2 / (R^2 + h^2), so the card shows albedo L R^2 / (R^2 + h^2).
   test::temp_dir dir;
   scene s = card_scene(dir);
-  luminaire_params disc;
-  disc.shape = luminaire_shape::disc;
-  disc.pose = {.center_mm = {0, 0, 350}, .pitch_deg = 180};  // facing -z
-  disc.width_mm = 60;
-  disc.luminance_cd_m2 = 2000;
+  luminaire_params disc = disc_over_card();
   s.environment.luminaires.push_back(disc);
   check_scene(s, "card under a luminaire");
   const render_snapshot snap = render_with_layers(s, {"lit=A:luminaire0 P:card E"}, 64);
@@ -177,12 +183,7 @@ double disc_illuminance(double L, double R, double x0, double h) {
 TEST(AmbientSources, LightSampledThroughAPlateCrossesItAtItsOwnAngle) {
   test::temp_dir dir;
   scene s = card_scene(dir);
-  luminaire_params disc;
-  disc.shape = luminaire_shape::disc;
-  disc.pose = {.center_mm = {0, 0, 350}, .pitch_deg = 180};  // facing -z
-  disc.width_mm = 60;
-  disc.luminance_cd_m2 = 2000;
-  s.environment.luminaires.push_back(disc);
+  s.environment.luminaires.push_back(disc_over_card());
   s.half_mirror.kind = half_mirror_kind::plate;
   s.half_mirror.plate.thickness_mm = 3;
   s.half_mirror.plate.index = 1.52;

@@ -169,10 +169,6 @@ bool meet_thin_half_mirror(const half_mirror_params& hm, const part_frame& f, co
   return true;
 }
 
-// The plate met at `hit` on its mid-plane: as the thin half mirror, the reflected and the
-// transmitted families split or chosen by their totals, and within a family one path chosen by
-// its share (so its Mueller matrix is divided by its own weight, the family's scalar weight
-// applied); the light leaves the plate's face where that path leaves it.
 // A ray (traced back along `dir`) crossing the plate whose mid-plane it meets at `hit`: where it
 // enters the near face, the way along the faces its paths advance inside, and the step from the
 // near face to the far one; a path of `advance` plate thicknesses leaves at `leaving`.
@@ -192,6 +188,10 @@ inline plate_crossing cross_plate(const plate_params& plate, const part_frame& f
           (cos_n < 0 ? -t : t) * f.n, t};
 }
 
+// The plate met at `hit` on its mid-plane: as the thin half mirror, the reflected and the
+// transmitted families split or chosen by their totals, and within a family one path chosen by
+// its share (so its Mueller matrix is divided by its own weight, the family's scalar weight
+// applied); the light leaves the plate's face where that path leaves it.
 template <class Polarization, class Label>
 bool meet_plate(const half_mirror_params& hm, const part_frame& f, const glm::dvec3& hit,
                 path_state<Polarization, Label>& p, path_stack<Polarization, Label>& stack, pcg32& rng) {
