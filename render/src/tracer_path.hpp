@@ -188,6 +188,14 @@ inline plate_crossing cross_plate(const plate_params& plate, const part_frame& f
           (cos_n < 0 ? -t : t) * f.n, t};
 }
 
+// One of a family of plate paths (`total` their weights' sum) drawn by its share.
+inline std::size_t draw_plate_path(const std::array<plate_path, plate_orders>& family, double total, pcg32& rng) {
+  double u = rng.next_double() * total;
+  std::size_t k = 0;
+  while (k + 1 < family.size() && u >= family[k].weight) u -= family[k++].weight;
+  return k;
+}
+
 // The plate met at `hit` on its mid-plane: as the thin half mirror, the reflected and the
 // transmitted families split or chosen by their totals, and within a family one path chosen by
 // its share (so its Mueller matrix is divided by its own weight, the family's scalar weight
@@ -204,9 +212,7 @@ bool meet_plate(const half_mirror_params& hm, const part_frame& f, const glm::dv
   const auto take = [&](path_state<Polarization, Label>& q, bool reflected, double weight) {
     const auto& family = reflected ? paths.reflected : paths.transmitted;
     const double total = reflected ? paths.reflected_total : paths.transmitted_total;
-    double u = rng.next_double() * total;
-    std::size_t k = 0;
-    while (k + 1 < family.size() && u >= family[k].weight) u -= family[k++].weight;
+    const std::size_t k = draw_plate_path(family, total, rng);
     q.origin = crossing.leaving(family[k].advance, !reflected);
     push_half_mirror(q.label, hm.films, reflected, cos_n < 0, std::uint16_t(k));
     if (reflected) {

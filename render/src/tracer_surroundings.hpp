@@ -69,9 +69,7 @@ inline float transmittance_along(const tracer_scene& ts, glm::dvec3 from, const 
       if (std::abs(cos_n) < 1e-9) return 0;
       const plate_paths paths = plate_paths_at(hm.plate, std::abs(cos_n), cos_n < 0);
       if (!(paths.transmitted_total > 0)) return 0;
-      double u = rng.next_double() * paths.transmitted_total;
-      std::size_t k = 0;
-      while (k + 1 < paths.transmitted.size() && u >= paths.transmitted[k].weight) u -= paths.transmitted[k++].weight;
+      const std::size_t k = draw_plate_path(paths.transmitted, paths.transmitted_total, rng);
       from = cross_plate(hm.plate, f, hit, dir).leaving(paths.transmitted[k].advance, true);
       t_max -= glm::dot(from - hit, dir);
       passed *= float(paths.transmitted_total);
