@@ -202,12 +202,39 @@ TEST(AmbientSources, LightSampledThroughAPlateCrossesItAtItsOwnAngle) {
   const double view_cos = 200 / std::hypot(300.0, 200.0);  // from (0, -300, 500) to (0, 0, 300)
   const double expected = passed(view_cos) * 0.6 * illuminance / std::numbers::pi;
   const double at_45 = passed(std::sqrt(0.5)) * passed(view_cos) * 0.6 * 2000 * 900 / (900 + 2500);
-  const render_snapshot snap = render_with_layers(s, {"lit=A:luminaire0 P:card H:t E"}, 64);
+  // The sampled light's label holds the plate it crossed on its way to the card.
+  const render_snapshot snap =
+      render_with_layers(s, {"lit=A:luminaire0 H:t P:card H:t E", "uncrossed=A:luminaire0 P:card H:t E"}, 64);
   const double lit = mean_green(snap.layer_image(0));
   std::printf("card through a plate: %.4f cd/m2, quadrature %.4f, with the plate's 45 deg transmission %.4f\n", lit,
               expected, at_45);
   EXPECT_NEAR(lit, expected, 0.005 * expected);
   EXPECT_GT(std::abs(at_45 / expected - 1), 0.01);  // what the check tells apart
+  EXPECT_EQ(mean_green(snap.layer_image(1)), 0.0);
+}
+
+// Light sampled from a lit card crosses the half mirror's films as the tracer's own paths do: a
+// polarizer film (no leak) on the thin half mirror (T = 0.5) between the card and the disc passes
+// half of the disc's unpolarized light; the card, diffuse, sends unpolarized light back through
+// both again. The card shows (0.5 x 0.5)^2 of what it shows under the disc alone. The eye also
+// sees the disc in the half mirror, through the film twice: 2000 x 0.5 x 0.5 cd/m2. (The layer
+// leaves out the light the half mirror's back sends between the card and itself.)
+TEST(AmbientSources, LightSampledThroughAPolarizingFilmIsPolarizedByIt) {
+  test::temp_dir dir;
+  scene s = card_scene(dir);
+  s.environment.luminaires.push_back(disc_over_card());
+  s.half_mirror.reflectance = s.half_mirror.transmittance = 0.5;
+  s.half_mirror.pose = {.center_mm = {0, 0, 330}, .pitch_deg = 0};  // facing +z, 30 mm over the card
+  s.half_mirror.films = {film_params{.kind = film_kind::polarizer, .face = part_face::front, .axis_deg = 20}};
+  check_scene(s, "card under a luminaire, behind a polarizing film");
+  const double expected = 0.25 * 0.25 * 0.6 * 2000 * 30.0 * 30 / (30.0 * 30 + 50.0 * 50);
+  const render_snapshot snap =
+      render_with_layers(s, {"lit=A:luminaire0 [^P]* P:card H:t E", "seen=A:luminaire0 H:r E"}, 64);
+  const double lit = mean_green(snap.layer_image(0)), seen = mean_green(snap.layer_image(1));
+  std::printf("card behind a polarizing film: %.4f cd/m2, analytic %.4f; the disc in the half mirror %.4f\n", lit,
+              expected, seen);
+  EXPECT_NEAR(lit, expected, 0.01 * expected);
+  EXPECT_NEAR(seen, 500, 1e-3 * 500);
 }
 
 TEST(AmbientSources, EachLuminaireIsItsOwnComponent) {

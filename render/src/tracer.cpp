@@ -230,9 +230,9 @@ static component_radiance trace_path_as(const tracer_scene& ts, sample_numbers n
       }
       if (missed) {
         if (ambient.room > 0)
-          see_ambient(p, p.throughput * ambient.room, component_room, ambient_room, radiance, layers);
+          see_ambient(p, p.label, p.throughput * ambient.room, component_room, ambient_room, radiance, layers);
         if (sees_sun(ambient, p.dir) && !light_sampled(p))
-          see_ambient(p, p.throughput * ambient.sun, component_sun, ambient_sun, radiance, layers);
+          see_ambient(p, p.label, p.throughput * ambient.sun, component_sun, ambient_sun, radiance, layers);
         break;
       }
       if constexpr (std::is_same_v<Label, path_trail>) p.label.add_segment(p.origin, p.dir, rh.ray.tfar, p.throughput);

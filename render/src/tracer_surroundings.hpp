@@ -13,16 +13,16 @@
 namespace airr::tracer_path {
 
 // Ambient light L of source `source` (an ambient_* index) reaching the eye along `p`: its image
-// component (and a luminaire's own, when kept), and the layers of p's label with the ambient event.
+// component (and a luminaire's own, when kept), and the layers of `label` (p's, or p's with a
+// sampled light's crossings) with the ambient event.
 template <class Polarization, class Label>
-void see_ambient(const path_state<Polarization, Label>& p, glm::vec3 L, image_component component, std::uint16_t source,
-                 component_radiance& radiance, layer_sink* layers) {
+void see_ambient(const path_state<Polarization, Label>& p, Label label, glm::vec3 L, image_component component,
+                 std::uint16_t source, component_radiance& radiance, layer_sink* layers) {
   if constexpr (polarized<Polarization>) L *= p.pol.unpolarized_seen();  // ambient light is unpolarized
   radiance[component] += L;
   if (component == component_luminaires && radiance.each_luminaire)
     radiance.each_luminaire[source - ambient_first_luminaire] += L;
   if constexpr (!std::is_same_v<Label, no_label>) {
-    Label label = p.label;
     label.push({path_event_kind::ambient, false, false, source});
     layers->add(label, L);
   }
@@ -39,45 +39,64 @@ template <class Polarization, class Label>
 void see_luminaire(const tracer_scene& ts, int which, const path_state<Polarization, Label>& p,
                    component_radiance& radiance, layer_sink* layers) {
   if (light_sampled(p)) return;
-  see_ambient(p, p.throughput * ts.ambient.luminaires[std::size_t(which)].luminance, component_luminaires,
+  see_ambient(p, p.label, p.throughput * ts.ambient.luminaires[std::size_t(which)].luminance, component_luminaires,
               std::uint16_t(ambient_first_luminaire + which), radiance, layers);
 }
 
-// How much of the light along a straight line gets through to `from` over [0, t_max): the half
-// mirror passes its transmittance, anything else stops it. A plate passes its transmission at the
-// line's incidence, and the line goes on from where one of its transmitted paths (drawn by its
-// share) leaves it, as the tracer's own paths do (the light's end, shifted as much, is taken as
-// lying on the luminaire still).
-inline float transmittance_along(const tracer_scene& ts, glm::dvec3 from, const glm::dvec3& dir, double t_max,
-                                 pcg32& rng, std::uint64_t& rays) {
-  if (meet_luminaire(ts.ambient, from, dir, t_max).which >= 0) return 0;
+// How much of the light along a straight line gets through to `from` over [0, t_max), per channel:
+// the half mirror passes its transmittance (with its films, and the state a polarizing one
+// leaves, of which the diffuse prop at `from` takes the intensity), anything else stops it. A
+// plate passes its transmission at the line's incidence, and the line goes on from where one of
+// its transmitted paths (drawn by its share) leaves it, as the tracer's own paths do (the light's
+// end, shifted as much, is taken as lying on the luminaire still). `label` gains the crossings as
+// the tracer meets them going back.
+template <class Polarization, class Label>
+glm::vec3 transmittance_along(const tracer_scene& ts, glm::dvec3 from, const glm::dvec3& dir, double t_max, pcg32& rng,
+                              std::uint64_t& rays, Label& label) {
+  if (meet_luminaire(ts.ambient, from, dir, t_max).which >= 0) return glm::vec3(0.0f);
   const half_mirror_params& hm = ts.layout.half_mirror;
+  const part_frame& f = ts.frames[part_half_mirror];
+  // What reaches `from` of the unpolarized light of the source, written from the far end back.
+  [[maybe_unused]] Polarization pol{};
+  if constexpr (polarized<Polarization>) {
+    const glm::dvec4 intensity{1, 0, 0, 0};
+    pol = {{intensity, intensity, intensity}, polarization_frame::about(-dir)};
+  }
   float passed = 1;
   for (int crossing = 0; crossing < 4; ++crossing) {
     RTCRayHit rh = make_ray_hit(from, dir, ray_epsilon_mm);
     rh.ray.tfar = float(std::min(t_max, double(std::numeric_limits<float>::max())));
     intersect(ts.embree->get(), rh);
     ++rays;
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return passed;
-    if (rh.hit.instID[0] != part_half_mirror) return 0;
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
+      if constexpr (polarized<Polarization>) return passed * pol.unpolarized_seen();
+      return glm::vec3(passed);
+    }
+    if (rh.hit.instID[0] != part_half_mirror) return glm::vec3(0.0f);
     const glm::dvec3 hit = from + dir * double(rh.ray.tfar);
     t_max -= double(rh.ray.tfar);
     from = hit;
+    const double cos_n = glm::dot(dir, f.n);
     if (hm.kind == half_mirror_kind::plate) {
-      const part_frame& f = ts.frames[part_half_mirror];
-      const double cos_n = glm::dot(dir, f.n);
-      if (std::abs(cos_n) < 1e-9) return 0;
+      if (std::abs(cos_n) < 1e-9) return glm::vec3(0.0f);
       const plate_paths paths = plate_paths_at(hm.plate, std::abs(cos_n), cos_n < 0);
-      if (!(paths.transmitted_total > 0)) return 0;
+      if (!(paths.transmitted_total > 0)) return glm::vec3(0.0f);
       const std::size_t k = draw_plate_path(paths.transmitted, paths.transmitted_total, rng);
       from = cross_plate(hm.plate, f, hit, dir).leaving(paths.transmitted[k].advance, true);
       t_max -= glm::dot(from - hit, dir);
       passed *= float(paths.transmitted_total);
+      push_half_mirror(label, hm.films, false, cos_n < 0, std::uint16_t(k));
+      if constexpr (polarized<Polarization>) {
+        const mueller m = path_polarization::plate_path_mueller(paths.transmitted[k]);
+        pol.half_mirror_passed(hm, f, &m);
+      }
     } else {
       passed *= float(hm.transmittance);
+      push_half_mirror(label, hm.films, false, cos_n < 0, 0);
+      if constexpr (polarized<Polarization>) pol.half_mirror_passed(hm, f);
     }
   }
-  return 0;
+  return glm::vec3(0.0f);
 }
 
 // At a Lambertian prop of albedo `albedo` at p.origin, facing n (towards where p came from):
@@ -93,10 +112,13 @@ void sample_lights(const tracer_scene& ts, const path_state<Polarization, Label>
     const glm::dvec3 w = sun_sample_direction(a, u1, u2);
     const double cos_here = glm::dot(n, w);
     if (cos_here > 0) {
-      const float passed = transmittance_along(ts, p.origin, w, std::numeric_limits<double>::infinity(), rng, rays);
+      Label label = p.label;
+      const glm::vec3 passed =
+          transmittance_along<Polarization>(ts, p.origin, w, std::numeric_limits<double>::infinity(), rng, rays, label);
       // The disc's luminance times its solid angle is the illuminance it makes facing it.
-      if (passed > 0)
-        see_ambient(p, reflected * float(a.sun_lux * cos_here) * passed, component_sun, ambient_sun, radiance, layers);
+      if (passed != glm::vec3(0.0f))
+        see_ambient(p, std::move(label), reflected * float(a.sun_lux * cos_here) * passed, component_sun, ambient_sun,
+                    radiance, layers);
     }
   }
   for (std::size_t k = 0; k < a.luminaires.size(); ++k) {
@@ -107,10 +129,12 @@ void sample_lights(const tracer_scene& ts, const path_state<Polarization, Label>
     const glm::dvec3 w = to / std::sqrt(r2);
     const double cos_here = glm::dot(n, w), cos_there = -glm::dot(l.frame.n, w);
     if (cos_here <= 0 || cos_there <= 0 || !(l.luminance > 0)) continue;
-    const float passed = transmittance_along(ts, p.origin, w, std::sqrt(r2) * (1 - 1e-6), rng, rays);
-    if (passed > 0) {
+    Label label = p.label;
+    const glm::vec3 passed =
+        transmittance_along<Polarization>(ts, p.origin, w, std::sqrt(r2) * (1 - 1e-6), rng, rays, label);
+    if (passed != glm::vec3(0.0f)) {
       const double geometry = cos_here * cos_there * l.area_mm2 / r2;
-      see_ambient(p, reflected * l.luminance * float(geometry) * passed, component_luminaires,
+      see_ambient(p, std::move(label), reflected * l.luminance * float(geometry) * passed, component_luminaires,
                   std::uint16_t(ambient_first_luminaire + k), radiance, layers);
     }
   }
