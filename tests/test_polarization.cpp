@@ -61,6 +61,33 @@ TEST(Polarization, FramesTurnAsTheirAnglesSay) {
   EXPECT_NEAR(glm::dot(glm::cross(f.x, f.y), f.k), 1, 1e-12);
 }
 
+// A surface's s direction is across the light arriving and leaving (reflected or refracted, in
+// the plane of incidence): the frames built on it as it is equal those that project it again.
+TEST(Polarization, ASurfacesSDirectionIsAcrossTheLightInAndOut) {
+  pcg32 rng(7, 1);
+  const auto direction = [&] {
+    return glm::normalize(glm::dvec3(rng.next_double(), rng.next_double(), rng.next_double()) - 0.5);
+  };
+  for (int i = 0; i < 1000; ++i) {
+    const glm::dvec3 k = direction(), n = direction();
+    const polarization_frame sp = polarization_frame::at_surface(k, n);
+    const polarization_frame projected = polarization_frame::with_x(k, glm::cross(k, n));
+    const glm::dvec3 out[2] = {reflect(k, n), glm::normalize(k + 0.3 * n)};  // reflected, refracted-like
+    for (const glm::dvec3& k_out : out) {
+      const polarization_frame a = polarization_frame::with_unit_x(k_out, sp.x);
+      const polarization_frame b = polarization_frame::with_x(k_out, sp.x);
+      for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(a.x[c], b.x[c], 1e-14) << i;
+        EXPECT_NEAR(a.y[c], b.y[c], 1e-14) << i;
+      }
+    }
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_NEAR(sp.x[c], projected.x[c], 1e-14) << i;
+      EXPECT_NEAR(sp.y[c], projected.y[c], 1e-14) << i;
+    }
+  }
+}
+
 // The parts' closed forms are mueller_of of their Jones matrices.
 TEST(Polarization, ClosedFormsAreTheJonesMatricesMuellerMatrices) {
   const complex rs(0.3, -0.7), rp(-0.55, 0.2);

@@ -85,7 +85,7 @@ void path_polarization::half_mirror_reflection(const half_mirror_params& hm, con
                                                const glm::dvec3& k_in, const mueller* taken) {
   // Every kind written in the light's s/p frames.
   const polarization_frame in = polarization_frame::at_surface(k_in, f.n);
-  const polarization_frame out = polarization_frame::with_x(reflect(k_in, f.n), in.x);
+  const polarization_frame out = polarization_frame::with_unit_x(reflect(k_in, f.n), in.x);
   if (hm.kind == half_mirror_kind::plate) {
     const double cos_n = glm::dot(k_in, f.n);
     if (taken) return apply(*taken, in, out);
@@ -128,7 +128,7 @@ void path_polarization::mirror(const glm::dvec3& k_in) {
   if (glm::dot(bisector, bisector) < 1e-24) return;  // light passing straight on is not reflected
   // Written from the light's s/p frame, the mirror needs no turn into it; it leaves along frame.k.
   const polarization_frame in = polarization_frame::at_surface(k_in, glm::normalize(bisector));
-  apply(interface_mueller(-1.0, 1.0), in, polarization_frame::with_x(frame.k, in.x));
+  apply(interface_mueller(-1.0, 1.0), in, polarization_frame::with_unit_x(frame.k, in.x));
 }
 
 void path_polarization::depolarize(const glm::dvec3& k_in) {

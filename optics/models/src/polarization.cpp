@@ -177,9 +177,10 @@ polarization_frame polarization_frame::with_x(const glm::dvec3& k, const glm::dv
 
 polarization_frame polarization_frame::at_surface(const glm::dvec3& k, const glm::dvec3& n) {
   const glm::dvec3 s = glm::cross(k, n);
+  const double s2 = glm::dot(s, s);
   // Within 1e-9 rad of normal incidence every direction across k is an s direction.
-  if (glm::dot(s, s) < 1e-18) return about(k);
-  return with_x(k, s);
+  if (s2 < 1e-18) return about(k);
+  return with_unit_x(k, s / std::sqrt(s2));
 }
 
 double angle_in(const polarization_frame& f, const glm::dvec3& axis) {
@@ -208,14 +209,14 @@ polarized_step reflect_polarized(const polarization_frame& in, const glm::dvec3&
   const polarization_frame sp = polarization_frame::at_surface(in.k, n);
   // s is across the plane of incidence, so the light leaving shares it.
   return {times_rotator(interface_mueller(rs, rp), double_angle(in, sp.x)),
-          polarization_frame::with_x(reflect(in.k, n), sp.x)};
+          polarization_frame::with_unit_x(reflect(in.k, n), sp.x)};
 }
 
 polarized_step transmit_polarized(const polarization_frame& in, const glm::dvec3& n, const glm::dvec3& k_out,
                                   complex ts, complex tp, double energy) {
   const polarization_frame sp = polarization_frame::at_surface(in.k, n);
   return {times_rotator(interface_mueller(std::sqrt(energy) * ts, std::sqrt(energy) * tp), double_angle(in, sp.x)),
-          polarization_frame::with_x(k_out, sp.x)};
+          polarization_frame::with_unit_x(k_out, sp.x)};
 }
 
 }  // namespace airr

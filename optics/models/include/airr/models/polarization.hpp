@@ -66,6 +66,9 @@ struct polarization_frame {
   static polarization_frame about(const glm::dvec3& k);
   // The frame about k whose x is `x` made perpendicular to k (x not along k).
   static polarization_frame with_x(const glm::dvec3& k, const glm::dvec3& x);
+  // The frame about k whose x is `s`, a unit vector across k already (the s direction a surface
+  // gives the light arriving and leaving alike): nothing to project or normalise.
+  static polarization_frame with_unit_x(const glm::dvec3& k, const glm::dvec3& s) { return {s, glm::cross(k, s), k}; }
   // The s/p frame of light travelling along k at a surface of unit normal n (either side):
   // x = s = k x n normalised, y = p = k x s. At normal incidence s is any direction across k.
   static polarization_frame at_surface(const glm::dvec3& k, const glm::dvec3& n);
