@@ -63,6 +63,29 @@ TEST(GuiEnvironment, TheViewingZoneMapsTheSmallestLegibleCharacter) {
   EXPECT_GT(curve_pixels(img, zone, {255, 90, 90}), 5) << "the best eye";
 }
 
+// The zone's legibility map in a lit room: its title (the threshold, the image's and the zone's
+// legible share) is too long to share the top line with the y axis's title, and takes a line of
+// its own: the two do not overlap, and both lie above the map.
+TEST(GuiEnvironment, TheLegibilityMapsTitleKeepsClearOfItsAxisTitle) {
+  test::temp_dir dir;
+  const std::string shot = dir.file("legible.png");
+  const studio_run run =
+      run_studio(dir, default_scene() +
+                          " --set source.luminance_cd_m2=500 --set environment.room.illuminance_lux=300"
+                          " --zone legible-3 --frames 10 --screenshot " +
+                          shot);
+  ASSERT_EQ(run.status, 0) << run.log;
+  const auto regions = nlohmann::json::parse(std::ifstream(shot + ".json"));
+  const auto title = region(regions, "plot_zone_title"), axis = region(regions, "plot_zone_y_title"),
+             zone = region(regions, "plot_zone");
+  ASSERT_GT(title[2], title[0]) << "no title drawn";
+  ASSERT_GT(axis[2], axis[0]) << "no y title drawn";
+  const bool overlap = title[0] < axis[2] && axis[0] < title[2] && title[1] < axis[3] && axis[1] < title[3];
+  EXPECT_FALSE(overlap) << "title " << title[0] << ".." << title[2] << ", y title " << axis[0] << ".." << axis[2];
+  EXPECT_LE(title[3], zone[1]);
+  EXPECT_LE(axis[3], zone[1]);
+}
+
 // A ceiling panel over the device: drawn in the top view as its outline and in the 3D view as a
 // lit face, which the same scene without it lacks.
 TEST(GuiEnvironment, ALuminaireShowsInTheLayoutViews) {

@@ -77,9 +77,13 @@ plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, cons
   ImDrawList* dl = ImGui::GetWindowDrawList();
   const float line_h = ImGui::GetTextLineHeight();
 
+  // A title too long to share the top line with the y title takes a line of its own above it.
+  const float title_w = p.title.empty() ? 0.0f : ImGui::CalcTextSize(p.title.c_str()).x;
+  const float y_title_w = p.y_title.empty() || p.compact ? 0.0f : ImGui::CalcTextSize(p.y_title.c_str()).x;
+  const float title_line = y_title_w > 0 && title_w > 0 && y_title_w + line_h + title_w > width ? line_h : 0.0f;
   // Plot area inside margins for tick labels and titles.
   const ImVec2 a = p.compact ? ImVec2(origin.x + 0.2f * line_h, origin.y + 1.1f * line_h)
-                             : ImVec2(origin.x + 4.2f * line_h, origin.y + 1.4f * line_h);
+                             : ImVec2(origin.x + 4.2f * line_h, origin.y + title_line + 1.4f * line_h);
   const ImVec2 b = p.compact ? ImVec2(origin.x + width - 0.2f * line_h, origin.y + height - 0.2f * line_h)
                              : ImVec2(origin.x + width - 0.8f * line_h, origin.y + height - 2.4f * line_h);
   if (p.equal_aspect && b.x > a.x && b.y > a.y) {
@@ -113,10 +117,15 @@ plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, cons
     dl->PopClipRect();
   }
 
+  plot_hover hover;
+  const auto draw_title = [&](const std::string& text, ImVec2 at, float w, float(&box)[4]) {
+    dl->AddText(at, axis_col, text.c_str());
+    box[0] = at.x, box[1] = at.y, box[2] = at.x + w, box[3] = at.y + line_h;
+  };
   if (!p.title.empty()) {
-    const float w = ImGui::CalcTextSize(p.title.c_str()).x;
     // The y title takes the left; a compact plot's title is centred.
-    dl->AddText(ImVec2(p.compact ? (a.x + b.x - w) / 2 : b.x - w, origin.y), axis_col, p.title.c_str());
+    const float x = p.compact ? (a.x + b.x - title_w) / 2 : b.x - title_w;
+    draw_title(p.title, ImVec2(std::max(origin.x, x), origin.y), title_w, hover.title_box);
   }
   const auto xt =
       p.compact ? std::vector<double>{} : nice_ticks(p.x_min, p.x_max, std::max(2, int((b.x - a.x) / (5 * line_h))));
@@ -146,7 +155,7 @@ plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, cons
   }
   if (!p.y_title.empty() && !p.compact) {
     // ImGui draws no vertical text: the y title sits above the y axis.
-    dl->AddText(ImVec2(origin.x, origin.y), axis_col, p.y_title.c_str());
+    draw_title(p.y_title, ImVec2(origin.x, origin.y + title_line), y_title_w, hover.y_title_box);
   }
 
   dl->PushClipRect(a, b, true);
@@ -205,7 +214,6 @@ plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, cons
     ly += 1.15f * line_h;
   }
 
-  plot_hover hover;
   hover.area[0] = a.x;
   hover.area[1] = a.y;
   hover.area[2] = b.x;

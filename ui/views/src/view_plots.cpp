@@ -159,6 +159,9 @@ static void draw_viewing_zone(studio& st, const predicted_plots* pred, float h, 
                                      .height = h,
                                      .heatmap = &map});
   keep("plot_zone", zone);
+  st.regions["plot_zone_title"] = {zone.title_box[0], zone.title_box[1], zone.title_box[2], zone.title_box[3]};
+  st.regions["plot_zone_y_title"] = {zone.y_title_box[0], zone.y_title_box[1], zone.y_title_box[2],
+                                     zone.y_title_box[3]};
   if (st.zone_quantity == 0 && pred) {
     ImGui::TextDisabled("%.0f ms (%d x %d eyes, geometric); click: move the observer", pred->zone_ms, g.nx, g.ny);
   } else if (full) {

@@ -45,6 +45,9 @@ struct plot_hover {
   double x = 0, y = 0;
   float area[4] = {0, 0, 0, 0};    // the plot area on screen: x0, y0, x1, y1
   double range[4] = {0, 0, 0, 0};  // the ranges drawn there: x_min, x_max, y_min, y_max
+  // Where the title and the y title were drawn (x0, y0, x1, y1; all zero when not drawn).
+  float title_box[4] = {0, 0, 0, 0};
+  float y_title_box[4] = {0, 0, 0, 0};
 };
 
 plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, const plot_params& params);
