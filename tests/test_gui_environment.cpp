@@ -1,6 +1,7 @@
 // The device in its room, in the designer under Xvfb: the viewing zone maps the smallest legible
-// character and marks the best eye; a ceiling luminaire shows in the layout views, 3D included;
-// the render view shows each luminaire's light as a component of its own.
+// character and marks the best eye, with the legibility map beside it; a ceiling luminaire shows
+// in the layout views, 3D included; the render view shows each luminaire's light as a component
+// of its own.
 #include <fstream>
 #include <string>
 
@@ -84,6 +85,34 @@ TEST(GuiEnvironment, TheLegibilityMapsTitleKeepsClearOfItsAxisTitle) {
   EXPECT_FALSE(overlap) << "title " << title[0] << ".." << title[2] << ", y title " << axis[0] << ".." << axis[2];
   EXPECT_LE(title[3], zone[1]);
   EXPECT_LE(axis[3], zone[1]);
+}
+
+// The legibility map beside the viewing zone: once the full pass exists, the share of the image
+// legible at the chosen threshold from each eye stands beside the visible fraction, on the same
+// row; at 1.5 far fewer of its eyes read nothing legible (viridis' bottom) than at 25.
+TEST(GuiEnvironment, TheLegibilityMapStandsBesideTheViewingZone) {
+  test::temp_dir dir;
+  int nothing_legible[2] = {0, 0};
+  const char* thresholds[2] = {"1.5", "25"};
+  for (int k = 0; k < 2; ++k) {
+    const std::string shot = dir.file(std::string("beside") + thresholds[k] + ".png");
+    const studio_run run =
+        run_studio(dir, default_scene() +
+                            " --set source.luminance_cd_m2=500 --set environment.room.illuminance_lux=50"
+                            " --zone visible --legible-at " +
+                            thresholds[k] + " --frames 10 --screenshot " + shot);
+    ASSERT_EQ(run.status, 0) << run.log;
+    const rgb8_image img = read_png(shot);
+    ASSERT_GT(img.width, 0) << run.log;
+    const auto regions = nlohmann::json::parse(std::ifstream(shot + ".json"));
+    const auto zone = region(regions, "plot_zone"), legibility = region(regions, "plot_zone_legibility");
+    EXPECT_GE(legibility[0], zone[2]) << "beside the zone, to its right";
+    EXPECT_EQ(legibility[1], zone[1]) << "on the same row";
+    EXPECT_GT(curve_pixels(img, zone, {253, 231, 37}), 100) << "the visible fraction, fully seen at the centre";
+    nothing_legible[k] = curve_pixels(img, legibility, {68, 1, 84});
+  }
+  std::printf("eyes' pixels with nothing legible: %d at 1.5, %d at 25\n", nothing_legible[0], nothing_legible[1]);
+  EXPECT_LT(nothing_legible[0] + 1000, nothing_legible[1]);
 }
 
 // A ceiling panel over the device: drawn in the top view as its outline and in the 3D view as a

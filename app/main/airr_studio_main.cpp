@@ -16,6 +16,7 @@
 #include "airr/core/assets.hpp"
 #include "airr/formats/design_spec.hpp"
 #include "airr/formats/scene_json.hpp"
+#include "airr/measure/contrast.hpp"
 #include "airr/render/memory_need.hpp"
 #include "airr/ui/panels/panels.hpp"
 #include "airr/ui/platform/screenshot.hpp"
@@ -46,7 +47,8 @@ struct options {
   bool luminance_view = false;     // the render view shows luminance in false colour
   bool contrast_view = false;      // ... or the contrast
   std::string plots = "mtf";       // the Plots window's tab
-  std::string zone;                // the viewing zone's quantity; a full one is computed before the screenshot
+  std::string zone;                // the viewing zone's quantity; the full pass is computed before the screenshot
+  double legible_at = 3;           // the contrast threshold of the legibility map beside the zone
   std::string design;              // a design spec for the Optimise and Tolerance windows
   airr::ui::design_script design_run;
   airr::ui::ghost_script ghost_run;
@@ -125,9 +127,13 @@ int main(int argc, char** argv) {
                  "default: once the edit's plots are done)")
       ->check(CLI::Range(0.0, 3600.0));
   cli.add_option("--zone", opt.zone,
-                 "The viewing zone shows this quantity; a scripted run computes the full pass before its screenshot")
+                 "The viewing zone shows this quantity; a scripted run computes the full pass before its screenshot, "
+                 "and the legibility map beside the zone")
       ->check(CLI::IsMember(
           std::vector<std::string>(std::begin(airr::ui::zone_quantity_keys), std::end(airr::ui::zone_quantity_keys))));
+  cli.add_option("--legible-at", opt.legible_at,
+                 "The legibility map beside the viewing zone counts from this contrast threshold (1.5, 3 or 25)")
+      ->check(CLI::IsMember({1.5, 3.0, 25.0}));
   cli.add_option("--plots", opt.plots, "The Plots window opens on this tab (mtf or bokeh)")
       ->check(CLI::IsMember({"mtf", "bokeh"}));
   cli.add_option("--component", opt.component,
@@ -236,6 +242,9 @@ int main(int argc, char** argv) {
   for (int k = 0; k < int(std::size(airr::ui::zone_quantity_keys)); ++k) {
     if (opt.zone == airr::ui::zone_quantity_keys[k]) st.zone_quantity = k;
   }
+  for (std::size_t k = 0; k < airr::default_contrast_thresholds.size(); ++k) {
+    if (opt.legible_at == airr::default_contrast_thresholds[k]) st.legibility_threshold = int(k);
+  }
   st.keep_recovery = opt.frames == 0 && opt.bench_edits == 0;
   if (opt.soak.seconds > 0) {
     if (opt.soak.log.empty()) opt.soak.log = "soak.csv";
@@ -336,7 +345,7 @@ int main(int argc, char** argv) {
     if (opt.frames > 0 && frame >= opt.frames) {
       // A scripted full viewing zone runs to its end before the screenshot.
       const bool zone_current = st.zone_job_ && st.zone_job_->generation() == st.generation;
-      if (st.zone_quantity > 0 && opt.edits.empty() && (!zone_current || st.zone_job_->running())) {
+      if (!opt.zone.empty() && opt.edits.empty() && (!zone_current || st.zone_job_->running())) {
         if (!zone_current) airr::ui::start_full_zone(st);
         glfwSwapBuffers(window);
         continue;

@@ -118,9 +118,11 @@ plot_hover draw_plot(const char* id, const std::vector<plot_curve>& curves, cons
   }
 
   plot_hover hover;
+  // A title wider than the whole plot is drawn in a smaller font that fits it.
   const auto draw_title = [&](const std::string& text, ImVec2 at, float w, float(&box)[4]) {
-    dl->AddText(at, axis_col, text.c_str());
-    box[0] = at.x, box[1] = at.y, box[2] = at.x + w, box[3] = at.y + line_h;
+    const float shrink = w > width ? width / w : 1.0f;
+    dl->AddText(ImGui::GetFont(), ImGui::GetFontSize() * shrink, at, axis_col, text.c_str());
+    box[0] = at.x, box[1] = at.y, box[2] = at.x + w * shrink, box[3] = at.y + line_h;
   };
   if (!p.title.empty()) {
     // The y title takes the left; a compact plot's title is centred.

@@ -69,8 +69,59 @@ static std::size_t best_character_eye(const full_zone_map& m) {
   return best;
 }
 
+// One map of the zone: the values on the grid, the observer (and any marked eye) on top.
+static plot_hover draw_zone_map(const char* id, const eye_grid& g, const plot_heatmap& map,
+                                const std::vector<plot_curve>& marks, const char* title, float h) {
+  const double hx = 0.5 * (g.x_max - g.x_min) / std::max(1, g.nx - 1),
+               hy = 0.5 * (g.y_max - g.y_min) / std::max(1, g.ny - 1);
+  return draw_plot(id, marks,
+                   {.title = title,
+                    .x_title = "observer azimuth (deg)",
+                    .y_title = "elevation (deg)",
+                    .x_min = g.x_min - hx,
+                    .x_max = g.x_max + hx,
+                    .y_min = g.y_min - hy,
+                    .y_max = g.y_max + hy,
+                    .auto_x = false,
+                    .auto_y = false,
+                    .height = h,
+                    .heatmap = &map});
+}
+
+// The contrast threshold of the legibility map beside the zone, chosen among the full pass's.
+static void choose_legibility_threshold(studio& st, const full_zone_map& full) {
+  const int n = int(full.thresholds.size());
+  st.legibility_threshold = std::clamp(st.legibility_threshold, 0, std::max(0, n - 1));
+  if (n == 0) return;
+  char label[32];
+  std::snprintf(label, sizeof label, "%g", full.thresholds[std::size_t(st.legibility_threshold)]);
+  ImGui::SetNextItemWidth(4 * ImGui::GetFontSize());
+  if (ImGui::BeginCombo("legible at", label)) {
+    for (int k = 0; k < n; ++k) {
+      std::snprintf(label, sizeof label, "%g", full.thresholds[std::size_t(k)]);
+      if (ImGui::Selectable(label, k == st.legibility_threshold)) st.legibility_threshold = k;
+    }
+    ImGui::EndCombo();
+  }
+}
+
+// The legibility map beside the zone's quantity: from each eye, the share of the aerial image
+// legible at the chosen contrast threshold.
+static plot_hover draw_legibility_map(const studio& st, const full_zone_map& full, float h) {
+  if (full.thresholds.empty()) return {};
+  const std::size_t k = std::size_t(st.legibility_threshold);
+  const eye_grid& g = full.grid;
+  const plot_heatmap map{full.contrast_share.at(k), g.nx, g.ny, g.x_min, g.x_max, g.y_min, g.y_max, 0, 1};
+  const glm::dvec2 at = eye_grid_coordinates(st.doc, g, observer_position(st.doc));
+  char title[64];
+  std::snprintf(title, sizeof title, "share legible at %g", full.thresholds[k]);
+  return draw_zone_map("zone_legibility", g, map, {{"observer", {at.x}, {at.y}, IM_COL32(255, 255, 255, 255)}}, title,
+                       h);
+}
+
 // The viewing zone: the geometric visible fraction from the predicted plots, or a quantity of
-// the full pass (started on demand, for the current layout only).
+// the full pass (started on demand, for the current layout only), and once the full pass exists
+// the legibility map beside it.
 template <typename Keep>
 static void draw_viewing_zone(studio& st, const predicted_plots* pred, float h, const Keep& keep) {
   static const char* const quantities[] = {"visible fraction",         "brightness (full)",   "mean MTF (full)",
@@ -80,46 +131,57 @@ static void draw_viewing_zone(studio& st, const predicted_plots* pred, float h, 
   static_assert(IM_ARRAYSIZE(quantities) == IM_ARRAYSIZE(zone_quantity_keys));
   ImGui::SetNextItemWidth(10 * ImGui::GetFontSize());
   ImGui::Combo("viewing zone", &st.zone_quantity, quantities, IM_ARRAYSIZE(quantities));
+  const bool geometric = st.zone_quantity == 0;
+  const bool legibility_quantity = st.zone_quantity >= first_legible_quantity && st.zone_quantity < first_char_quantity;
+  const bool has_zone = pred && !pred->zone.visible.empty();
+  zone_job* job = st.zone_job_.get();
+  const bool current = job && job->generation() == st.generation;
+  std::optional<full_zone_map> full;
+  if (current && !job->running()) full = job->result();
+  const bool beside = full && !legibility_quantity;
+  if (beside) {
+    ImGui::SameLine();
+    choose_legibility_threshold(st, *full);
+  }
+  if (current && job->running()) {
+    ImGui::ProgressBar(float(job->progress()), ImVec2(-6 * ImGui::GetFontSize(), 0));
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel")) st.zone_job_.reset();
+  } else if (has_zone && !full) {
+    if (current && !job->error().empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", job->error().c_str());
+    if (ImGui::Button("Compute the full pass (15 x 15 eyes)")) start_full_zone(st);
+    if (geometric) {
+      ImGui::SameLine();
+      ImGui::TextDisabled("(the zone's other maps and its legibility)");
+    }
+  }
   const eye_grid* grid = nullptr;
   const std::vector<double>* values = nullptr;
   double hi = 1;
-  std::optional<full_zone_map> full;
   std::vector<double> shown;  // the contrast, infinite values at its top
   std::optional<double> legible;
-  if (st.zone_quantity == 0) {
-    if (pred && !pred->zone.visible.empty()) {
+  if (geometric) {
+    if (has_zone) {
       grid = &pred->zone.grid;
       values = &pred->zone.visible;
     }
-  } else {
-    zone_job* job = st.zone_job_.get();
-    const bool current = job && job->generation() == st.generation;
-    if (current && job->running()) {
-      ImGui::ProgressBar(float(job->progress()), ImVec2(-6 * ImGui::GetFontSize(), 0));
-      ImGui::SameLine();
-      if (ImGui::Button("Cancel")) st.zone_job_.reset();
-    } else if (pred && !pred->zone.visible.empty() && (!current || !job->result())) {
-      if (current && !job->error().empty()) ImGui::TextColored(ImVec4(1, 0.45f, 0.4f, 1), "%s", job->error().c_str());
-      if (ImGui::Button("Compute the full pass (15 x 15 eyes)")) start_full_zone(st);
-    }
-    if (current && !job->running()) full = job->result();
-    if (full) {
-      grid = &full->grid;
-      values = zone_values(*full, st.zone_quantity, shown);
-      if (st.zone_quantity >= first_legible_quantity && st.zone_quantity < first_char_quantity) {
-        legible = legible_share(*full, std::size_t(st.zone_quantity - first_legible_quantity));
-      } else if (st.zone_quantity != 1) {
-        hi = 0;
-        for (double v : *values) hi = std::isfinite(v) ? std::max(hi, v) : hi;
-        if (!(hi > 0)) hi = 1;
-      }
+  } else if (full) {
+    grid = &full->grid;
+    values = zone_values(*full, st.zone_quantity, shown);
+    if (legibility_quantity) {
+      legible = legible_share(*full, std::size_t(st.zone_quantity - first_legible_quantity));
+    } else if (st.zone_quantity != 1) {
+      hi = 0;
+      for (double v : *values) hi = std::isfinite(v) ? std::max(hi, v) : hi;
+      if (!(hi > 0)) hi = 1;
     }
   }
   if (!grid || !values) return;
   const eye_grid& g = *grid;
+  const bool character = full && st.zone_quantity == first_char_quantity;
   // The character heights span a narrow band: the scale starts at the smallest.
   double lo = 0;
-  if (full && st.zone_quantity == first_char_quantity) {
+  if (character) {
     lo = hi;
     for (double v : *values) lo = std::isfinite(v) ? std::min(lo, v) : lo;
     if (!(lo < hi)) lo = 0;
@@ -129,7 +191,7 @@ static void draw_viewing_zone(studio& st, const predicted_plots* pred, float h, 
   std::vector<plot_curve> observer = {{"observer", {at.x}, {at.y}, IM_COL32(255, 255, 255, 255)}};
   char title[160];
   const std::size_t eyes = values->size();
-  const std::size_t best_eye = full && st.zone_quantity == first_char_quantity ? best_character_eye(*full) : eyes;
+  const std::size_t best_eye = character ? best_character_eye(*full) : eyes;
   const bool best = best_eye < eyes;
   if (best) {
     const int ix = int(best_eye) % g.nx, iy = int(best_eye) / g.nx;
@@ -138,35 +200,37 @@ static void draw_viewing_zone(studio& st, const predicted_plots* pred, float h, 
   if (legible) {
     std::snprintf(title, sizeof title, "%s: share of the image; legible share of the zone %.2f",
                   quantities[st.zone_quantity], *legible);
-  } else if (full && st.zone_quantity == first_char_quantity) {
+  } else if (character) {
     std::snprintf(title, sizeof title, best ? "smallest character, %.3g to %.3g mm" : "illegible from every eye", lo,
                   hi);
   } else {
     std::snprintf(title, sizeof title, "%s, 0 to %.3g", quantities[st.zone_quantity], hi);
   }
-  const double hx = 0.5 * (g.x_max - g.x_min) / std::max(1, g.nx - 1),
-               hy = 0.5 * (g.y_max - g.y_min) / std::max(1, g.ny - 1);
-  const plot_hover zone = draw_plot("zone", observer,
-                                    {.title = title,
-                                     .x_title = "observer azimuth (deg)",
-                                     .y_title = "elevation (deg)",
-                                     .x_min = g.x_min - hx,
-                                     .x_max = g.x_max + hx,
-                                     .y_min = g.y_min - hy,
-                                     .y_max = g.y_max + hy,
-                                     .auto_x = false,
-                                     .auto_y = false,
-                                     .height = h,
-                                     .heatmap = &map});
+  const bool table = beside && ImGui::BeginTable("zone_maps", 2);
+  if (table) ImGui::TableNextColumn();
+  const plot_hover zone = draw_zone_map("zone", g, map, observer, title, h);
   keep("plot_zone", zone);
   st.regions["plot_zone_title"] = {zone.title_box[0], zone.title_box[1], zone.title_box[2], zone.title_box[3]};
   st.regions["plot_zone_y_title"] = {zone.y_title_box[0], zone.y_title_box[1], zone.y_title_box[2],
                                      zone.y_title_box[3]};
-  if (st.zone_quantity == 0 && pred) {
+  plot_hover legibility{};
+  if (table) {
+    ImGui::TableNextColumn();
+    legibility = draw_legibility_map(st, *full, h);
+    keep("plot_zone_legibility", legibility);
+    ImGui::EndTable();
+  }
+  if (geometric && pred) {
     ImGui::TextDisabled("%.0f ms (%d x %d eyes, geometric); click: move the observer", pred->zone_ms, g.nx, g.ny);
-  } else if (full) {
+  }
+  if (full) {
     ImGui::TextDisabled("full pass %.1f s (%d x %d eyes); grey: nothing seen; click: move the observer", full->seconds,
-                        g.nx, g.ny);
+                        full->grid.nx, full->grid.ny);
+    if (table && !full->thresholds.empty()) {
+      const std::size_t k = std::size_t(st.legibility_threshold);
+      ImGui::TextDisabled("legible share of the zone at %g: %.2f (the eyes that see %.0f%% of the image legible)",
+                          full->thresholds[k], legible_share(*full, k), 100 * legible_image_share);
+    }
     if (best) {
       ImGui::TextDisabled(
           "best eye (red): %.3g mm, %.3g arcmin; the top of the scale also holds the eyes where the "
@@ -174,10 +238,11 @@ static void draw_viewing_zone(studio& st, const predicted_plots* pred, float h, 
           full->char_height_mm[best_eye], full->char_arcmin[best_eye]);
     }
   }
-  if (zone.clicked) {
-    place_observer(st.doc, g, zone.x, zone.y);
+  for (const plot_hover* p : {&zone, static_cast<const plot_hover*>(&legibility)}) {
+    if (!p->clicked) continue;
+    place_observer(st.doc, p == &zone ? g : full->grid, p->x, p->y);
     char msg[96];
-    std::snprintf(msg, sizeof msg, "observer moved to azimuth %.1f, elevation %.1f deg", zone.x, zone.y);
+    std::snprintf(msg, sizeof msg, "observer moved to azimuth %.1f, elevation %.1f deg", p->x, p->y);
     st.status = msg;
   }
 }

@@ -150,9 +150,12 @@ struct studio {
   // simulates with a fifth of them).
   std::uint64_t predict_samples = 1000000;
 
-  // The viewing zone's map: 0 the visible fraction (geometric, every edit); 1 brightness, 2 mean
-  // MTF, 3 stray light from the full pass, run on demand for one layout generation.
+  // The viewing zone's map: 0 the visible fraction (geometric, every edit), the others from the
+  // full pass (zone_quantity_keys), run on demand for one layout generation. Beside a map that is
+  // not itself a legibility map, once the full pass exists: the legibility map at the full pass's
+  // contrast threshold legibility_threshold (an index; default 3).
   int zone_quantity = 0;
+  int legibility_threshold = 1;
   std::unique_ptr<zone_job> zone_job_;
 
   // The Plots window's tab (0 MTF, 1 Bokeh), chosen by the next frame when select_plots_tab.

@@ -33,9 +33,8 @@ struct plot_params {
   bool auto_x = true, auto_y = false;
   float height = 200;  // pixels before content scale; width fills the window
   const plot_heatmap* heatmap = nullptr;
-  bool equal_aspect = false;
-  bool compact = false;  // a small picture: its title above, no ticks or axis titles  // widen one axis's range so that
-                         // a unit is as long on both (pictures in mm)
+  bool equal_aspect = false;  // widen one axis's range so that a unit is as long on both (pictures in mm)
+  bool compact = false;       // a small picture: its title above, no ticks or axis titles
 };
 
 // What the cursor points at, when it is over the plot area.
