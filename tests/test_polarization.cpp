@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "airr/core/geometry.hpp"
+#include "airr/core/random.hpp"
 #include "airr/models/corner_cube.hpp"
 #include "airr/models/dielectric.hpp"
 #include "airr/models/polarization.hpp"
@@ -206,6 +207,24 @@ TEST(Polarization, TotalInternalReflectionHasTheTextbookPhases) {
     EXPECT_NEAR(std::arg(f.rs), -2 * std::atan(root / std::cos(i)), 1e-12) << deg;
     EXPECT_NEAR(std::arg(f.rp), -2 * std::atan(root / (n * n * std::cos(i))), 1e-12) << deg;
     EXPECT_GE(f.cos_t.imag(), 0) << deg;
+  }
+}
+
+// A clear medium's amplitudes (worked out in real arithmetic) equal the complex formulas' (run
+// for an index with a vanishing imaginary part), below and beyond the critical angle.
+TEST(Polarization, FresnelAmplitudesOfAClearMediumEqualTheComplexFormulas) {
+  pcg32 rng(7, 1);
+  for (const double n : {1.5, 1 / 1.5, 1.33, 1 / 1.33}) {
+    for (int k = 0; k < 1000; ++k) {
+      const double cos_i = k == 0 ? 1.0 : k == 1 ? 0.0 : rng.next_double();
+      const fresnel_coefficients real = fresnel_amplitudes(cos_i, n);
+      const fresnel_coefficients general = fresnel_amplitudes(cos_i, complex(n, 1e-200));
+      for (const auto& [a, b] :
+           {std::pair{real.rs, general.rs}, std::pair{real.rp, general.rp}, std::pair{real.ts, general.ts},
+            std::pair{real.tp, general.tp}, std::pair{real.cos_t, general.cos_t}}) {
+        EXPECT_LT(std::abs(a - b), 1e-12) << "index " << n << ", cos_i " << cos_i;
+      }
+    }
   }
 }
 

@@ -23,9 +23,39 @@ std::complex<double> over(std::complex<double> a, std::complex<double> b) { retu
 
 }  // namespace
 
+// A clear medium's interface in real arithmetic (the prism sheet's every face, a plate's): below
+// the critical angle every amplitude is real; beyond it cos_t = i b and the ratios are (a - i c) /
+// (a + i c) = ((a^2 - c^2) - 2 i a c) / (a^2 + c^2), with no complex root or division.
+static fresnel_coefficients fresnel_amplitudes_real(double cos_i, double eta) {
+  fresnel_coefficients f;
+  const double sin2_t = (1 - cos_i * cos_i) / (eta * eta);
+  if (sin2_t <= 1) {
+    const double cos_t = std::sqrt(1 - sin2_t);
+    const double s = cos_i + eta * cos_t, p = eta * cos_i + cos_t;
+    f.cos_t = cos_t;
+    f.rs = (cos_i - eta * cos_t) / s;
+    f.rp = (eta * cos_i - cos_t) / p;
+    f.ts = 2 * cos_i / s;
+    f.tp = 2 * cos_i / p;
+    return f;
+  }
+  const double b = std::sqrt(sin2_t - 1);
+  f.cos_t = {0, b};
+  f.total = true;
+  const double a = cos_i, c = eta * b;    // s: (a - i c) / (a + i c)
+  const double ap = eta * cos_i, cp = b;  // p: (ap - i cp) / (ap + i cp)
+  const double ns = 1 / (a * a + c * c), np = 1 / (ap * ap + cp * cp);
+  f.rs = {(a * a - c * c) * ns, -2 * a * c * ns};
+  f.rp = {(ap * ap - cp * cp) * np, -2 * ap * cp * np};
+  f.ts = {2 * a * a * ns, -2 * a * c * ns};
+  f.tp = {2 * a * ap * np, -2 * a * cp * np};
+  return f;
+}
+
 fresnel_coefficients fresnel_amplitudes(double cos_i, std::complex<double> eta) {
   using complex = std::complex<double>;
   cos_i = std::clamp(cos_i, 0.0, 1.0);
+  if (eta.imag() == 0) return fresnel_amplitudes_real(cos_i, eta.real());
   fresnel_coefficients f;
   const complex sin2_t = over(complex(1 - cos_i * cos_i), eta * eta);
   f.cos_t = std::sqrt(complex(1.0) - sin2_t);
