@@ -115,8 +115,8 @@ static plot_hover draw_legibility_map(const studio& st, const full_zone_map& ful
   const glm::dvec2 at = eye_grid_coordinates(st.doc, g, observer_position(st.doc));
   char title[64];
   std::snprintf(title, sizeof title, "share legible at %g", full.thresholds[k]);
-  return draw_zone_map("zone_legibility", g, map, {{"observer", {at.x}, {at.y}, IM_COL32(255, 255, 255, 255)}}, title,
-                       h);
+  // The observer's dot without a legend: the map beside it names it, and a small map keeps its cells.
+  return draw_zone_map("zone_legibility", g, map, {{"", {at.x}, {at.y}, IM_COL32(255, 255, 255, 255)}}, title, h);
 }
 
 // The viewing zone: the geometric visible fraction from the predicted plots, or a quantity of
