@@ -238,13 +238,14 @@ static void draw_viewing_zone(studio& st, const predicted_plots* pred, float h, 
           full->char_height_mm[best_eye], full->char_arcmin[best_eye]);
     }
   }
-  for (const plot_hover* p : {&zone, static_cast<const plot_hover*>(&legibility)}) {
-    if (!p->clicked) continue;
-    place_observer(st.doc, p == &zone ? g : full->grid, p->x, p->y);
+  const auto move_observer = [&](const plot_hover& p, const eye_grid& on) {
+    place_observer(st.doc, on, p.x, p.y);
     char msg[96];
-    std::snprintf(msg, sizeof msg, "observer moved to azimuth %.1f, elevation %.1f deg", p->x, p->y);
+    std::snprintf(msg, sizeof msg, "observer moved to azimuth %.1f, elevation %.1f deg", p.x, p.y);
     st.status = msg;
-  }
+  };
+  if (zone.clicked) move_observer(zone, g);
+  if (legibility.clicked) move_observer(legibility, full->grid);
 }
 
 static void draw_mtf_tab(studio& st) {
