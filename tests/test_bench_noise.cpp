@@ -81,6 +81,34 @@ TEST(BenchModelImage, ReportsWhereTheTimeGoes) {
   EXPECT_EQ(moved, 2) << r.out;
 }
 
+// --qualities measures the qualities named alone; a name not among them is refused.
+TEST(BenchModelImage, MeasuresTheQualitiesNamed) {
+  const test::command_result r =
+      test::run_cli("bench --model-image --size 48 --runs 1 --presets rf-an --tilts 0 30 --qualities view");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  int view = 0, other = 0;
+  std::istringstream in(r.out);
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream row(line);
+    std::string preset, quality;
+    double tilt = 0;
+    if (!(row >> preset >> tilt >> quality) || preset != "rf-an") continue;
+    ++(quality == "view" ? view : other);
+  }
+  EXPECT_EQ(view, 2) << r.out;
+  EXPECT_EQ(other, 0) << r.out;
+  EXPECT_NE(r.out.find("median over the cases: view "), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("quick"), std::string::npos) << r.out;
+
+  const test::command_result bad = test::run_cli("bench --model-image --size 48 --qualities fast");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.out.find("fast"), std::string::npos) << bad.out;
+  const test::command_result no_view =
+      test::run_cli("bench --model-image --size 48 --qualities full --compare " AIRR_CLI);
+  EXPECT_NE(no_view.exit_code, 0);
+  EXPECT_NE(no_view.out.find("view quality"), std::string::npos) << no_view.out;
+}
+
 // --compare runs the other build's --model-error and reads its model image's time per case (here
 // the other build is this one).
 TEST(BenchModelImage, ComparesWithAnotherBuild) {

@@ -132,6 +132,7 @@ void add_bench_command(CLI::App& app) {
     drag_bench_options drag_options;
     int runs = 3;
     std::vector<double> model_error_tilts;
+    std::vector<std::string> qualities;
     std::uint64_t prop_triangles = 0;
     bool memory = false;
     bool sheets = false;
@@ -169,6 +170,9 @@ void add_bench_command(CLI::App& app) {
   cmd->add_option("--runs", opt->runs, "With --model-image or --sheets: runs per case (the median is reported)")
       ->check(CLI::Range(1, 100));
   cmd->add_option("--tilts", opt->model_error_tilts, "With --model-error or --model-image: sheet tilts (deg)");
+  cmd->add_option("--qualities", opt->qualities,
+                  "With --model-image: which of the view, quick and full qualities to measure (default all three)")
+      ->check(CLI::IsMember({"view", "quick", "full"}));
   cmd->add_flag("--memory", opt->memory,
                 "Instead: the peak resident memory of airr render (1 spp) at half --size and at --size (default 4096), "
                 "with and without --components, and the bytes a pixel costs");
@@ -218,6 +222,7 @@ void add_bench_command(CLI::App& app) {
       if (cmd->count("--size")) m.size = opt->noise_options.size;
       if (cmd->count("--presets")) m.presets = opt->noise_options.presets;
       if (cmd->count("--tilts")) m.tilts_deg = opt->model_error_tilts;
+      if (cmd->count("--qualities")) m.qualities = opt->qualities;
       m.runs = opt->runs;
       m.compare = opt->noise_options.compare;
       run_model_image_bench(m);

@@ -105,6 +105,17 @@ double display_parts_ms(const bench_case& c, const airr::model_image_params& vie
 }  // namespace
 
 void run_model_image_bench(const model_image_bench_options& o) {
+  std::vector<int> qualities;
+  for (int q : {view, quick, full}) {
+    if (std::find(o.qualities.begin(), o.qualities.end(), quality_names[q]) != o.qualities.end())
+      qualities.push_back(q);
+  }
+  if (qualities.size() != o.qualities.size() || qualities.empty()) {
+    throw airr::input_error("model image bench: --qualities takes view, quick and full, each at most once");
+  }
+  if (!o.compare.empty() && qualities.front() != view) {
+    throw airr::input_error("model image bench: --compare sets the other build against this build's view quality");
+  }
   const std::vector<build_under_test> builds = builds_under_test(o.compare);
   std::printf(
       "model image of sheet 0 at %dx%d, median of %d runs (ms); the loop's parts are summed over the bins that run "
@@ -116,7 +127,7 @@ void run_model_image_bench(const model_image_bench_options& o) {
   for (const std::string& preset : o.presets) {
     for (double tilt : o.tilts_deg) {
       const bench_case c = load_bench_case(o.scene_path, o.size, preset, tilt);
-      for (const int quality : {view, quick, full}) {
+      for (const int quality : qualities) {
         const airr::model_image_params params =
             quality == view ? airr::model_image_params::for_view()
                             : airr::model_image_params::for_image(o.size, o.size, quality == quick);
@@ -146,9 +157,14 @@ void run_model_image_bench(const model_image_bench_options& o) {
       }
     }
   }
-  std::printf("median over the cases: view %.0f ms, quick %.0f ms, full %.0f ms; moved %.1f ms; display %.1f ms\n",
-              median(medians[view]), median(medians[quick]), median(medians[full]), median(moved_medians),
-              median(display_medians));
+  std::printf("median over the cases:");
+  for (const int quality : qualities) {
+    std::printf("%s %s %.0f ms", quality == qualities.front() ? "" : ",", quality_names[quality],
+                median(medians[quality]));
+  }
+  if (qualities.front() == view)
+    std::printf("; moved %.1f ms; display %.1f ms", median(moved_medians), median(display_medians));
+  std::printf("\n");
   if (builds.size() == 2) {
     std::fflush(stdout);
     const std::vector<double> other = other_build_seconds(builds[1], o);

@@ -11,7 +11,8 @@ struct model_image_bench_options {
   int runs = 3;  // per case; the median is reported
   std::vector<std::string> presets{"rf-ay", "rf-an"};
   std::vector<double> tilts_deg{0, 20, 45};
-  std::string compare;  // another build's airr; empty: this build only
+  std::vector<std::string> qualities{"view", "quick", "full"};  // of these, in this order
+  std::string compare;  // another build's airr; empty: this build only (needs the view quality)
 };
 
 // Prints one line per preset, tilt and quality; throws input_error naming what failed.

@@ -20,7 +20,8 @@ namespace airr::detail {
 // at the caller's priority.
 template <class Body>
 void plain_parallel_rows(int rows, int threads, const Body& body) {
-  const int n = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  // No more threads than rows: a loop of one row (a bin's kernels from one block) starts one.
+  const int n = std::min(rows, threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency())));
   std::atomic<int> next{0};
   std::exception_ptr failure;  // the first body's exception, thrown here as TBB would
   std::atomic<bool> failed{false};
