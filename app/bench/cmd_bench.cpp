@@ -212,7 +212,6 @@ void add_bench_command(CLI::App& app) {
       if (cmd->count("--tilts")) m.tilts_deg = opt->model_error_tilts;
       m.threads = opt->noise_options.threads;
       m.compare = opt->noise_options.compare;
-      if (m.spp < 2) throw airr::input_error("--model-error needs --spp 2 or more (the noise comes from two halves)");
       run_model_error_bench(m);
       return;
     }
