@@ -254,6 +254,8 @@ struct lens_lattice {
   int n, g;
 };
 
+double fractional(double v) { return v - std::floor(v); }
+
 // Pixel (x, y)'s mean light from n points on a grid in the pixel, each with its own lens point
 // (the lens moves them by a few of the grid's spacings at most), on the level their spacing suits.
 glm::dvec3 grid_mean(const planar_parts& d, const std::vector<image_rgb>& texels, int x, int y,
@@ -263,8 +265,12 @@ glm::dvec3 grid_mean(const planar_parts& d, const std::vector<image_rgb>& texels
   glm::dvec3 sum(0.0);
   for (int j = 0; j < n.y; ++j) {
     for (int i = 0; i < n.x; ++i) {
+      // Each point within its own cell, shifted along x by its row and along y by its column: an
+      // edge along the pixel's rows or columns then crosses the points one at a time, not a whole
+      // row at once, and the pixel's share on either side is found to a point, not to a row.
+      const double ox = fractional((j + 0.5) * 0.6180339887498949), oy = fractional((i + 0.5) * 0.7548776662466927);
       sum += light_along(d, level,
-                         make_camera_ray(d.cam, x + (i + 0.5) / n.x, y + (j + 0.5) / n.y, lens.point(j * n.x + i)));
+                         make_camera_ray(d.cam, x + (i + ox) / n.x, y + (j + oy) / n.y, lens.point(j * n.x + i)));
     }
   }
   return sum / double(n.x * n.y);
