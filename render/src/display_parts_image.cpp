@@ -254,8 +254,6 @@ struct lens_lattice {
   int n, g;
 };
 
-double fractional(double v) { return v - std::floor(v); }
-
 // Pixel (x, y)'s mean light from n points on a grid in the pixel, each with its own lens point
 // (the lens moves them by a few of the grid's spacings at most), on the level their spacing suits.
 glm::dvec3 grid_mean(const planar_parts& d, const std::vector<image_rgb>& texels, int x, int y,
@@ -268,7 +266,7 @@ glm::dvec3 grid_mean(const planar_parts& d, const std::vector<image_rgb>& texels
       // Each point within its own cell, shifted along x by its row and along y by its column: an
       // edge along the pixel's rows or columns then crosses the points one at a time, not a whole
       // row at once, and the pixel's share on either side is found to a point, not to a row.
-      const double ox = fractional((j + 0.5) * 0.6180339887498949), oy = fractional((i + 0.5) * 0.7548776662466927);
+      const double ox = glm::fract((j + 0.5) * 0.6180339887498949), oy = glm::fract((i + 0.5) * 0.7548776662466927);
       sum += light_along(d, level,
                          make_camera_ray(d.cam, x + (i + ox) / n.x, y + (j + oy) / n.y, lens.point(j * n.x + i)));
     }
