@@ -121,17 +121,19 @@ void run_model_error_bench(const model_error_options& o) {
         rows.push_back({noise, NAN, NAN, NAN});
         continue;
       }
-      // The first render's difference from an image, and the mean square difference of both
-      // renders less their noise: what the image itself differs by.
-      auto raw = [&](const std::vector<float>& image) {
-        return airr::relative_rms_difference(traced[0], image, traced[0]);
+      // Each render's difference from an image; the first render's is shown, and the mean square
+      // of both less their noise is what the image itself differs by.
+      auto differences = [&](const std::vector<float>& image) {
+        return std::array<double, 2>{airr::relative_rms_difference(traced[0], image, traced[0]),
+                                     airr::relative_rms_difference(traced[1], image, traced[0])};
       };
-      auto clean = [&](const std::vector<float>& image) {
-        const double a = raw(image), b = airr::relative_rms_difference(traced[1], image, traced[0]);
-        return std::sqrt(std::max(0.0, 0.5 * (a * a + b * b) - noise * noise));
+      auto clean = [&](const std::array<double, 2>& e) {
+        return std::sqrt(std::max(0.0, 0.5 * (e[0] * e[0] + e[1] * e[1]) - noise * noise));
       };
-      const double e_full = raw(full->image.rgb), e_view = raw(view->image.rgb), e_first = raw(first.rgb);
-      const double e_clean = clean(full->image.rgb), e_view_clean = clean(view->image.rgb);
+      const std::array<double, 2> full_e = differences(full->image.rgb), view_e = differences(view->image.rgb);
+      const double e_full = full_e[0], e_view = view_e[0];
+      const double e_first = airr::relative_rms_difference(traced[0], first.rgb, traced[0]);
+      const double e_clean = clean(full_e), e_view_clean = clean(view_e);
       std::printf("%-8s %6.0f %11.2f%% %11.2f%% %11.2f%% %11.2f%% %13.2f%% %13.2f%% %8.2f %8.3f\n", preset.c_str(),
                   tilt, 100 * noise, 100 * e_full, 100 * e_view, 100 * e_first, 100 * e_clean, 100 * e_view_clean,
                   model_s, view_s);
