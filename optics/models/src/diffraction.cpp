@@ -13,7 +13,12 @@ double aperture::area() const { return polygon.empty() ? pi * diameter_mm * diam
 
 double aperture::perimeter() const { return polygon.empty() ? pi * diameter_mm : polygon_perimeter(polygon); }
 
-double far_field_reach(const aperture& a) { return 64 / std::sqrt(a.area()); }
+namespace {
+// Past 64 / sqrt(area) less than about 1% of the light goes.
+double reach_of_area(double area) { return 64 / std::sqrt(area); }
+}  // namespace
+
+double far_field_reach(const aperture& a) { return reach_of_area(a.area()); }
 
 model_field spectrum_field() {
   return choice_field("spectrum", {"single", "display_rgb"},
@@ -66,21 +71,6 @@ double intensity(const aperture& a, double area, const glm::dvec2& f) {
     at_p = at_q;
   }
   return std::norm(sum) / (4 * pi * pi * f2 * f2);
-}
-
-// A bound on a polygon's |F(f)|^2 from the same edge sum without its phases (|sinc u| <= min(1,
-// 1 / |u|)): no sine or cosine, and far below the sampler's radial bound beyond the central lobe,
-// so most trials are refused without evaluating F.
-double edge_bound(const aperture& a, const glm::dvec2& f) {
-  double sum = 0;
-  const std::size_t n = a.polygon.size();
-  for (std::size_t j = 0; j < n; ++j) {
-    const glm::dvec2 d = a.polygon[j + 1 < n ? j + 1 : 0] - a.polygon[j];
-    const double u = pi * std::abs(glm::dot(f, d));
-    sum += std::abs(f.x * d.y - f.y * d.x) * (u > 1 ? 1 / u : 1.0);
-  }
-  const double f2 = glm::dot(f, f);
-  return sum * sum / (4 * pi * pi * f2 * f2);
 }
 
 // One draw of a point uniformly distributed in the unit disc from the square around it: kept with
@@ -141,10 +131,11 @@ glm::dvec2 sample_airy(const aperture& a, pcg32& rng, double f_max) {
 // grow as log(f_max / f0). With c_j the square root of edge j's own mass the streaks' total is about
 // C^2, near the least such a sum can be.
 struct streak {
-  glm::dvec2 along{0}, across{0};
+  glm::dvec2 edge{0}, along{0}, across{0};
   double length = 0, beta = 0;
   std::array<double, 3> pieces{};
-  double scale = 0;  // the share's factor, C L^2 / (c_j 4 pi^2)
+  double log_beta_f0 = 0;  // when beta > f0: piece 1's inverse takes it at every draw
+  double scale = 0;        // the share's factor, C L^2 / (c_j 4 pi^2)
 };
 
 // The integral of m(b) / s(b) over b >= 0 between its breaks: over [0, min(beta, f0)], up to
@@ -155,11 +146,11 @@ std::array<double, 3> streak_pieces(double beta, double f0) {
 }
 
 // b >= 0 in piece k of m(b) / s(b), from a uniform r in [0, 1) by inverting that piece's integral.
-double streak_b(double beta, double f0, int k, double r) {
-  const double lo = std::min(beta, f0), hi = std::max(beta, f0);
+double streak_b(const streak& s, double f0, int k, double r) {
+  const double beta = s.beta, lo = std::min(beta, f0), hi = std::max(beta, f0);
   if (k == 0) return lo * r;
   if (k == 2) return hi / std::sqrt(1 - r);
-  return beta <= f0 ? 1 / (1 / beta - r * (1 / beta - 1 / f0)) : f0 * std::exp(r * std::log(beta / f0));
+  return beta <= f0 ? 1 / (1 / beta - r * (1 / beta - 1 / f0)) : f0 * std::exp(r * s.log_beta_f0);
 }
 
 // a across a streak at b, distributed as 1 / (a^2 + b^2) over |f| >= f0, as b cot(phi) for phi the
@@ -174,6 +165,20 @@ std::optional<double> streak_a(double b, double f0, pcg32& rng) {
   const double p = 2 * rng.next_double() - 1, q = x * rng.next_double();
   if (!(q > 0) || p * p + q * q > 1 || q * std::sqrt(1 - x * x) > std::abs(p) * x) return std::nullopt;
   return b * p / q;
+}
+
+// A bound on a polygon's |F(f)|^2 from the same edge sum without its phases (|sinc u| <= min(1,
+// 1 / |u|)): no sine or cosine, and far below the sampler's radial bound beyond the central lobe,
+// so most trials are refused without evaluating F.
+double edge_bound(const std::vector<streak>& streaks, const glm::dvec2& f) {
+  double sum = 0;
+  for (const streak& s : streaks) {
+    const glm::dvec2 d = s.edge;
+    const double u = pi * std::abs(glm::dot(f, d));
+    sum += std::abs(f.x * d.y - f.y * d.x) * (u > 1 ? 1 / u : 1.0);
+  }
+  const double f2 = glm::dot(f, f);
+  return sum * sum / (4 * pi * pi * f2 * f2);
 }
 
 // The bound the streaks add up to at f (|f| >= f0).
@@ -200,16 +205,19 @@ glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max)
     const glm::dvec2 d = a.polygon[j + 1 < n ? j + 1 : 0] - a.polygon[j];
     const double length = glm::length(d);
     perimeter += length;
-    if (length > 0) streaks.push_back({d / length, glm::dvec2(-d.y, d.x) / length, length, 1 / (pi * length)});
+    if (length > 0) streaks.push_back({d, d / length, glm::dvec2(-d.y, d.x) / length, length, 1 / (pi * length)});
   }
   const polygon_moments shape = moments(a.polygon);
   if (!(shape.area > 0)) return glm::dvec2(0);  // corners in a line: no aperture to spread by
-  const double area = shape.area, f0 = std::min(perimeter / (2 * pi * area), f_max);
+  const double area = shape.area;
+  if (!(f_max > 0)) f_max = reach_of_area(area);
+  const double f0 = std::min(perimeter / (2 * pi * area), f_max);
   weights.assign(1, area * area * pi * f0 * f0);
   if (f0 < f_max) {
     double c_sum = 0;
     for (streak& s : streaks) {
       s.pieces = streak_pieces(s.beta, f0);
+      if (s.beta > f0) s.log_beta_f0 = s.pieces[1];
       s.scale = s.length * std::sqrt(s.pieces[0] + s.pieces[1] + s.pieces[2]);  // c_j for now
       c_sum += s.scale;
     }
@@ -224,7 +232,6 @@ glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max)
     double pick = rng.next_double() * total;
     std::size_t k = 0;
     while (k + 1 < weights.size() && pick >= weights[k]) pick -= weights[k++];
-    const double r = std::min(pick / weights[k], 1 - 1e-16);
     glm::dvec2 f;
     double bound;
     if (k == 0) {
@@ -234,7 +241,8 @@ glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max)
       bound = area * area;
     } else {
       const streak& s = streaks[(k - 1) / 3];
-      const double b = streak_b(s.beta, f0, int((k - 1) % 3), r) * (rng.next_double() < 0.5 ? -1 : 1);
+      const double r = std::min(pick / weights[k], 1 - 1e-16);
+      const double b = streak_b(s, f0, int((k - 1) % 3), r) * (rng.next_double() < 0.5 ? -1 : 1);
       const std::optional<double> across = streak_a(b, f0, rng);
       if (!across) continue;
       f = b * s.along + *across * s.across;
@@ -246,7 +254,7 @@ glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max)
     // centroid (cos x >= 1 - x^2 / 2), most of the central lobe.
     const double least = area - 2 * pi * pi * glm::dot(f, shape.spread * f);
     if (least > 0 && v < least * least) return f;
-    if (v >= edge_bound(a, f)) continue;
+    if (v >= edge_bound(streaks, f)) continue;
     if (v < intensity(a, area, f)) return f;
   }
 }
@@ -254,8 +262,8 @@ glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max)
 }  // namespace
 
 glm::dvec2 sample_far_field(const aperture& a, pcg32& rng, double f_max) {
-  if (!(f_max > 0)) f_max = far_field_reach(a);
-  return a.polygon.empty() ? sample_airy(a, rng, f_max) : sample_polygon_far_field(a, rng, f_max);
+  if (!a.polygon.empty()) return sample_polygon_far_field(a, rng, f_max);
+  return sample_airy(a, rng, f_max > 0 ? f_max : far_field_reach(a));
 }
 
 std::optional<glm::dvec3> diffracted(const glm::dvec3& w, const glm::dvec2& f, double wavelength_mm) {
