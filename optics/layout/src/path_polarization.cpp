@@ -1,6 +1,8 @@
 #include "airr/layout/path_polarization.hpp"
 
+#include <array>
 #include <cmath>
+#include <limits>
 
 #include "airr/layout/layout.hpp"
 #include "airr/models/diffraction.hpp"
@@ -19,8 +21,19 @@ glm::dvec4 row_times(const glm::dvec4& r, const mueller& m) {
   return out;
 }
 
+// A part's axis at angle_deg from its u towards its v. A path meets the same few films and
+// polarizers at every sample: their cosines and sines are kept per thread.
 glm::dvec3 axis_on(const part_frame& f, double angle_deg) {
-  return std::cos(radians(angle_deg)) * f.u + std::sin(radians(angle_deg)) * f.v;
+  struct seen_angle {
+    double angle_deg = std::numeric_limits<double>::quiet_NaN(), cos = 1, sin = 0;
+  };
+  thread_local std::array<seen_angle, 4> seen;
+  thread_local std::size_t next = 0;
+  for (const seen_angle& a : seen)
+    if (a.angle_deg == angle_deg) return a.cos * f.u + a.sin * f.v;
+  seen_angle& a = seen[next++ % seen.size()];
+  a = {angle_deg, std::cos(radians(angle_deg)), std::sin(radians(angle_deg))};
+  return a.cos * f.u + a.sin * f.v;
 }
 
 }  // namespace
@@ -56,14 +69,14 @@ void path_polarization::films(const std::vector<film_params>& films, part_face f
   const double path = 1 / std::sqrt(1 - sin_t * sin_t);  // the film's thickness crossed at an angle
   const auto one = [&](const film_params& film) {
     if (film.face != face) return;
-    const glm::dvec3 axis = axis_on(f, film.axis_deg);
+    const double_angle axis(frame, axis_on(f, film.axis_deg));
     for (std::size_t c = 0; c < 3; ++c) {
       if (film.kind == film_kind::polarizer) {
-        rows[c] = row_through_axial_part(rows[c], frame, axis, std::sqrt(film.pass_transmittance),
+        rows[c] = row_through_axial_part(rows[c], axis, std::sqrt(film.pass_transmittance),
                                          std::sqrt(film.block_transmittance));
       } else {
         const double retardance = 2 * pi * film.retardance_waves * path * film.wavelength_nm / display_primaries_nm[c];
-        rows[c] = row_through_axial_part(rows[c], frame, axis, 1.0, std::polar(1.0, retardance));
+        rows[c] = row_through_axial_part(rows[c], axis, 1.0, std::polar(1.0, retardance));
       }
     }
   };
@@ -116,11 +129,9 @@ void path_polarization::half_mirror_transmission(const half_mirror_params& hm, c
   }
   const reflective_polarizer_params& p = hm.polarizer;
   const double per = hm.transmittance > 0 ? 1 / hm.transmittance : 0;
-  const glm::dvec3 axis = axis_on(f, p.axis_deg);
-  for (glm::dvec4& row : rows) {
-    row = row_through_axial_part(row, frame, axis, std::sqrt(per * p.pass_transmittance),
-                                 std::sqrt(per * p.block_transmittance));
-  }
+  const double_angle axis(frame, axis_on(f, p.axis_deg));
+  const double along = std::sqrt(per * p.pass_transmittance), across = std::sqrt(per * p.block_transmittance);
+  for (glm::dvec4& row : rows) row = row_through_axial_part(row, axis, along, across);
 }
 
 void path_polarization::mirror(const glm::dvec3& k_in) {

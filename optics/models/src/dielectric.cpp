@@ -21,6 +21,20 @@ namespace {
 // ratios of order-one numbers cannot meet, at several times the cost.
 std::complex<double> over(std::complex<double> a, std::complex<double> b) { return a * std::conj(b) / std::norm(b); }
 
+// The root with a non-negative real part, in real arithmetic: the library's (csqrt) guards against
+// overflow and special values that the interfaces' order-one numbers never meet, at several times
+// the cost. From the larger of the two half-sums, so neither part loses digits to cancellation.
+std::complex<double> principal_root(std::complex<double> z) {
+  const double x = z.real(), y = z.imag(), r = std::sqrt(x * x + y * y);
+  if (r == 0) return 0.0;
+  if (x >= 0) {
+    const double t = std::sqrt(0.5 * (r + x));
+    return {t, y / (2 * t)};
+  }
+  const double t = std::sqrt(0.5 * (r - x));
+  return {std::abs(y) / (2 * t), std::copysign(t, y)};
+}
+
 }  // namespace
 
 // A clear medium's interface in real arithmetic (the prism sheet's every face, a plate's): below
@@ -58,14 +72,17 @@ fresnel_coefficients fresnel_amplitudes(double cos_i, std::complex<double> eta) 
   if (eta.imag() == 0) return fresnel_amplitudes_real(cos_i, eta.real());
   fresnel_coefficients f;
   const complex sin2_t = over(complex(1 - cos_i * cos_i), eta * eta);
-  f.cos_t = std::sqrt(complex(1.0) - sin2_t);
+  f.cos_t = principal_root(complex(1.0) - sin2_t);
   if (f.cos_t.imag() < 0) f.cos_t = -f.cos_t;
   f.total = eta.imag() == 0 && sin2_t.real() > 1;
   const complex ci(cos_i);
-  f.rs = over(ci - eta * f.cos_t, ci + eta * f.cos_t);
-  f.rp = over(eta * ci - f.cos_t, eta * ci + f.cos_t);
-  f.ts = over(2.0 * ci, ci + eta * f.cos_t);
-  f.tp = over(2.0 * ci, eta * ci + f.cos_t);
+  // s and p each share a denominator between reflection and transmission: one reciprocal each.
+  const complex ds = ci + eta * f.cos_t, dp = eta * ci + f.cos_t;
+  const complex inv_s = std::conj(ds) / std::norm(ds), inv_p = std::conj(dp) / std::norm(dp);
+  f.rs = (ci - eta * f.cos_t) * inv_s;
+  f.rp = (eta * ci - f.cos_t) * inv_p;
+  f.ts = 2.0 * ci * inv_s;
+  f.tp = 2.0 * ci * inv_p;
   return f;
 }
 

@@ -28,19 +28,6 @@ jones adjoint(const jones& j) {
   return a;
 }
 
-// cos and sin of twice an angle: what a rotator of Stokes vectors needs.
-struct double_angle {
-  double c = 1, s = 0;
-  explicit double_angle(double angle) : c(std::cos(2 * angle)), s(std::sin(2 * angle)) {}
-  double_angle(double cos_2, double sin_2) : c(cos_2), s(sin_2) {}
-  // Of a world axis seen in a frame (angle_in's angle), from its components alone: no
-  // trigonometry on the tracer's hot path.
-  double_angle(const polarization_frame& f, const glm::dvec3& axis) {
-    const double a = glm::dot(axis, f.x), b = glm::dot(axis, f.y), r = a * a + b * b;
-    if (r > 0) c = (a * a - b * b) / r, s = 2 * a * b / r;
-  }
-};
-
 // m rotator(angle) and rotator(angle) m, without the rotator's zeros (the tracer's hot path).
 mueller times_rotator(mueller m, double_angle turn) {
   for (auto& row : m.m) {
@@ -142,10 +129,18 @@ mueller linear_polarizer(const polarization_frame& f, const glm::dvec3& axis, do
   return axial_part(double_angle(f, axis), std::sqrt(t_pass), std::sqrt(t_block));
 }
 
+double_angle::double_angle(const polarization_frame& f, const glm::dvec3& axis) {
+  const double a = glm::dot(axis, f.x), b = glm::dot(axis, f.y), r = a * a + b * b;
+  if (r > 0) c = (a * a - b * b) / r, s = 2 * a * b / r;
+}
+
 glm::dvec4 row_through_axial_part(const glm::dvec4& row, const polarization_frame& f, const glm::dvec3& axis,
                                   complex along, complex across) {
+  return row_through_axial_part(row, double_angle(f, axis), along, across);
+}
+
+glm::dvec4 row_through_axial_part(const glm::dvec4& row, double_angle t, complex along, complex across) {
   // row R(-axis) D R(axis), D = interface_mueller(along, across), each a few products on a row.
-  const double_angle t(f, axis);
   const double a1 = row[1] * t.c + row[2] * t.s, a2 = -row[1] * t.s + row[2] * t.c;
   const double s = std::norm(along), p = std::norm(across), plus = 0.5 * (s + p), minus = 0.5 * (s - p);
   const complex c = std::conj(along) * across;

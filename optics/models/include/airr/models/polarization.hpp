@@ -3,6 +3,7 @@
 // are written in. docs/polarization.md states the conventions (frames, handedness, the sign of
 // circular light, retarders' fast axes) and the tests that pin them.
 #include <array>
+#include <cmath>
 #include <complex>
 
 #include <glm/glm.hpp>
@@ -77,6 +78,16 @@ struct polarization_frame {
 // The angle of a world axis (a polarizer's or a film's) seen along the frame's k: from x towards y.
 double angle_in(const polarization_frame& f, const glm::dvec3& axis);
 
+// cos and sin of twice an angle: what a rotator of Stokes vectors needs.
+struct double_angle {
+  double c = 1, s = 0;
+  explicit double_angle(double angle) : c(std::cos(2 * angle)), s(std::sin(2 * angle)) {}
+  double_angle(double cos_2, double sin_2) : c(cos_2), s(sin_2) {}
+  // Of a world axis seen in a frame (angle_in's angle), from its components alone: no
+  // trigonometry on the tracer's hot path.
+  double_angle(const polarization_frame& f, const glm::dvec3& axis);
+};
+
 // linear_polarizer with its axis a world direction, at its angle_in the frame: worked out from the
 // axis's components, with no trigonometry (the tracer's path).
 mueller linear_polarizer(const polarization_frame& f, const glm::dvec3& axis, double t_pass = 1, double t_block = 0);
@@ -85,6 +96,8 @@ mueller linear_polarizer(const polarization_frame& f, const glm::dvec3& axis, do
 // across sqrt(t_block); a retarder: 1 and e^(i retardance)).
 glm::dvec4 row_through_axial_part(const glm::dvec4& row, const polarization_frame& f, const glm::dvec3& axis,
                                   complex along, complex across);
+// The same with the axis's double_angle in the frame worked out already (one part, several rows).
+glm::dvec4 row_through_axial_part(const glm::dvec4& row, double_angle axis, complex along, complex across);
 
 // The rotator that rewrites a Stokes vector of frame `from` in frame `to` (same k).
 mueller reframe(const polarization_frame& from, const polarization_frame& to);
