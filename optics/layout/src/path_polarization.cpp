@@ -61,6 +61,13 @@ void path_polarization::apply(const mueller& m, const polarization_frame& in, co
   frame = in;
 }
 
+void path_polarization::apply_mirror(const polarization_frame& in, const polarization_frame& out) {
+  // Each row times the rotator from `out` into the current frame, then the mirror's diag(1, 1, -1, -1).
+  const double_angle t(out, frame.x);
+  for (glm::dvec4& r : rows) r = {r[0], r[1] * t.c - r[2] * t.s, -(r[1] * t.s + r[2] * t.c), -r[3]};
+  frame = in;
+}
+
 void path_polarization::films(const std::vector<film_params>& films, part_face face, const part_frame& f,
                               bool leaving) {
   if (films.empty()) return;
@@ -106,13 +113,15 @@ void path_polarization::half_mirror_reflection(const half_mirror_params& hm, con
     const double a = hm.reflectance > 0 ? 1 / std::sqrt(hm.reflectance) : 0;
     return apply(interface_mueller(a * main.as, a * main.ap), in, out);
   }
-  const mueller mirror = interface_mueller(-1.0, 1.0);
-  if (hm.kind == half_mirror_kind::half_mirror) return apply(mirror, in, out);
+  apply_mirror(in, out);
+  if (hm.kind == half_mirror_kind::half_mirror) return;
+  // The mirror after the polarizer (in the light's order): the rows meet the polarizer next.
   const reflective_polarizer_params& p = hm.polarizer;
-  const glm::dvec3 pass = axis_on(f, p.axis_deg);
+  const double_angle pass(in, axis_on(f, p.axis_deg));
   // The branch's scalar weight (the reflectance) divided out of the polarizer's.
   const double per = hm.reflectance > 0 ? 1 / hm.reflectance : 0;
-  apply(mirror * linear_polarizer(in, pass, per * p.pass_reflectance, per * p.block_reflectance), in, out);
+  const double along = std::sqrt(per * p.pass_reflectance), across = std::sqrt(per * p.block_reflectance);
+  for (glm::dvec4& row : rows) row = row_through_axial_part(row, pass, along, across);
 }
 
 void path_polarization::half_mirror_transmission(const half_mirror_params& hm, const part_frame& f,
@@ -139,7 +148,7 @@ void path_polarization::mirror(const glm::dvec3& k_in) {
   if (glm::dot(bisector, bisector) < 1e-24) return;  // light passing straight on is not reflected
   // Written from the light's s/p frame, the mirror needs no turn into it; it leaves along frame.k.
   const polarization_frame in = polarization_frame::at_surface(k_in, glm::normalize(bisector));
-  apply(interface_mueller(-1.0, 1.0), in, polarization_frame::with_unit_x(frame.k, in.x));
+  apply_mirror(in, polarization_frame::with_unit_x(frame.k, in.x));
 }
 
 void path_polarization::depolarize(const glm::dvec3& k_in) {

@@ -59,8 +59,7 @@ polarized_step cube_corner_polarized(const polarization_frame& in, const std::ar
   polarized_step path{mueller::identity(), in};
   for (const glm::dvec3& n : faces) {
     const fresnel_coefficients f = fresnel_amplitudes(std::abs(glm::dot(path.out.k, n)), eta);
-    const polarized_step face = reflect_polarized(path.out, n, f.rs, f.rp);
-    path = {face.m * path.m, face.out};
+    path.out = reflect_onto(path.m, path.out, n, f.rs, f.rp);
   }
   return path;
 }

@@ -129,11 +129,6 @@ mueller linear_polarizer(const polarization_frame& f, const glm::dvec3& axis, do
   return axial_part(double_angle(f, axis), std::sqrt(t_pass), std::sqrt(t_block));
 }
 
-double_angle::double_angle(const polarization_frame& f, const glm::dvec3& axis) {
-  const double a = glm::dot(axis, f.x), b = glm::dot(axis, f.y), r = a * a + b * b;
-  if (r > 0) c = (a * a - b * b) / r, s = 2 * a * b / r;
-}
-
 glm::dvec4 row_through_axial_part(const glm::dvec4& row, const polarization_frame& f, const glm::dvec3& axis,
                                   complex along, complex across) {
   return row_through_axial_part(row, double_angle(f, axis), along, across);
@@ -160,14 +155,22 @@ mueller interface_mueller(complex rs, complex rp) {
   return m;
 }
 
-polarization_frame polarization_frame::about(const glm::dvec3& k) {
-  const basis b = make_basis(k);
-  return {b.t, b.b, k};
-}
-
 polarization_frame polarization_frame::with_x(const glm::dvec3& k, const glm::dvec3& x) {
   const glm::dvec3 across = glm::normalize(x - glm::dot(x, k) * k);
   return {across, glm::cross(k, across), k};
+}
+
+mueller interface_times(complex rs, complex rp, const mueller& x) {
+  const double s = std::norm(rs), p = std::norm(rp), plus = 0.5 * (s + p), minus = 0.5 * (s - p);
+  const complex c = std::conj(rs) * rp;
+  mueller out;
+  for (int k = 0; k < 4; ++k) {
+    out.m[0][k] = plus * x.m[0][k] + minus * x.m[1][k];
+    out.m[1][k] = minus * x.m[0][k] + plus * x.m[1][k];
+    out.m[2][k] = c.real() * x.m[2][k] - c.imag() * x.m[3][k];
+    out.m[3][k] = c.imag() * x.m[2][k] + c.real() * x.m[3][k];
+  }
+  return out;
 }
 
 polarization_frame polarization_frame::at_surface(const glm::dvec3& k, const glm::dvec3& n) {
@@ -190,8 +193,6 @@ mueller reframed(const polarization_frame& from, const polarization_frame& to, c
   return rotator_times(double_angle(from, to.x), m);
 }
 
-polarization_frame reversed(const polarization_frame& f) { return {f.x, -f.y, -f.k}; }
-
 mueller reversed_path(const mueller& m) {
   static constexpr std::array<double, 4> g{1, 1, -1, 1};
   mueller r;
@@ -200,18 +201,33 @@ mueller reversed_path(const mueller& m) {
   return r;
 }
 
-polarized_step reflect_polarized(const polarization_frame& in, const glm::dvec3& n, complex rs, complex rp) {
+polarization_frame reflect_onto(mueller& path, const polarization_frame& in, const glm::dvec3& n, complex rs,
+                                complex rp) {
   const polarization_frame sp = polarization_frame::at_surface(in.k, n);
-  // s is across the plane of incidence, so the light leaving shares it.
-  return {times_rotator(interface_mueller(rs, rp), double_angle(in, sp.x)),
-          polarization_frame::with_unit_x(reflect(in.k, n), sp.x)};
+  // The step is interface_mueller(rs, rp) times the rotator into sp, whose product with the path
+  // is rotator_times. s is across the plane of incidence, so the light leaving shares it.
+  path = interface_times(rs, rp, rotator_times(double_angle(in, sp.x), path));
+  return polarization_frame::with_unit_x(reflect(in.k, n), sp.x);
+}
+
+polarization_frame transmit_onto(mueller& path, const polarization_frame& in, const glm::dvec3& n,
+                                 const glm::dvec3& k_out, complex ts, complex tp, double energy) {
+  const polarization_frame sp = polarization_frame::at_surface(in.k, n);
+  path = interface_times(std::sqrt(energy) * ts, std::sqrt(energy) * tp, rotator_times(double_angle(in, sp.x), path));
+  return polarization_frame::with_unit_x(k_out, sp.x);
+}
+
+polarized_step reflect_polarized(const polarization_frame& in, const glm::dvec3& n, complex rs, complex rp) {
+  polarized_step step{mueller::identity(), in};
+  step.out = reflect_onto(step.m, in, n, rs, rp);
+  return step;
 }
 
 polarized_step transmit_polarized(const polarization_frame& in, const glm::dvec3& n, const glm::dvec3& k_out,
                                   complex ts, complex tp, double energy) {
-  const polarization_frame sp = polarization_frame::at_surface(in.k, n);
-  return {times_rotator(interface_mueller(std::sqrt(energy) * ts, std::sqrt(energy) * tp), double_angle(in, sp.x)),
-          polarization_frame::with_unit_x(k_out, sp.x)};
+  polarized_step step{mueller::identity(), in};
+  step.out = transmit_onto(step.m, in, n, k_out, ts, tp, energy);
+  return step;
 }
 
 }  // namespace airr

@@ -20,9 +20,7 @@ void polarized_walk::reflect(const glm::dvec3& n, double cos_i, std::complex<dou
   if (!(r > 0)) return;
   // Amplitudes scaled by 1 / sqrt(r): the matrix divided by r.
   const double to_unit = 1 / std::sqrt(r);
-  const polarized_step step = reflect_polarized(frame, n, f.rs * to_unit, f.rp * to_unit);
-  m = step.m * m;
-  frame = step.out;
+  frame = reflect_onto(m, frame, n, f.rs * to_unit, f.rp * to_unit);
 }
 
 void polarized_walk::refract(const glm::dvec3& n, double cos_i, std::complex<double> eta, const glm::dvec3& k_out) {
@@ -30,9 +28,7 @@ void polarized_walk::refract(const glm::dvec3& n, double cos_i, std::complex<dou
   const double energy = (eta * f.cos_t).real() / cos_i;
   const double t = energy * 0.5 * (std::norm(f.ts) + std::norm(f.tp));
   if (!(t > 0)) return;
-  const polarized_step step = transmit_polarized(frame, n, k_out, f.ts, f.tp, energy / t);
-  m = step.m * m;
-  frame = step.out;
+  frame = transmit_onto(m, frame, n, k_out, f.ts, f.tp, energy / t);
 }
 
 void polarized_walk::depolarize(const glm::dvec3& k_out) {

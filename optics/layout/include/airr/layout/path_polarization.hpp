@@ -70,6 +70,8 @@ struct path_polarization {
 
  private:
   void apply(const mueller& m, const polarization_frame& in, const polarization_frame& out);
+  // apply(interface_mueller(-1, 1), in, out), a mirror's, on the rows without forming matrices.
+  void apply_mirror(const polarization_frame& in, const polarization_frame& out);
 };
 
 }  // namespace airr

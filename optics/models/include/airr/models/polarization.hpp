@@ -8,6 +8,8 @@
 
 #include <glm/glm.hpp>
 
+#include "airr/core/geometry.hpp"
+
 namespace airr {
 
 using complex = std::complex<double>;
@@ -58,13 +60,18 @@ mueller linear_retarder(double axis_rad, double retardance_rad);
 // An interface (or any part) that keeps s and p apart, with amplitude ratios rs and rp, in the s/p
 // frames of the light in and out (polarization_frame::at_surface).
 mueller interface_mueller(complex rs, complex rp);
+// interface_mueller(rs, rp) * x without forming the interface's matrix or multiplying its zeros.
+mueller interface_times(complex rs, complex rp, const mueller& x);
 
 // The frame a Stokes vector is written in: x and y across the unit propagation direction k, with
 // x cross y = k.
 struct polarization_frame {
   glm::dvec3 x{1, 0, 0}, y{0, 1, 0}, k{0, 0, 1};
   // Any frame about k (continuous except at k.z = -1).
-  static polarization_frame about(const glm::dvec3& k);
+  static polarization_frame about(const glm::dvec3& k) {
+    const basis b = make_basis(k);
+    return {b.t, b.b, k};
+  }
   // The frame about k whose x is `x` made perpendicular to k (x not along k).
   static polarization_frame with_x(const glm::dvec3& k, const glm::dvec3& x);
   // The frame about k whose x is `s`, a unit vector across k already (the s direction a surface
@@ -85,7 +92,10 @@ struct double_angle {
   double_angle(double cos_2, double sin_2) : c(cos_2), s(sin_2) {}
   // Of a world axis seen in a frame (angle_in's angle), from its components alone: no
   // trigonometry on the tracer's hot path.
-  double_angle(const polarization_frame& f, const glm::dvec3& axis);
+  double_angle(const polarization_frame& f, const glm::dvec3& axis) {
+    const double a = glm::dot(axis, f.x), b = glm::dot(axis, f.y), r = a * a + b * b;
+    if (r > 0) c = (a * a - b * b) / r, s = 2 * a * b / r;
+  }
 };
 
 // linear_polarizer with its axis a world direction, at its angle_in the frame: worked out from the
@@ -108,7 +118,7 @@ mueller reframed(const polarization_frame& from, const polarization_frame& to, c
 // (x, -y, -k); a path's Mueller matrix from `in` to `out` becomes, from reversed(out) to
 // reversed(in), G M^T G with G = diag(1, 1, -1, 1) (the Jones matrix's transpose in the
 // reversed frames; sums of such matrices alike).
-polarization_frame reversed(const polarization_frame& f);
+inline polarization_frame reversed(const polarization_frame& f) { return {f.x, -f.y, -f.k}; }
 mueller reversed_path(const mueller& m);
 
 // One interaction at a surface of unit normal n: its Mueller matrix from the light's frame `in`
@@ -123,5 +133,11 @@ polarized_step reflect_polarized(const polarization_frame& in, const glm::dvec3&
 // squared amplitudes into the intensity passed (Re(eta cos_t) / cos_i for an interface).
 polarized_step transmit_polarized(const polarization_frame& in, const glm::dvec3& n, const glm::dvec3& k_out,
                                   complex ts, complex tp, double energy);
+// The same onto a path's matrix so far (from its first frame to `in`): `path` becomes step.m * path,
+// worked out without the interface's and the turn's zeros (a walk's every event); returns step.out.
+polarization_frame reflect_onto(mueller& path, const polarization_frame& in, const glm::dvec3& n, complex rs,
+                                complex rp);
+polarization_frame transmit_onto(mueller& path, const polarization_frame& in, const glm::dvec3& n,
+                                 const glm::dvec3& k_out, complex ts, complex tp, double energy);
 
 }  // namespace airr
