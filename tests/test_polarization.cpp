@@ -228,6 +228,27 @@ TEST(Polarization, FresnelAmplitudesOfAClearMediumEqualTheComplexFormulas) {
   }
 }
 
+// A metal's amplitudes (the principal root and the shared reciprocals worked out in real arithmetic)
+// equal the textbook formulas written with the library's complex root and division.
+TEST(Polarization, FresnelAmplitudesOfAMetalEqualTheTextbookFormulas) {
+  pcg32 rng(7, 2);
+  for (const complex eta : {complex(0.96, 6.69), complex(0.96, 6.69) / 1.5, complex(0.2, 3.0), complex(2.5, 0.4)}) {
+    for (int k = 0; k < 1000; ++k) {
+      const double cos_i = k == 0 ? 1.0 : k == 1 ? 0.0 : rng.next_double();
+      const complex ci(cos_i);
+      complex cos_t = std::sqrt(1.0 - (1 - cos_i * cos_i) / (eta * eta));
+      if (cos_t.imag() < 0) cos_t = -cos_t;
+      const fresnel_coefficients f = fresnel_amplitudes(cos_i, eta);
+      for (const auto& [a, b] :
+           {std::pair{f.cos_t, cos_t}, std::pair{f.rs, (ci - eta * cos_t) / (ci + eta * cos_t)},
+            std::pair{f.rp, (eta * ci - cos_t) / (eta * ci + cos_t)}, std::pair{f.ts, 2.0 * ci / (ci + eta * cos_t)},
+            std::pair{f.tp, 2.0 * ci / (eta * ci + cos_t)}}) {
+        EXPECT_LT(std::abs(a - b), 1e-12 * std::max(1.0, std::abs(b))) << "eta " << eta << ", cos_i " << cos_i;
+      }
+    }
+  }
+}
+
 namespace {
 
 using field = std::array<complex, 3>;  // a complex electric field vector in world coordinates
