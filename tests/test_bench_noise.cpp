@@ -1,6 +1,7 @@
 // `airr bench --noise` end to end on a small image: pairs rendered through `airr render`, the law,
 // the forecast, and a side-by-side comparison (here with the same build, so the ratio is near 1);
 // --memory and --model-image likewise.
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -189,4 +190,37 @@ TEST(BenchDrag, ReportsEveryFrameOfTheDrag) {
   }
   EXPECT_GE(rows, 12);
   EXPECT_LE(rows, 18);
+}
+
+// `airr bench --sheets` on a small image: the three models each with its median time and the
+// median of the rounds' ratios to the sinc-shift model, which lies within the rounds' range (the
+// sinc-shift model's own exactly 1).
+TEST(BenchSheets, TakesTheModelsInTurns) {
+  const test::command_result r = test::run_cli("bench --sheets --size 32 --spp 1 --runs 3");
+  ASSERT_EQ(r.exit_code, 0) << r.out;
+  EXPECT_NE(r.out.find("median of 3 runs taken in turns"), std::string::npos) << r.out;
+  std::vector<std::string> models;
+  std::istringstream in(r.out);
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream row(line);
+    std::string model, s, per_s, x_the;
+    double seconds = 0, rate = 0, ratio = 0, lo = 0, hi = 0;
+    if (!(row >> model >> seconds >> s >> rate >> per_s) || s != "s") continue;
+    const auto at = line.find("x the sinc-shift"), rounds = line.find("(rounds: ");
+    ASSERT_NE(at, std::string::npos) << line;
+    ASSERT_NE(rounds, std::string::npos) << line;
+    ratio = std::stod(line.substr(line.rfind(' ', at - 1) + 1));
+    ASSERT_EQ(std::sscanf(line.c_str() + rounds, "(rounds: %lf to %lf)", &lo, &hi), 2) << line;
+    models.push_back(model);
+    EXPECT_GT(seconds, 0) << line;
+    EXPECT_GT(rate, 0) << line;
+    EXPECT_LE(lo, ratio + 0.005) << line;
+    EXPECT_LE(ratio, hi + 0.005) << line;
+    if (model == "sinc_shift") {
+      EXPECT_EQ(ratio, 1.0) << line;
+      EXPECT_EQ(lo, 1.0) << line;
+      EXPECT_EQ(hi, 1.0) << line;
+    }
+  }
+  EXPECT_EQ(models, (std::vector<std::string>{"sinc_shift", "prism_sheet", "bead_sheet"})) << r.out;
 }

@@ -93,26 +93,36 @@ traced trace_all(const airr::tracer_scene& ts, std::uint64_t spp) {
 }
 
 // The scene's first sheet as each model the tracer can take (their default parameters), the
-// tracer's time for the same image, and each against the sinc-shift model's (the median of `runs`).
+// tracer's time for the same image, and each against the sinc-shift model's. The models take
+// turns, a round of each per run, so that the machine's drift over the runs falls on all of them
+// alike; the ratio is the median of the rounds' ratios.
 void run_sheet_bench(const airr::scene& base, const std::string& scene_path, std::uint64_t spp, int runs) {
-  std::printf("sheet models: %s (%dx%d, %llu spp, median of %d runs), the tracer alone\n", scene_path.c_str(),
-              base.observer.width, base.observer.height, static_cast<unsigned long long>(spp), runs);
-  double sinc_seconds = 0;
-  for (const std::string type : {"sinc_shift", "prism_sheet", "bead_sheet"}) {
+  std::printf("sheet models: %s (%dx%d, %llu spp, median of %d runs taken in turns), the tracer alone\n",
+              scene_path.c_str(), base.observer.width, base.observer.height, static_cast<unsigned long long>(spp),
+              runs);
+  const std::array<std::string, 3> types{"sinc_shift", "prism_sheet", "bead_sheet"};
+  airr::embree_device device;
+  std::array<airr::tracer_scene, 3> scenes;
+  for (std::size_t m = 0; m < types.size(); ++m) {
     airr::scene s = base;
-    s.sheet().model =
-        airr::with_model_type(type == "sinc_shift" ? base.sheet().model : airr::retro_model_params{}, type);
-    airr::embree_device device;
-    airr::tracer_scene ts;
-    airr::build_tracer_scene(ts, device, s);
-    std::vector<traced> times;
-    for (int i = 0; i < runs; ++i) times.push_back(trace_all(ts, spp));
-    std::sort(times.begin(), times.end(), [](const traced& a, const traced& b) { return a.seconds < b.seconds; });
-    const traced& t = times[times.size() / 2];
-    if (type == "sinc_shift") sinc_seconds = t.seconds;
-    std::printf("%-12s %8.3f s  %12.0f rays/s  %5.2fx the sinc-shift model's time\n", type.c_str(), t.seconds,
-                double(t.rays) / t.seconds, t.seconds / sinc_seconds);
-    std::fflush(stdout);
+    s.sheet().model = airr::with_model_type(m == 0 ? base.sheet().model : airr::retro_model_params{}, types[m]);
+    airr::build_tracer_scene(scenes[m], device, s);
+  }
+  std::array<std::vector<traced>, 3> times;
+  std::array<std::vector<double>, 3> ratios;
+  for (int i = 0; i < runs; ++i) {
+    for (std::size_t m = 0; m < types.size(); ++m) times[m].push_back(trace_all(scenes[m], spp));
+    for (std::size_t m = 0; m < types.size(); ++m)
+      ratios[m].push_back(times[m].back().seconds / times[0].back().seconds);
+  }
+  for (std::size_t m = 0; m < types.size(); ++m) {
+    auto& t = times[m];
+    std::sort(t.begin(), t.end(), [](const traced& a, const traced& b) { return a.seconds < b.seconds; });
+    std::sort(ratios[m].begin(), ratios[m].end());
+    const traced& mid = t[t.size() / 2];
+    std::printf("%-12s %8.3f s  %12.0f rays/s  %5.2fx the sinc-shift model's time (rounds: %.2f to %.2f)\n",
+                types[m].c_str(), mid.seconds, double(mid.rays) / mid.seconds, ratios[m][ratios[m].size() / 2],
+                ratios[m].front(), ratios[m].back());
   }
 }
 
@@ -183,7 +193,8 @@ void add_bench_command(CLI::App& app) {
   cmd->add_flag(
       "--sheets", opt->sheets,
       "Instead: the tracer's time for the scene's image with its sheet as the sinc-shift model, a prism sheet "
-      "and a bead sheet (their defaults), each against the sinc-shift's (--spp, --runs: the median)");
+      "and a bead sheet (their defaults), each against the sinc-shift's (--spp, --runs: rounds of the three taken in "
+      "turns, the median of their ratios)");
   cmd->add_option(
       "--compare", opt->noise_options.compare,
       "With --noise, --model-image, --model-error or --memory: also measure another build's airr executable, side "
