@@ -77,14 +77,14 @@ void path_polarization::films(const std::vector<film_params>& films, part_face f
   const auto one = [&](const film_params& film) {
     if (film.face != face) return;
     const double_angle axis(frame, axis_on(f, film.axis_deg));
+    if (film.kind == film_kind::polarizer) {
+      const double along = std::sqrt(film.pass_transmittance), across = std::sqrt(film.block_transmittance);
+      for (glm::dvec4& row : rows) row = row_through_axial_part(row, axis, along, across);
+      return;
+    }
     for (std::size_t c = 0; c < 3; ++c) {
-      if (film.kind == film_kind::polarizer) {
-        rows[c] = row_through_axial_part(rows[c], axis, std::sqrt(film.pass_transmittance),
-                                         std::sqrt(film.block_transmittance));
-      } else {
-        const double retardance = 2 * pi * film.retardance_waves * path * film.wavelength_nm / display_primaries_nm[c];
-        rows[c] = row_through_axial_part(rows[c], axis, 1.0, std::polar(1.0, retardance));
-      }
+      const double retardance = 2 * pi * film.retardance_waves * path * film.wavelength_nm / display_primaries_nm[c];
+      rows[c] = row_through_axial_part(rows[c], axis, 1.0, std::polar(1.0, retardance));
     }
   };
   // Going back, light leaving a face meets its outermost film first.

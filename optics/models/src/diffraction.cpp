@@ -134,8 +134,7 @@ struct streak {
   glm::dvec2 edge{0}, along{0}, across{0};
   double length = 0, beta = 0;
   std::array<double, 3> pieces{};
-  double log_beta_f0 = 0;  // when beta > f0: piece 1's inverse takes it at every draw
-  double scale = 0;        // the share's factor, C L^2 / (c_j 4 pi^2)
+  double scale = 0;  // the share's factor, C L^2 / (c_j 4 pi^2)
 };
 
 // The integral of m(b) / s(b) over b >= 0 between its breaks: over [0, min(beta, f0)], up to
@@ -150,7 +149,8 @@ double streak_b(const streak& s, double f0, int k, double r) {
   const double beta = s.beta, lo = std::min(beta, f0), hi = std::max(beta, f0);
   if (k == 0) return lo * r;
   if (k == 2) return hi / std::sqrt(1 - r);
-  return beta <= f0 ? 1 / (1 / beta - r * (1 / beta - 1 / f0)) : f0 * std::exp(r * s.log_beta_f0);
+  // Beyond f0, piece 1's integral is log(beta / f0), worked out once a draw.
+  return beta <= f0 ? 1 / (1 / beta - r * (1 / beta - 1 / f0)) : f0 * std::exp(r * s.pieces[1]);
 }
 
 // a across a streak at b, distributed as 1 / (a^2 + b^2) over |f| >= f0, as b cot(phi) for phi the
@@ -217,7 +217,6 @@ glm::dvec2 sample_polygon_far_field(const aperture& a, pcg32& rng, double f_max)
     double c_sum = 0;
     for (streak& s : streaks) {
       s.pieces = streak_pieces(s.beta, f0);
-      if (s.beta > f0) s.log_beta_f0 = s.pieces[1];
       s.scale = s.length * std::sqrt(s.pieces[0] + s.pieces[1] + s.pieces[2]);  // c_j for now
       c_sum += s.scale;
     }
