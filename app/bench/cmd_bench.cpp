@@ -120,7 +120,7 @@ void run_sheet_bench(const airr::scene& base, const std::string& scene_path, std
     std::sort(t.begin(), t.end(), [](const traced& a, const traced& b) { return a.seconds < b.seconds; });
     std::sort(ratios[m].begin(), ratios[m].end());
     const traced& mid = t[t.size() / 2];
-    std::printf("%-12s %8.3f s  %12.0f rays/s  %5.2fx the sinc-shift model's time (rounds: %.2f to %.2f)\n",
+    std::printf("%-12s %9.3g s  %12.0f rays/s  %5.2fx the sinc-shift model's time (rounds: %.2f to %.2f)\n",
                 types[m].c_str(), mid.seconds, double(mid.rays) / mid.seconds, ratios[m][ratios[m].size() / 2],
                 ratios[m].front(), ratios[m].back());
   }
