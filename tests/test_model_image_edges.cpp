@@ -12,9 +12,9 @@ using namespace airr;
 
 namespace {
 
-// The mean of pixel (x, y)'s predictions over the first n samples of bin 0's kernel sequence.
+// The mean of pixel (x, y)'s predictions over the first n samples of the bins' kernel sequence.
 glm::dvec3 mean_prediction(const model_image& m, int x, int y, std::uint64_t n, std::uint64_t seed) {
-  const kernel_sequence sequence(0, seed);
+  const kernel_sequence sequence(seed);
   glm::dvec3 sum(0.0);
   for (std::uint64_t i = 0; i < n; ++i) {
     glm::dvec2 jitter;

@@ -164,6 +164,44 @@ TEST(SincShift, AtIncidenceSamplesAsTheModelDoes) {
   }
 }
 
+// Sampled together from the same numbers (as the model image's bins are), several incidences give
+// each its own samples exactly: across the shift table's rows (the rows' shifts worked out once),
+// for light from below the sheet, without a shift, and in a group that mixes models (each keeps
+// its own; another model's incidences are sampled one by one).
+TEST(SincShift, IncidencesSampledTogetherGiveEachItsOwnSamples) {
+  const sinc_shift_retro model(lobe_params({0.5, 0.3, 0.2}, {0.9, 0.8, 0.6}, 3.0, {0, 20, 40}),
+                               cached_shift_table(default_shift_table_path()));
+  const sinc_shift_retro no_shift(lobe_params({0.4}, {0.7}, 0.0), nullptr);
+  const ideal_retro ideal(0.7);
+  auto wi_at = [](double theta_deg, double azimuth) {
+    const double t = theta_deg * std::numbers::pi / 180;
+    return glm::dvec3(std::sin(t) * std::cos(azimuth), std::sin(t) * std::sin(azimuth), std::cos(t));
+  };
+  std::vector<std::unique_ptr<const retro_at_incidence>> one_model, mixed;
+  for (double theta : {0.0, 2.0, 4.5, 7.5, 12.0, 26.0, 33.0, 120.0})
+    one_model.push_back(model.at_incidence(wi_at(theta, 0.3)));
+  mixed.push_back(model.at_incidence(wi_at(3.0, 1.0)));
+  mixed.push_back(no_shift.at_incidence(wi_at(3.0, 1.0)));
+  mixed.push_back(ideal.at_incidence(wi_at(9.0, 2.0)));
+  mixed.push_back(model.at_incidence(wi_at(17.0, 2.0)));
+  for (const auto* group : {&one_model, &mixed}) {
+    std::vector<const retro_at_incidence*> at;
+    for (const auto& a : *group) at.push_back(a.get());
+    std::vector<retro_sample> out(at.size());
+    pcg32 rng(5, 9);
+    for (int i = 0; i < 4000; ++i) {
+      const retro_samples u = test::random_retro_samples(rng);
+      sample_at_each(at, u, out);
+      for (std::size_t k = 0; k < at.size(); ++k) {
+        const retro_sample alone = at[k]->sample(u);
+        ASSERT_EQ(out[k].weight, alone.weight) << k;
+        ASSERT_EQ(out[k].wo, alone.wo) << k;
+        ASSERT_EQ(out[k].shift_mm, alone.shift_mm) << k;
+      }
+    }
+  }
+}
+
 // The model's own pdf against its sampler: directions binned by deviation and azimuth about wi
 // (a basis built here), absorbed samples in a bin of their own, expected counts from integrating
 // pdf over each bin. A grazing wi and a wide lobe put a good share below the sheet.

@@ -121,8 +121,8 @@ void run_model_image_bench(const model_image_bench_options& o) {
       "model image of sheet 0 at %dx%d, median of %d runs (ms); the loop's parts are summed over the bins that run "
       "side by side\n",
       o.size, o.size, o.runs);
-  std::printf("%-6s %5s %-7s %8s %8s %8s %8s %8s %9s %9s %8s\n", "preset", "tilt", "quality", "total", "paths", "bins",
-              "spectra", "loop", "(kernels", "correlate", "gather)");
+  std::printf("%-6s %5s %-7s %8s %8s %8s %8s %8s %8s %9s %9s %8s\n", "preset", "tilt", "quality", "total", "paths",
+              "bins", "spectra", "samples", "loop", "(kernels", "correlate", "gather)");
   std::vector<double> medians[3], moved_medians, display_medians;
   for (const std::string& preset : o.presets) {
     for (double tilt : o.tilts_deg) {
@@ -131,7 +131,7 @@ void run_model_image_bench(const model_image_bench_options& o) {
         const airr::model_image_params params =
             quality == view ? airr::model_image_params::for_view()
                             : airr::model_image_params::for_image(o.size, o.size, quality == quick);
-        std::vector<double> total, paths, bins, spectra, loop, kernels, correlate, gather;
+        std::vector<double> total, paths, bins, spectra, landings, loop, kernels, correlate, gather;
         for (int r = 0; r < o.runs; ++r) {
           const auto t0 = std::chrono::steady_clock::now();
           const auto m = airr::compute_model_image(c.s, c.models.front(), c.display(), params);
@@ -140,14 +140,15 @@ void run_model_image_bench(const model_image_bench_options& o) {
           paths.push_back(1e3 * m->paths_seconds);
           bins.push_back(1e3 * m->bins_seconds);
           spectra.push_back(1e3 * m->spectra_seconds);
+          landings.push_back(1e3 * m->landings_seconds);
           loop.push_back(1e3 * m->loop_seconds);
           kernels.push_back(1e3 * m->kernels_seconds);
           correlate.push_back(1e3 * m->correlate_seconds);
           gather.push_back(1e3 * m->gather_seconds);
         }
-        std::printf("%-6s %5g %-7s %8.0f %8.0f %8.0f %8.0f %8.0f %9.0f %9.0f %8.0f\n", preset.c_str(), tilt,
-                    quality_names[quality], median(total), median(paths), median(bins), median(spectra), median(loop),
-                    median(kernels), median(correlate), median(gather));
+        std::printf("%-6s %5g %-7s %8.0f %8.0f %8.0f %8.0f %8.0f %8.0f %9.0f %9.0f %8.0f\n", preset.c_str(), tilt,
+                    quality_names[quality], median(total), median(paths), median(bins), median(spectra),
+                    median(landings), median(loop), median(kernels), median(correlate), median(gather));
         medians[quality].push_back(median(total));
         if (quality == view) {
           const double moved = moved_ms(c, params, o.runs);

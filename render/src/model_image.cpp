@@ -32,6 +32,7 @@ void model_image_steps::assign_bin(const std::vector<model_bin>& bins, model_pix
 
 model_image_params model_image_params::for_image(int width, int height, bool quick) {
   model_image_params p;
+  p.psf_samples = 65536;
   if (quick || std::int64_t(width) * height < 256 * 256) {
     p.texel_refine = 2;
     p.core_radius_mm = 4;
@@ -237,6 +238,11 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
   };
   std::vector<std::array<double, 3>> bin_seconds(std::size_t(bins), {0.0, 0.0, 0.0});
   const std::uint64_t edge_count = std::min(p.edge_samples, p.psf_samples);
+  const auto t_landings = clock_type::now();
+  const std::vector<std::vector<bin_landing>> landings =
+      bin_landings(*m, p.psf_samples, s.seed, row_workers_of(p), cancel);
+  if (cancel_requested(cancel)) return nullptr;
+  m->landings_seconds = since(t_landings);
   const auto t_loop = clock_type::now();
   for (const int parity : {0, 1}) {
     detail::parallel_rows((bins + 1 - parity) / 2, row_workers_of(p), [&](int j0, int j1) {
@@ -245,9 +251,8 @@ std::shared_ptr<model_image> compute_model_image(const scene& s, std::shared_ptr
         auto t = clock_type::now();
         const model_grid& fine_grid = m->grids[model_fine];
         std::vector<fine_sample> landed;
-        const std::array<cv::Mat, 2> kernels =
-            bin_kernels(*m, m->bins[std::size_t(k)], std::size_t(k), p.psf_samples, s.seed, row_workers_of(p), cancel,
-                        fine_grid.edges_on_nodes ? &landed : nullptr, edge_count);
+        const std::array<cv::Mat, 2> kernels = bin_kernels(*m, landings[std::size_t(k)], row_workers_of(p), cancel,
+                                                           fine_grid.edges_on_nodes ? &landed : nullptr, edge_count);
         const edge_samples edges =
             fine_grid.edges_on_nodes ? sort_edge_samples(landed, fine_grid.radius, edge_count) : edge_samples{};
         landed = {};

@@ -25,28 +25,22 @@ glm::vec3 bilinear(const image_rgb& m, const glm::dvec2& t) {
 }
 
 // Where the model sends one sample: the grid and the offset in its nodes from the ideal point (the
-// pixel jitter included), and its throughput; empty when it is absorbed, misses the half mirror or
-// lands beyond the kernels. Both the kernels and the predictions go through here.
-struct grid_offset {
-  int grid;
-  glm::dvec2 nodes;
-};
-static std::optional<grid_offset> sample_offset(const model_image& m, const model_bin& b, const glm::dvec2& jitter,
-                                                const retro_samples& u, double& weight) {
-  const retro_sample rs = b.sampler->sample(u);
-  if (!(rs.weight > 0) || !rs.retroreflected) return std::nullopt;
+// pixel jitter included), and its throughput; no grid when it is absorbed, misses the half mirror
+// or lands beyond the kernels. Both the kernels and the predictions go through here.
+static bin_landing landing_of(const model_image& m, const model_bin& b, const glm::dvec2& jitter,
+                              const retro_sample& rs) {
+  if (!(rs.weight > 0) || !rs.retroreflected) return {};
   const auto landing = psf_landing_of(b.chief, rs);
-  if (!landing) return std::nullopt;
+  if (!landing) return {};
   const glm::dvec3& delta = landing->offset;
   const glm::dvec2 mm =
       glm::dvec2(glm::dot(delta, b.chief.src.u), glm::dot(delta, b.chief.src.v)) + b.jitter_mm * (jitter - 0.5);
-  weight = rs.weight * m.hm_factor;
   for (int g : {model_fine, model_tail}) {
     const model_grid& grid = m.grids[g];
     const glm::dvec2 t(mm.x / grid.node_w, -mm.y / grid.node_h);  // node rows run down the display
-    if (std::abs(t.x) < grid.radius - 1 && std::abs(t.y) < grid.radius - 1) return grid_offset{g, t};
+    if (std::abs(t.x) < grid.radius - 1 && std::abs(t.y) < grid.radius - 1) return {t, rs.weight * m.hm_factor, g};
   }
-  return std::nullopt;
+  return {};
 }
 
 // An offset between whole nodes spreads over the four around it with bilinear weights, in the
@@ -86,10 +80,32 @@ glm::vec3 spread_bilinear(const image_rgb& grid, const glm::dvec2& base, const g
   return sum;
 }
 
-std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std::size_t bin, std::uint64_t samples,
-                                   std::uint64_t seed, detail::row_workers threads, const std::atomic<bool>* cancel,
+std::vector<std::vector<bin_landing>> bin_landings(const model_image& m, std::uint64_t samples, std::uint64_t seed,
+                                                   detail::row_workers threads, const std::atomic<bool>* cancel) {
+  const std::size_t bins = m.bins.size();
+  std::vector<const retro_at_incidence*> at(bins);
+  for (std::size_t k = 0; k < bins; ++k) at[k] = m.bins[k].sampler.get();
+  std::vector<std::vector<bin_landing>> landed(bins, std::vector<bin_landing>(samples));
+  const kernel_sequence sequence(seed);
+  constexpr std::uint64_t block = 4096;
+  detail::parallel_rows(int((samples + block - 1) / block), threads, [&](int b0, int b1) {
+    std::vector<retro_sample> rs(bins);
+    for (std::uint64_t i = std::uint64_t(b0) * block; i < std::min(samples, std::uint64_t(b1) * block); ++i) {
+      if (i % block == 0 && cancel_requested(cancel)) return;
+      glm::dvec2 jitter;
+      retro_samples u;
+      sequence.at(i, jitter, u);
+      sample_at_each(at, u, rs);
+      for (std::size_t k = 0; k < bins; ++k) landed[k][i] = landing_of(m, m.bins[k], jitter, rs[k]);
+    }
+  });
+  if (cancel_requested(cancel)) return {};
+  return landed;
+}
+
+std::array<cv::Mat, 2> bin_kernels(const model_image& m, const std::vector<bin_landing>& landed,
+                                   detail::row_workers threads, const std::atomic<bool>* cancel,
                                    std::vector<fine_sample>* fine, std::uint64_t fine_count) {
-  const kernel_sequence sequence(bin, seed);
   auto zero = [&] {
     std::array<cv::Mat, 2> k;
     for (int g : {model_fine, model_tail}) {
@@ -98,24 +114,21 @@ std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std
     }
     return k;
   };
+  const std::uint64_t samples = landed.size();
   constexpr std::uint64_t block = 65536;  // few partial kernels: each is as large as the kernel
   const std::size_t blocks = std::size_t((samples + block - 1) / block);
   std::vector<std::array<cv::Mat, 2>> parts(blocks);
-  std::vector<std::vector<fine_sample>> landed(fine ? blocks : 0);
+  std::vector<std::vector<fine_sample>> first_fine(fine ? blocks : 0);
   auto block_kernels = [&](std::size_t k) {
     std::array<cv::Mat, 2> part = zero();
     const std::uint64_t end = std::min<std::uint64_t>(samples, (k + 1) * block);
     for (std::uint64_t i = k * block; i < end; ++i) {
-      glm::dvec2 jitter;
-      retro_samples u;
-      sequence.at(i, jitter, u);
-      double w = 0;
-      const auto o = sample_offset(m, b, jitter, u, w);
-      if (!o) continue;
-      if (fine && i < fine_count && o->grid == model_fine) landed[k].push_back({o->nodes, w});
-      cv::Mat& kernel = part[std::size_t(o->grid)];
-      const int r = m.grids[o->grid].radius;
-      for_each_corner(o->nodes, [&](int x, int y, double c) { kernel.at<double>(y + r, x + r) += w * c; });
+      const bin_landing& o = landed[i];
+      if (o.grid < 0) continue;
+      if (fine && i < fine_count && o.grid == model_fine) first_fine[k].push_back({o.nodes, o.w});
+      cv::Mat& kernel = part[std::size_t(o.grid)];
+      const int r = m.grids[o.grid].radius;
+      for_each_corner(o.nodes, [&](int x, int y, double c) { kernel.at<double>(y + r, x + r) += o.w * c; });
     }
     return part;
   };
@@ -130,7 +143,7 @@ std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std
     for (std::size_t g = 0; g < 2; ++g) sum[g] += part[g];
   }
   for (std::size_t g = 0; g < 2; ++g) sum[g].convertTo(out[g], CV_32F, 1.0 / double(samples));
-  for (auto& part : landed) fine->insert(fine->end(), part.begin(), part.end());
+  for (auto& part : first_fine) fine->insert(fine->end(), part.begin(), part.end());
   return out;
 }
 
@@ -140,8 +153,8 @@ namespace airr {
 
 using namespace model_image_steps;
 
-kernel_sequence::kernel_sequence(std::size_t bin, std::uint64_t seed) : bin_(bin), seed_(seed) {
-  pcg32 rotation_rng = sample_rng(bin, 0, seed ^ 0x6b65726eu);
+kernel_sequence::kernel_sequence(std::uint64_t seed) : seed_(seed) {
+  pcg32 rotation_rng = sample_rng(0, 0, seed ^ 0x6b65726eu);
   for (double& r : rotation_) r = rotation_rng.next_double();
 }
 
@@ -150,7 +163,7 @@ void kernel_sequence::at(std::uint64_t i, glm::dvec2& jitter, retro_samples& u) 
   jitter = {q[0], q[1]};
   u.lobe = {q[2], q[3]};
   u.shift = {q[4], q[5]};
-  u.more = sample_rng(i, bin_, seed_ ^ 0x6d6f7265u);
+  u.more = sample_rng(i, 0, seed_ ^ 0x6d6f7265u);
 }
 
 glm::vec3 model_prediction(const model_image& m, int px, int py, const glm::dvec2& jitter, const retro_samples& u) {
@@ -161,14 +174,18 @@ glm::vec3 model_prediction(const model_image& m, int px, int py, const glm::dvec
 glm::vec3 model_prediction(const model_image& m, const model_pixel& p, const glm::dvec2& jitter,
                            const retro_samples& u) {
   if (!p.ok) return glm::vec3(0.0f);
-  auto one = [&](int k) {
-    double weight = 0;
-    const auto o = sample_offset(m, m.bins[std::size_t(k)], jitter, u, weight);
-    if (!o) return glm::vec3(0.0f);
-    return grid_value(m.grids[o->grid], p.node[o->grid], o->nodes) * float(weight * p.profile);
+  const std::size_t count = p.mix > 0 ? 2 : 1;
+  const std::array<const retro_at_incidence*, 2> at{
+      m.bins[std::size_t(p.bin)].sampler.get(), count == 2 ? m.bins[std::size_t(p.bin) + 1].sampler.get() : nullptr};
+  std::array<retro_sample, 2> rs;
+  sample_at_each(std::span(at.data(), count), u, rs);
+  auto one = [&](std::size_t k) {
+    const bin_landing o = landing_of(m, m.bins[std::size_t(p.bin) + k], jitter, rs[k]);
+    if (o.grid < 0) return glm::vec3(0.0f);
+    return grid_value(m.grids[o.grid], p.node[o.grid], o.nodes) * float(o.w * p.profile);
   };
-  glm::vec3 v = one(p.bin) * float(1 - p.mix);
-  if (p.mix > 0) v += one(p.bin + 1) * float(p.mix);
+  glm::vec3 v = one(0) * float(1 - p.mix);
+  if (count == 2) v += one(1) * float(p.mix);
   return v;
 }
 

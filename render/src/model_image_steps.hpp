@@ -169,12 +169,26 @@ struct fine_sample {
   double w;
 };
 
-// The bin's kernels from its samples (kernel_sequence); blocks run in parallel and are summed in
-// order, so the result does not depend on the number of threads. `fine`, when given, receives
-// those of the first `fine_count` samples that landed on the fine grid, in order (for the display's
-// edges).
-std::array<cv::Mat, 2> bin_kernels(const model_image& m, const model_bin& b, std::size_t bin, std::uint64_t samples,
-                                   std::uint64_t seed, detail::row_workers threads, const std::atomic<bool>* cancel,
+// Where one bin sample lands: the grid (-1: absorbed, off the half mirror or beyond the kernels)
+// and its offset in that grid's nodes from the pixel's ideal point (its jitter included), and its
+// throughput.
+struct bin_landing {
+  glm::dvec2 nodes{0.0};
+  double w = 0;
+  int grid = -1;
+};
+
+// Every bin's samples: the same numbers (kernel_sequence) sent through each bin, sampled together
+// (sample_at_each), so that a model works out once what does not depend on the incidence.
+// landings[k][i] is bin k's sample i; empty when `cancel` is set.
+std::vector<std::vector<bin_landing>> bin_landings(const model_image& m, std::uint64_t samples, std::uint64_t seed,
+                                                   detail::row_workers threads, const std::atomic<bool>* cancel);
+
+// The bin's kernels from its samples' landings; blocks run in parallel and are summed in order, so
+// the result does not depend on the number of threads. `fine`, when given, receives those of the
+// first `fine_count` samples that landed on the fine grid, in order (for the display's edges).
+std::array<cv::Mat, 2> bin_kernels(const model_image& m, const std::vector<bin_landing>& landed,
+                                   detail::row_workers threads, const std::atomic<bool>* cancel,
                                    std::vector<fine_sample>* fine = nullptr, std::uint64_t fine_count = 0);
 
 // The grid's bilinear surface at node point `t` (black beyond the grid).

@@ -23,6 +23,11 @@ class forwarded_incidence final : public retro_at_incidence {
 };
 }  // namespace
 
+void retro_at_incidence::sample_group(std::span<const retro_at_incidence* const> at, const retro_samples& u,
+                                      std::span<retro_sample> out) const {
+  for (std::size_t i = 0; i < at.size(); ++i) out[i] = at[i]->sample(u);
+}
+
 std::unique_ptr<const retro_at_incidence> retro_model::at_incidence(const glm::dvec3& wi) const {
   return std::make_unique<forwarded_incidence>(*this, wi);
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <typeinfo>
 
 #include "airr/core/error.hpp"
 #include "airr/core/files.hpp"
@@ -118,25 +119,54 @@ sinc_shift_retro::incidence sinc_shift_retro::prepare(const glm::dvec3& wi) cons
   return in;
 }
 
-retro_sample sinc_shift_retro::sample(const incidence& in, retro_samples u) const {
-  if (!in.lit) return {};
-  const double tan_delta = sinc_lobe::instance().sample_tan_delta(in.k, u.lobe.x, u.more.next_double());
-  const double cos_delta = 1.0 / std::sqrt(1.0 + tan_delta * tan_delta), sin_delta = tan_delta * cos_delta;
+sinc_shift_retro::draw sinc_shift_retro::draw_of(retro_samples u) const {
+  draw d;
+  d.k_tan_delta = sinc_lobe::instance().sample_k_tan_delta(u.lobe.x, u.more.next_double());
   const double phi = 2.0 * pi * u.lobe.y;
+  d.cos_phi = std::cos(phi);
+  d.sin_phi = std::sin(phi);
+  if (p_.c_mm > 0 && shifts_) {
+    d.pick = u.more.next_double();
+    d.u_bin = u.shift.x;
+    d.u_jitter = u.more.next_double();
+    const double psi = 2.0 * pi * u.shift.y;
+    d.cos_psi = std::cos(psi);
+    d.sin_psi = std::sin(psi);
+  }
+  return d;
+}
+
+retro_sample sinc_shift_retro::sample(const incidence& in, const draw& d, row_shifts& rows) const {
+  if (!in.lit) return {};
+  const double tan_delta = d.k_tan_delta / in.k;
+  const double cos_delta = 1.0 / std::sqrt(1.0 + tan_delta * tan_delta), sin_delta = tan_delta * cos_delta;
 
   // Rotate the retro direction (wo = wi) by delta at azimuth phi.
   retro_sample s;
-  s.wo = in.frame.to_world({sin_delta * std::cos(phi), sin_delta * std::sin(phi), cos_delta});
+  s.wo = in.frame.to_world({sin_delta * d.cos_phi, sin_delta * d.sin_phi, cos_delta});
   if (s.wo.z <= 0) return {};  // sent below the sheet: absorbed
 
   if (p_.c_mm > 0 && shifts_) {
-    const double pick = u.more.next_double();
-    const double shift = sample_shift(*shifts_, in.rows, pick, u.shift.x, u.more.next_double()) * p_.c_mm;
-    const double psi = 2.0 * pi * u.shift.y;
-    s.shift_mm = {shift * std::cos(psi), shift * std::sin(psi)};
+    const std::size_t row = in.rows.picked(d.pick);
+    const auto known = std::find_if(rows.known.begin(), rows.known.begin() + rows.count,
+                                    [&](const auto& r) { return r.first == row; });
+    double shift = 0;
+    if (known != rows.known.begin() + rows.count) {
+      shift = known->second;
+    } else {
+      shift = shift_in_row(*shifts_, row, d.u_bin, d.u_jitter) * p_.c_mm;
+      if (rows.count < rows.known.size()) rows.known[rows.count++] = {row, shift};
+    }
+    s.shift_mm = {shift * d.cos_psi, shift * d.sin_psi};
   }
   s.weight = in.mu;
   return s;
+}
+
+retro_sample sinc_shift_retro::sample(const incidence& in, retro_samples u) const {
+  if (!in.lit) return {};
+  row_shifts rows;
+  return sample(in, draw_of(u), rows);
 }
 
 retro_sample sinc_shift_retro::sample(const glm::dvec3& wi, retro_samples u) const { return sample(prepare(wi), u); }
@@ -154,6 +184,22 @@ class sinc_shift_incidence final : public retro_at_incidence {
  public:
   sinc_shift_incidence(const sinc_shift_retro& model, const glm::dvec3& wi) : model_(model), in_(model.prepare(wi)) {}
   retro_sample sample(retro_samples u) const override { return model_.sample(in_, u); }
+
+  // One draw for every incidence of this model: the lobe's table, the azimuths' sines and cosines
+  // and each table row's shift are worked out once.
+  void sample_group(std::span<const retro_at_incidence* const> at, const retro_samples& u,
+                    std::span<retro_sample> out) const override {
+    const auto ours = [&](const retro_at_incidence* a) {
+      return typeid(*a) == typeid(sinc_shift_incidence) &&
+             &static_cast<const sinc_shift_incidence*>(a)->model_ == &model_;
+    };
+    if (!std::all_of(at.begin(), at.end(), ours)) return retro_at_incidence::sample_group(at, u, out);
+    const sinc_shift_retro::draw d = model_.draw_of(u);
+    sinc_shift_retro::row_shifts rows;
+    for (std::size_t i = 0; i < at.size(); ++i) {
+      out[i] = model_.sample(static_cast<const sinc_shift_incidence*>(at[i])->in_, d, rows);
+    }
+  }
 
  private:
   const sinc_shift_retro& model_;

@@ -185,7 +185,10 @@ double sample_shift(const shift_table& table, double theta_deg, double u_pick, d
 }
 
 double sample_shift(const shift_table& table, const shift_rows& rows, double u_pick, double u_bin, double u_jitter) {
-  const std::size_t row = u_pick < rows.t ? rows.upper : rows.lower;
+  return shift_in_row(table, rows.picked(u_pick), u_bin, u_jitter);
+}
+
+double shift_in_row(const shift_table& table, std::size_t row, double u_bin, double u_jitter) {
   const int bin = bin_from_cdf(table.cdf[row], std::max(u_bin, 0.0));
   const double width = table.s_max / double(table.probability[row].size());
   return (double(bin) + std::clamp(u_jitter, 0.0, 1.0)) * width;

@@ -37,16 +37,16 @@ const sinc_lobe& sinc_lobe::instance() {
   return lobe;
 }
 
-double sinc_lobe::sample_tan_delta(double k, double u_cell, double u_jitter) const {
+double sinc_lobe::sample_k_tan_delta(double u_cell, double u_jitter) const {
   // The answer lies between guide_[b] and guide_[b + 1] (inclusive) for u_cell in [b, b + 1) / guide_size.
   const int b = std::clamp(int(u_cell * guide_size), 0, guide_size - 1);
   const std::size_t first = std::size_t(guide_[b]), last = std::size_t(guide_[b + 1]);
   const std::size_t j = std::min(first + first_greater(cdf_.data() + first, last - first, u_cell), cdf_.size() - 1);
   const double cell = half_pi / double(cdf_.size());
-  if (j + 1 == cdf_.size()) return std::tan(cell * (double(j) + u_jitter)) / k;
+  if (j + 1 == cdf_.size()) return std::tan(cell * (double(j) + u_jitter));
   // tan(start + r) by the addition formula, tan r = r + r^3 / 3 to double precision (r < 6e-5).
   const double rest = cell * u_jitter, tan_rest = rest + rest * rest * rest / 3, t = tan_start_[j];
-  return (t + tan_rest) / (1 - t * tan_rest) / k;
+  return (t + tan_rest) / (1 - t * tan_rest);
 }
 
 double sinc_lobe::pdf(double delta, double k) {

@@ -4,6 +4,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -60,7 +61,18 @@ class retro_at_incidence {
  public:
   virtual ~retro_at_incidence() = default;
   virtual retro_sample sample(retro_samples u) const = 0;
+  // For sample_at_each, called on at[0]: out[i] = at[i]->sample(u). A model may share the work
+  // that does not depend on the incidence; the default samples each.
+  virtual void sample_group(std::span<const retro_at_incidence* const> at, const retro_samples& u,
+                            std::span<retro_sample> out) const;
 };
+
+// Samples at several incidences (of one model or several) from the same numbers: out[i] is
+// at[i]->sample(u), with the work they share done once (the model image's bins).
+inline void sample_at_each(std::span<const retro_at_incidence* const> at, const retro_samples& u,
+                           std::span<retro_sample> out) {
+  if (!at.empty()) at[0]->sample_group(at, u, out);
+}
 
 class retro_model {
  public:

@@ -3,9 +3,11 @@
 // with the distance to the aerial image, an exit-point shift drawn from the corner-cube shift
 // distribution for the ray's incidence angle, and weight mu; a and mu follow the incidence angle
 // (or, with the "per_render" lookup, the incidence angle of the sheet's chief ray).
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include "airr/core/geometry.hpp"
 #include "airr/models/preset.hpp"
@@ -65,6 +67,22 @@ class sinc_shift_retro final : public retro_model {
   };
   incidence prepare(const glm::dvec3& wi) const;
   retro_sample sample(const incidence& in, retro_samples u) const;
+
+  // What a sample draws before it knows its incidence: sample(in, u) is sample(in, draw_of(u)),
+  // and samples at several incidences from the same numbers share it (sample_at_each).
+  struct draw {
+    double k_tan_delta = 0;                    // k tan(delta): the deviation for every k
+    double cos_phi = 1, sin_phi = 0;           // its azimuth
+    double pick = 0, u_bin = 0, u_jitter = 0;  // the shift's table, bin and place in the bin
+    double cos_psi = 1, sin_psi = 0;           // the shift's direction
+  };
+  // The shifts already drawn from table rows by one draw, for its other incidences.
+  struct row_shifts {
+    std::size_t count = 0;
+    std::array<std::pair<std::size_t, double>, 4> known{};
+  };
+  draw draw_of(retro_samples u) const;
+  retro_sample sample(const incidence& in, const draw& d, row_shifts& rows) const;
 
  private:
   sinc_shift_params p_;

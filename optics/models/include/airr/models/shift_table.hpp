@@ -41,6 +41,7 @@ std::string default_shift_table_path();
 struct shift_rows {
   std::size_t lower = 0, upper = 0;
   double t = 0;
+  std::size_t picked(double u_pick) const { return u_pick < t ? upper : lower; }
 };
 shift_rows shift_rows_at(const shift_table& table, double theta_deg);
 
@@ -50,5 +51,8 @@ shift_rows shift_rows_at(const shift_table& table, double theta_deg);
 double sample_shift(const shift_table& table, double theta_deg, double u_pick, double u_bin, double u_jitter);
 // The same from the rows of shift_rows_at, for many draws at one angle.
 double sample_shift(const shift_table& table, const shift_rows& rows, double u_pick, double u_bin, double u_jitter);
+// The shift drawn from one row (the bin and the position inside it): sample_shift is
+// shift_in_row(table, rows.picked(u_pick), u_bin, u_jitter).
+double shift_in_row(const shift_table& table, std::size_t row, double u_bin, double u_jitter);
 
 }  // namespace airr

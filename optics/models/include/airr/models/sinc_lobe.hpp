@@ -17,7 +17,11 @@ class sinc_lobe {
   // sampled as a discrete distribution with uniform jitter inside the cell, giving delta_1
   // for k = 1; tan(delta) = tan(delta_1) / k maps k tan(delta) onto the same sinc^2 law.
   // (The tangent, not the angle: the direction needs only its sine and cosine.)
-  double sample_tan_delta(double k, double u_cell, double u_jitter) const;
+  double sample_tan_delta(double k, double u_cell, double u_jitter) const {
+    return sample_k_tan_delta(u_cell, u_jitter) / k;
+  }
+  // k tan(delta), the same for every k: samples at several spreads from the same numbers share it.
+  double sample_k_tan_delta(double u_cell, double u_jitter) const;
 
   // The continuous density of delta (per radian) for spread k, normalised on [0, pi/2).
   static double pdf(double delta, double k);
