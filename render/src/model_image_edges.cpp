@@ -62,7 +62,7 @@ glm::vec3 grid_value(const model_grid& grid, const glm::dvec2& base, const glm::
     const node_box d(grid);
     if (edge_cell(d, base + glm::floor(t))) return display_at(grid, d, base + t);
   }
-  return spread_bilinear(grid.padded, base, t);
+  return spread_bilinear(grid, base, t);
 }
 
 edge_samples sort_edge_samples(const std::vector<fine_sample>& fine, int radius, std::uint64_t drawn) {

@@ -173,6 +173,10 @@ grid_mapping make_grid(model_grid& grid, const cv::Mat& texels, int refine, doub
   grid.radius = std::clamp(int(std::ceil(reach_mm / std::min(grid.node_w, grid.node_h))) + 1, 2, 2048);
   grid.edges_on_nodes = refine % 2 == 0;  // the nodes start half a texel out: at the display's edge
   if (!nodes.rgb.empty()) grid.padded = pad(nodes, grid.radius);
+  if (!grid.padded.rgb.empty() && is_grey(grid.padded)) {
+    grid.grey.resize(grid.padded.rgb.size() / 3);
+    for (std::size_t i = 0; i < grid.grey.size(); ++i) grid.grey[i] = grid.padded.rgb[3 * i];
+  }
   map.cols = texels.cols;
   map.rows = texels.rows;
   map.width = src.width;

@@ -12,16 +12,26 @@
 
 namespace airr::model_image_steps {
 
-glm::vec3 bilinear(const image_rgb& m, const glm::dvec2& t) {
+// A grid's bilinear surface at node point `t` (black beyond the grid), its nodes read by texel(x, y):
+// RGB, or the one channel of a grey display's grid.
+template <typename V, typename Texel>
+V bilinear_on(int width, int height, const Texel& texel, const glm::dvec2& t) {
   const int x0 = int(std::floor(t.x)), y0 = int(std::floor(t.y));
-  if (x0 < 0 || y0 < 0 || x0 + 1 >= m.width || y0 + 1 >= m.height) return glm::vec3(0.0f);
+  if (x0 < 0 || y0 < 0 || x0 + 1 >= width || y0 + 1 >= height) return V(0.0f);
   const float fx = float(t.x - x0), fy = float(t.y - y0);
-  auto texel = [&](int x, int y) {
+  return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx),
+                  glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
+}
+
+static auto rgb_texel(const image_rgb& m) {
+  return [&m](int x, int y) {
     const float* p = m.at(x, y);
     return glm::vec3(p[0], p[1], p[2]);
   };
-  return glm::mix(glm::mix(texel(x0, y0), texel(x0 + 1, y0), fx),
-                  glm::mix(texel(x0, y0 + 1), texel(x0 + 1, y0 + 1), fx), fy);
+}
+
+glm::vec3 bilinear(const image_rgb& m, const glm::dvec2& t) {
+  return bilinear_on<glm::vec3>(m.width, m.height, rgb_texel(m), t);
 }
 
 // Where the model sends one sample: the grid and the offset in its nodes from the ideal point (the
@@ -55,12 +65,15 @@ void for_each_corner(const glm::dvec2& t, F&& f) {
   f(x0 + 1, y0 + 1, fx * fy);
 }
 
-glm::vec3 spread_bilinear(const image_rgb& grid, const glm::dvec2& base, const glm::dvec2& t) {
+template <typename V, typename Texel>
+V spread_bilinear_on(int width, int height, const Texel& texel, const glm::dvec2& base, const glm::dvec2& t) {
   const glm::dvec2 b = glm::floor(base), n = glm::floor(t);
   const int x0 = int(b.x + n.x), y0 = int(b.y + n.y);
-  if (x0 < 0 || y0 < 0 || x0 + 2 >= grid.width || y0 + 2 >= grid.height) {
-    glm::vec3 sum(0.0f);
-    for_each_corner(t, [&](int x, int y, double c) { sum += bilinear(grid, base + glm::dvec2(x, y)) * float(c); });
+  if (x0 < 0 || y0 < 0 || x0 + 2 >= width || y0 + 2 >= height) {
+    V sum(0.0f);
+    for_each_corner(t, [&](int x, int y, double c) {
+      sum += bilinear_on<V>(width, height, texel, base + glm::dvec2(x, y)) * float(c);
+    });
     return sum;
   }
   auto weights = [](double f_base, double f_node) {
@@ -68,16 +81,25 @@ glm::vec3 spread_bilinear(const image_rgb& grid, const glm::dvec2& base, const g
                                 float((1 - f_node) * f_base + f_node * (1 - f_base)), float(f_node * f_base)};
   };
   const auto wx = weights(base.x - b.x, t.x - n.x), wy = weights(base.y - b.y, t.y - n.y);
-  glm::vec3 sum(0.0f);
+  V sum(0.0f);
   for (int j = 0; j < 3; ++j) {
-    glm::vec3 row(0.0f);
-    for (int i = 0; i < 3; ++i) {
-      const float* v = grid.at(x0 + i, y0 + j);
-      row += glm::vec3(v[0], v[1], v[2]) * wx[std::size_t(i)];
-    }
+    V row(0.0f);
+    for (int i = 0; i < 3; ++i) row += texel(x0 + i, y0 + j) * wx[std::size_t(i)];
     sum += row * wy[std::size_t(j)];
   }
   return sum;
+}
+
+glm::vec3 spread_bilinear(const image_rgb& grid, const glm::dvec2& base, const glm::dvec2& t) {
+  return spread_bilinear_on<glm::vec3>(grid.width, grid.height, rgb_texel(grid), base, t);
+}
+
+glm::vec3 spread_bilinear(const model_grid& grid, const glm::dvec2& base, const glm::dvec2& t) {
+  if (grid.grey.empty()) return spread_bilinear(grid.padded, base, t);
+  const int width = grid.padded.width;
+  const float* grey = grid.grey.data();
+  const auto texel = [grey, width](int x, int y) { return grey[std::size_t(y) * std::size_t(width) + std::size_t(x)]; };
+  return glm::vec3(spread_bilinear_on<float>(width, grid.padded.height, texel, base, t));
 }
 
 std::vector<std::vector<bin_landing>> bin_landings(const model_image& m, std::uint64_t samples, std::uint64_t seed,

@@ -197,6 +197,8 @@ glm::vec3 bilinear(const image_rgb& m, const glm::dvec2& t);
 // The grid's bilinear surface at `base` plus the offset `t`, spread over the four nodes around it
 // as the kernels are: four bilinear reads, which together are one 3 x 3 stencil of nodes.
 glm::vec3 spread_bilinear(const image_rgb& grid, const glm::dvec2& base, const glm::dvec2& t);
+// The same on a grid's nodes, from its one channel when the display is grey.
+glm::vec3 spread_bilinear(const model_grid& grid, const glm::dvec2& base, const glm::dvec2& t);
 
 // What a prediction reads on a grid for the offset `t` from `base`: spread_bilinear, except where
 // the offset's cell of nodes reaches beyond the display's edge on a grid whose edges lie on nodes:

@@ -91,6 +91,9 @@ struct model_image_params {
 // The display's radiance on one grid, with a black margin as wide as the grid's kernel reaches.
 struct model_grid {
   image_rgb padded;
+  // padded's one channel when the display is grey (R = G = B at every node), else empty: what a
+  // prediction reads, in a third of the memory.
+  std::vector<float> grey;
   double node_w = 0, node_h = 0;  // mm between nodes
   int radius = 0;                 // the kernel's reach, in nodes
   // The display's edges lie on node lines (an even refine), so that a prediction can step to black
