@@ -134,22 +134,35 @@ glm::dvec4 row_through_axial_part(const glm::dvec4& row, const polarization_fram
   return row_through_axial_part(row, double_angle(f, axis), along, across);
 }
 
+namespace {
+
+// The entries of mueller_of(diag(rs, rp)): [[plus, minus], [minus, plus]] on I and Q, and the
+// rotation-scaling by c = conj(rs) rp on U and V.
+struct interface_terms {
+  double plus, minus;
+  complex c;
+};
+interface_terms terms_of(complex rs, complex rp) {
+  const double s = std::norm(rs), p = std::norm(rp);
+  return {0.5 * (s + p), 0.5 * (s - p), std::conj(rs) * rp};
+}
+
+}  // namespace
+
 glm::dvec4 row_through_axial_part(const glm::dvec4& row, double_angle t, complex along, complex across) {
   // row R(-axis) D R(axis), D = interface_mueller(along, across), each a few products on a row.
   const double a1 = row[1] * t.c + row[2] * t.s, a2 = -row[1] * t.s + row[2] * t.c;
-  const double s = std::norm(along), p = std::norm(across), plus = 0.5 * (s + p), minus = 0.5 * (s - p);
-  const complex c = std::conj(along) * across;
+  const auto [plus, minus, c] = terms_of(along, across);
   const double b1 = row[0] * minus + a1 * plus, b2 = a2 * c.real() + row[3] * c.imag();
   return {row[0] * plus + a1 * minus, b1 * t.c - b2 * t.s, b1 * t.s + b2 * t.c, -a2 * c.imag() + row[3] * c.real()};
 }
 
 mueller interface_mueller(complex rs, complex rp) {
   // mueller_of(diag(rs, rp)) written out: the tracer meets it at every interaction.
-  const double s = std::norm(rs), p = std::norm(rp);
-  const complex c = std::conj(rs) * rp;
+  const auto [plus, minus, c] = terms_of(rs, rp);
   mueller m;
-  m.m[0] = {0.5 * (s + p), 0.5 * (s - p), 0, 0};
-  m.m[1] = {0.5 * (s - p), 0.5 * (s + p), 0, 0};
+  m.m[0] = {plus, minus, 0, 0};
+  m.m[1] = {minus, plus, 0, 0};
   m.m[2] = {0, 0, c.real(), -c.imag()};
   m.m[3] = {0, 0, c.imag(), c.real()};
   return m;
@@ -161,8 +174,7 @@ polarization_frame polarization_frame::with_x(const glm::dvec3& k, const glm::dv
 }
 
 mueller interface_times(complex rs, complex rp, const mueller& x) {
-  const double s = std::norm(rs), p = std::norm(rp), plus = 0.5 * (s + p), minus = 0.5 * (s - p);
-  const complex c = std::conj(rs) * rp;
+  const auto [plus, minus, c] = terms_of(rs, rp);
   mueller out;
   for (int k = 0; k < 4; ++k) {
     out.m[0][k] = plus * x.m[0][k] + minus * x.m[1][k];
